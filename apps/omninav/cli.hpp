@@ -1,0 +1,28 @@
+#pragma once
+// The omninav command line: one file per subcommand (<name>_command.cpp), each thin: parse,
+// load config, call the libraries, print. Errors thrown below surface here as one line.
+
+#include <CLI/CLI.hpp>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace omninav::cli {
+
+// Options every subcommand shares.
+struct GlobalOptions {
+  std::filesystem::path config_dir;  // where camera.yaml, worlds.yaml, ... are read from
+  bool quiet = false;
+  bool verbose = false;
+};
+
+// Runs the command line; returns the process exit status (0 success, 1 error, 2 usage).
+int run(int argc, const char* const* argv);
+int run(const std::vector<std::string>& args);  // args without the program name
+
+// Each subcommand registers itself; its callback runs when the user picks it.
+void add_render_command(CLI::App& app, const GlobalOptions& global);
+void add_unwrap_command(CLI::App& app, const GlobalOptions& global);
+void add_demo_command(CLI::App& app, const GlobalOptions& global);
+
+}  // namespace omninav::cli

@@ -1,0 +1,34 @@
+#pragma once
+// Typed exceptions thrown by the libraries and caught once, at main, where they become a
+// one-line message and a non-zero exit status (DESIGN.md, Conventions: Errors).
+
+#include <stdexcept>
+#include <string>
+
+namespace omninav {
+
+// Base of every error omninav reports to a user. what() is the whole one-line message.
+class Error : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// A configuration file or value is wrong: unknown key, bad type, out-of-range value.
+class ConfigError : public Error {
+ public:
+  using Error::Error;
+};
+
+// An input file or sequence is wrong: unreadable, corrupt, inconsistent, missing a column.
+class InputError : public Error {
+ public:
+  using Error::Error;
+};
+
+// The caller asked for something that cannot be done with these arguments.
+class UsageError : public Error {
+ public:
+  using Error::Error;
+};
+
+}  // namespace omninav

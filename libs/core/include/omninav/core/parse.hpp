@@ -1,0 +1,21 @@
+#pragma once
+// Parsing numbers out of text files and command lines with errors that say where.
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace omninav {
+
+// Parses the whole of `text` (surrounding blanks allowed) as a finite number; otherwise throws
+// InputError "<where>: '<text>' is not a number".
+double parse_double(std::string_view text, const std::string& where);
+int parse_int(std::string_view text, const std::string& where);
+
+// Removes leading and trailing blanks (spaces, tabs, CR, LF).
+std::string_view trim(std::string_view text);
+
+// Splits on `separator`, keeping empty fields, each trimmed.
+std::vector<std::string> split(std::string_view text, char separator);
+
+}  // namespace omninav

@@ -1,0 +1,27 @@
+#pragma once
+// Poses in the world frame: x, y on the floor, z up; heading counter-clockwise from +x
+// (ROS REP 103 yaw). Pitch and roll follow REP 103 too: positive pitch turns the nose down,
+// positive roll turns the left side up.
+
+namespace omninav {
+
+// A robot's pose on the floor.
+struct Pose2 {
+  double x_m = 0.0;
+  double y_m = 0.0;
+  double heading_rad = 0.0;
+};
+
+// A camera's full pose, as the renderer and ground-truth files give it.
+struct CameraPose {
+  double x_m = 0.0;
+  double y_m = 0.0;
+  double z_m = 0.0;
+  double heading_rad = 0.0;  // yaw about +z
+  double pitch_rad = 0.0;    // about the robot's +y (its left)
+  double roll_rad = 0.0;     // about the robot's +x (its front)
+
+  Pose2 on_floor() const { return {x_m, y_m, heading_rad}; }
+};
+
+}  // namespace omninav

@@ -1,0 +1,199 @@
+#include "omninav/core/config.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "omninav/core/angles.hpp"
+#include "omninav/core/errors.hpp"
+
+namespace omninav {
+
+struct ConfigReader::Shared {
+  std::string name;               // the file, as the user named it
+  std::set<std::string> known;    // full dotted keys some loader asked for
+  YAML::Node root;
+};
+
+namespace {
+
+std::string format_number(double value) {
+  std::ostringstream text;
+  text << value;
+  return text.str();
+}
+
+// Walks every key of `node`, calling `visit` with its dotted path.
+template <typename Visit>
+void for_each_key(const YAML::Node& node, const std::string& prefix, Visit&& visit) {
+  if (!node.IsMap()) return;
+  for (const auto& entry : node) {
+    const std::string key = prefix.empty() ? entry.first.as<std::string>()
+                                           : prefix + "." + entry.first.as<std::string>();
+    visit(key, entry.second);
+    for_each_key(entry.second, key, visit);
+  }
+}
+
+}  // namespace
+
+ConfigReader::ConfigReader(std::shared_ptr<Shared> shared, std::shared_ptr<const YAML::Node> node,
+                           std::string prefix)
+    : shared_(std::move(shared)), node_(std::move(node)), prefix_(std::move(prefix)) {}
+
+ConfigReader ConfigReader::from_string(const std::string& yaml, const std::string& name) {
+  auto shared = std::make_shared<Shared>();
+  shared->name = name;
+  try {
+    shared->root = YAML::Load(yaml);
+  } catch (const YAML::Exception& error) {
+    throw ConfigError(name + ":" + std::to_string(error.mark.line + 1) + ": not valid YAML: " +
+                      error.msg);
+  }
+  if (!shared->root.IsMap() && !shared->root.IsNull()) {
+    throw ConfigError(name + ": expected a map of keys at the top level");
+  }
+  auto node = std::make_shared<const YAML::Node>(shared->root);
+  return ConfigReader(std::move(shared), std::move(node), "");
+}
+
+ConfigReader ConfigReader::from_file(const std::filesystem::path& file) {
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(file, error)) {
+    throw ConfigError(file.string() + ": configuration file not found");
+  }
+  std::ifstream stream(file, std::ios::binary);
+  std::stringstream text;
+  text << stream.rdbuf();
+  if (!stream) throw ConfigError(file.string() + ": cannot read the configuration file");
+  return from_string(text.str(), file.string());
+}
+
+const std::string& ConfigReader::source_name() const { return shared_->name; }
+
+std::string ConfigReader::full_key(const std::string& key) const {
+  return prefix_.empty() ? key : prefix_ + "." + key;
+}
+
+void ConfigReader::fail(const std::string& key, const std::string& problem) const {
+  throw ConfigError(shared_->name + ": key '" + full_key(key) + "' " + problem);
+}
+
+std::optional<YAML::Node> ConfigReader::lookup(const std::string& key) const {
+  shared_->known.insert(full_key(key));
+  if (!node_->IsMap()) return std::nullopt;
+  const YAML::Node value = (*node_)[key];
+  if (!value.IsDefined()) return std::nullopt;
+  return value;
+}
+
+bool ConfigReader::has(const std::string& key) const {
+  return node_->IsMap() && (*node_)[key].IsDefined();
+}
+
+ConfigReader ConfigReader::section(const std::string& key) const {
+  const std::optional<YAML::Node> value = lookup(key);
+  if (value && !value->IsMap() && !value->IsNull()) fail(key, "must be a map of keys");
+  auto node = std::make_shared<const YAML::Node>(value ? *value : YAML::Node(YAML::NodeType::Map));
+  return ConfigReader(shared_, std::move(node), full_key(key));
+}
+
+void ConfigReader::read(const std::string& key, double& value, double min, double max) const {
+  const std::optional<YAML::Node> node = lookup(key);
+  if (!node) return;
+  double parsed = 0.0;
+  if (!node->IsScalar() || !YAML::convert<double>::decode(*node, parsed) || !std::isfinite(parsed)) {
+    fail(key, "must be a number in [" + format_number(min) + ", " + format_number(max) + "]");
+  }
+  if (parsed < min || parsed > max) {
+    fail(key, "= " + format_number(parsed) + " is out of range [" + format_number(min) + ", " +
+                  format_number(max) + "]");
+  }
+  value = parsed;
+}
+
+void ConfigReader::read(const std::string& key, std::optional<double>& value, double min,
+                        double max) const {
+  const std::optional<YAML::Node> node = lookup(key);
+  if (!node) return;
+  if (node->IsNull()) {
+    value.reset();
+    return;
+  }
+  double parsed = value.value_or(min);
+  read(key, parsed, min, max);
+  value = parsed;
+}
+
+void ConfigReader::read(const std::string& key, int& value, int min, int max) const {
+  const std::optional<YAML::Node> node = lookup(key);
+  if (!node) return;
+  int parsed = 0;
+  if (!node->IsScalar() || !YAML::convert<int>::decode(*node, parsed)) {
+    fail(key, "must be a whole number in [" + std::to_string(min) + ", " + std::to_string(max) +
+                  "]");
+  }
+  if (parsed < min || parsed > max) {
+    fail(key, "= " + std::to_string(parsed) + " is out of range [" + std::to_string(min) + ", " +
+                  std::to_string(max) + "]");
+  }
+  value = parsed;
+}
+
+void ConfigReader::read(const std::string& key, bool& value) const {
+  const std::optional<YAML::Node> node = lookup(key);
+  if (!node) return;
+  bool parsed = false;
+  if (!node->IsScalar() || !YAML::convert<bool>::decode(*node, parsed)) {
+    fail(key, "must be true or false");
+  }
+  value = parsed;
+}
+
+void ConfigReader::read(const std::string& key, std::string& value,
+                        const std::vector<std::string>& allowed) const {
+  const std::optional<YAML::Node> node = lookup(key);
+  if (!node) return;
+  std::string choices;
+  for (const std::string& choice : allowed) choices += (choices.empty() ? "" : ", ") + choice;
+  if (!node->IsScalar()) fail(key, "must be one of: " + choices);
+  const std::string parsed = node->Scalar();
+  if (!allowed.empty() && std::find(allowed.begin(), allowed.end(), parsed) == allowed.end()) {
+    fail(key, "= '" + parsed + "' is not one of: " + choices);
+  }
+  value = parsed;
+}
+
+void ConfigReader::read_deg(const std::string& key, double& value_rad, double min_deg,
+                            double max_deg) const {
+  if (!has(key)) {
+    lookup(key);  // still a known key
+    return;
+  }
+  double degrees = rad_to_deg(value_rad);
+  read(key, degrees, min_deg, max_deg);
+  value_rad = deg_to_rad(degrees);
+}
+
+void ConfigReader::require_all_known() const {
+  for_each_key(shared_->root, "", [&](const std::string& key, const YAML::Node&) {
+    if (!shared_->known.contains(key)) {
+      std::string siblings;
+      const std::string parent = key.substr(0, key.find_last_of('.') == std::string::npos
+                                                   ? 0
+                                                   : key.find_last_of('.') + 1);
+      for (const std::string& known : shared_->known) {
+        if (known.rfind(parent, 0) == 0 && known.find('.', parent.size()) == std::string::npos) {
+          siblings += (siblings.empty() ? "" : ", ") + known.substr(parent.size());
+        }
+      }
+      throw ConfigError(shared_->name + ": unknown key '" + key + "'" +
+                        (siblings.empty() ? "" : " (known here: " + siblings + ")"));
+    }
+  });
+}
+
+}  // namespace omninav
