@@ -22,7 +22,7 @@ packages=(
   build-essential cmake ninja-build pkg-config git
   libopencv-dev libfftw3-dev libeigen3-dev libceres-dev libboost-graph-dev
   libsqlite3-dev libyaml-cpp-dev libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev
-  libembree-dev
+  libembree-dev libtinyobjloader-dev
 )
 
 install_missing_packages() {

@@ -13,8 +13,8 @@
 namespace omninav {
 
 struct ConfigReader::Shared {
-  std::string name;               // the file, as the user named it
-  std::set<std::string> known;    // full dotted keys some loader asked for
+  std::string name;             // the file, as the user named it
+  std::set<std::string> known;  // full dotted keys some loader asked for
   YAML::Node root;
 };
 
@@ -50,8 +50,8 @@ ConfigReader ConfigReader::from_string(const std::string& yaml, const std::strin
   try {
     shared->root = YAML::Load(yaml);
   } catch (const YAML::Exception& error) {
-    throw ConfigError(name + ":" + std::to_string(error.mark.line + 1) + ": not valid YAML: " +
-                      error.msg);
+    throw ConfigError(name + ":" + std::to_string(error.mark.line + 1) +
+                      ": not valid YAML: " + error.msg);
   }
   if (!shared->root.IsMap() && !shared->root.IsNull()) {
     throw ConfigError(name + ": expected a map of keys at the top level");
@@ -72,7 +72,9 @@ ConfigReader ConfigReader::from_file(const std::filesystem::path& file) {
   return from_string(text.str(), file.string());
 }
 
-const std::string& ConfigReader::source_name() const { return shared_->name; }
+const std::string& ConfigReader::source_name() const {
+  return shared_->name;
+}
 
 std::string ConfigReader::full_key(const std::string& key) const {
   return prefix_.empty() ? key : prefix_ + "." + key;
@@ -105,7 +107,8 @@ void ConfigReader::read(const std::string& key, double& value, double min, doubl
   const std::optional<YAML::Node> node = lookup(key);
   if (!node) return;
   double parsed = 0.0;
-  if (!node->IsScalar() || !YAML::convert<double>::decode(*node, parsed) || !std::isfinite(parsed)) {
+  if (!node->IsScalar() || !YAML::convert<double>::decode(*node, parsed) ||
+      !std::isfinite(parsed)) {
     fail(key, "must be a number in [" + format_number(min) + ", " + format_number(max) + "]");
   }
   if (parsed < min || parsed > max) {
@@ -133,8 +136,8 @@ void ConfigReader::read(const std::string& key, int& value, int min, int max) co
   if (!node) return;
   int parsed = 0;
   if (!node->IsScalar() || !YAML::convert<int>::decode(*node, parsed)) {
-    fail(key, "must be a whole number in [" + std::to_string(min) + ", " + std::to_string(max) +
-                  "]");
+    fail(key,
+         "must be a whole number in [" + std::to_string(min) + ", " + std::to_string(max) + "]");
   }
   if (parsed < min || parsed > max) {
     fail(key, "= " + std::to_string(parsed) + " is out of range [" + std::to_string(min) + ", " +
@@ -182,9 +185,8 @@ void ConfigReader::require_all_known() const {
   for_each_key(shared_->root, "", [&](const std::string& key, const YAML::Node&) {
     if (!shared_->known.contains(key)) {
       std::string siblings;
-      const std::string parent = key.substr(0, key.find_last_of('.') == std::string::npos
-                                                   ? 0
-                                                   : key.find_last_of('.') + 1);
+      const std::string parent =
+          key.substr(0, key.find_last_of('.') == std::string::npos ? 0 : key.find_last_of('.') + 1);
       for (const std::string& known : shared_->known) {
         if (known.rfind(parent, 0) == 0 && known.find('.', parent.size()) == std::string::npos) {
           siblings += (siblings.empty() ? "" : ", ") + known.substr(parent.size());

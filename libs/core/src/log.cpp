@@ -18,12 +18,24 @@ void write(LogLevel level, std::string_view prefix, std::string_view message) {
 
 }  // namespace
 
-void set_log_level(LogLevel level) { current_level = level; }
-LogLevel log_level() { return current_level.load(); }
+void set_log_level(LogLevel level) {
+  current_level = level;
+}
+LogLevel log_level() {
+  return current_level.load();
+}
 
-void log_error(std::string_view message) { write(LogLevel::kError, "error: ", message); }
-void log_warning(std::string_view message) { write(LogLevel::kWarning, "warning: ", message); }
-void log_info(std::string_view message) { write(LogLevel::kInfo, "", message); }
-void log_debug(std::string_view message) { write(LogLevel::kDebug, "debug: ", message); }
+void log_error(std::string_view message) {
+  write(LogLevel::kError, "error: ", message);
+}
+void log_warning(std::string_view message) {
+  write(LogLevel::kWarning, "warning: ", message);
+}
+void log_info(std::string_view message) {
+  write(LogLevel::kInfo, "", message);
+}
+void log_debug(std::string_view message) {
+  write(LogLevel::kDebug, "debug: ", message);
+}
 
 }  // namespace omninav

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "omninav/core/angles.hpp"
+#include "omninav/core/config.hpp"
 #include "omninav/core/errors.hpp"
 
 namespace omninav {
@@ -18,9 +19,13 @@ double column_of_azimuth(double azimuth_rad, int width_px) {
   return wrapped >= width_px ? 0.0 : wrapped;
 }
 
-double shift_px_of_rotation(double turn_rad, int width_px) { return turn_rad * width_px / kTwoPi; }
+double shift_px_of_rotation(double turn_rad, int width_px) {
+  return turn_rad * width_px / kTwoPi;
+}
 
-double rotation_of_shift_px(double shift_px, int width_px) { return shift_px * kTwoPi / width_px; }
+double rotation_of_shift_px(double shift_px, int width_px) {
+  return shift_px * kTwoPi / width_px;
+}
 
 cv::Mat roll_columns(const cv::Mat& panorama, int shift_px) {
   const int width = panorama.cols;
@@ -62,6 +67,17 @@ double PanoramaGeometry::elevation_of_row(double row) const {
 
 double PanoramaGeometry::row_of_elevation(double elevation_rad) const {
   return (elevation_max_rad - elevation_rad) / rad_per_row() - 0.5;
+}
+
+void load_panorama_geometry(const ConfigReader& section, PanoramaGeometry& geometry) {
+  section.read("width_px", geometry.width_px, 8, 16384);
+  section.read("height_px", geometry.height_px, 1, 4096);
+  section.read_deg("elevation_min_deg", geometry.elevation_min_rad, -90.0, 89.0);
+  section.read_deg("elevation_max_deg", geometry.elevation_max_rad, -89.0, 90.0);
+  if (geometry.elevation_max_rad <= geometry.elevation_min_rad) {
+    throw ConfigError(section.source_name() +
+                      ": key 'panorama.elevation_max_deg' must be above elevation_min_deg");
+  }
 }
 
 }  // namespace omninav

@@ -20,7 +20,8 @@ std::vector<std::string> split(std::string_view text, char separator) {
   std::size_t start = 0;
   while (true) {
     const std::size_t end = text.find(separator, start);
-    fields.emplace_back(trim(text.substr(start, end == std::string_view::npos ? end : end - start)));
+    fields.emplace_back(
+        trim(text.substr(start, end == std::string_view::npos ? end : end - start)));
     if (end == std::string_view::npos) return fields;
     start = end + 1;
   }

@@ -33,7 +33,8 @@ void Progress::draw(bool final) {
   constexpr int kBarWidth = 30;
   const double fraction = total_ == 0 ? 1.0 : static_cast<double>(done_) / total_;
   const int filled = static_cast<int>(fraction * kBarWidth + 0.5);
-  const double elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  const double elapsed_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
   const double remaining_s = fraction > 0.0 ? elapsed_s * (1.0 - fraction) / fraction : 0.0;
   std::fprintf(stderr, "\r%s [%-*s] %zu/%zu  %.0f s left ", label_.c_str(), kBarWidth,
                std::string(static_cast<std::size_t>(filled), '#').c_str(), done_, total_,

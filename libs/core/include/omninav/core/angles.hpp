@@ -11,8 +11,12 @@ namespace omninav {
 inline constexpr double kPi = std::numbers::pi;
 inline constexpr double kTwoPi = 2.0 * std::numbers::pi;
 
-constexpr double deg_to_rad(double deg) { return deg * (kPi / 180.0); }
-constexpr double rad_to_deg(double rad) { return rad * (180.0 / kPi); }
+constexpr double deg_to_rad(double deg) {
+  return deg * (kPi / 180.0);
+}
+constexpr double rad_to_deg(double rad) {
+  return rad * (180.0 / kPi);
+}
 
 // Wraps to (-π, π]. Exact for inputs already in range, so that wrap(wrap(a)) == wrap(a).
 inline double wrap_angle(double rad) {
@@ -38,8 +42,12 @@ inline double wrap_angle_positive(double rad) {
 }
 
 // The signed angle that takes `from` to `to`, in (-π, π]: to ≈ from + signed_difference(to, from).
-inline double signed_difference(double to, double from) { return wrap_angle(to - from); }
+inline double signed_difference(double to, double from) {
+  return wrap_angle(to - from);
+}
 
-inline double signed_difference_deg(double to, double from) { return wrap_angle_deg(to - from); }
+inline double signed_difference_deg(double to, double from) {
+  return wrap_angle_deg(to - from);
+}
 
 }  // namespace omninav

@@ -42,14 +42,20 @@ void require_panorama(const cv::Mat& panorama, const std::string& what);
 // elevation (equiangular), row 0 at the top. Used by the renderer; real unwrapped panoramas
 // only approximate it (the mirror's profile is not modelled, 000_9e80abd5855643af.txt §3.1).
 struct PanoramaGeometry {
-  int width_px = 360;                   // one column per degree (000_9e80abd5855643af.txt §3.1)
-  int height_px = 45;                   // rows
+  int width_px = 360;  // one column per degree (000_9e80abd5855643af.txt §3.1)
+  int height_px = 45;  // rows
   double elevation_min_rad = deg_to_rad(-30.0);  // bottom edge of the last row
   double elevation_max_rad = deg_to_rad(15.0);   // top edge of the first row
 
-  double elevation_of_row(double row) const;   // row centre r ↦ elevation
+  double elevation_of_row(double row) const;  // row centre r ↦ elevation
   double row_of_elevation(double elevation_rad) const;
   double rad_per_row() const { return (elevation_max_rad - elevation_min_rad) / height_px; }
 };
+
+class ConfigReader;
+
+// Reads the `panorama:` section of camera.yaml (keys width_px, height_px, elevation_min_deg,
+// elevation_max_deg) into `geometry`.
+void load_panorama_geometry(const ConfigReader& section, PanoramaGeometry& geometry);
 
 }  // namespace omninav

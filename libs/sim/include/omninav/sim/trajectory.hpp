@@ -1,0 +1,47 @@
+#pragma once
+// Camera trajectories for the renderer, with a frame rate and speed so that time and distance
+// travelled are known. A trajectory is given as a spec string, `kind:key=value,key=value`:
+//
+//   rotate  on the spot:    x, y, heading_deg, turns (1), rate_deg_s (30; negative = clockwise)
+//   line    straight:       x0, y0, x1, y1, speed_m_s (0.2); heading along the line
+//   circle  round a centre: cx, cy, radius_m (1), turns (1), speed_m_s (0.2); heading tangent,
+//                           counter-clockwise (negative speed: clockwise)
+//   walk    random walk:    x, y, heading_deg, steps (200), step_m (0.05), turn_deg (20), seed (1);
+//                           turns away from walls and furniture
+//   grid    grid sweep:     x0, y0, nx (10), ny (8), spacing_m (0.3), heading_deg (0); points
+//                           inside furniture are left out (their grid index is skipped)
+//   zigzag  boustrophedon:  x0, y0, x1, y1, rows (4), spacing_m (0.6 between places along rows)
+//   csv     from a file:    path; columns x_m, y_m, heading_deg (required), time_s, z_m,
+//                           pitch_deg, roll_deg (optional)
+//
+// Every kind also takes fps (10, frames per second), z_m (camera height, 1.0),
+// pitch_noise_deg and roll_noise_deg (standard deviation of a smooth random tilt, 0) and
+// noise_seed (1). Positions default to the centre of the world's floor (or a margin inside it).
+
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "omninav/core/pose.hpp"
+#include "omninav/sim/world.hpp"
+
+namespace omninav::sim {
+
+struct TimedPose {
+  double time_s = 0.0;
+  CameraPose pose;
+  std::optional<std::array<int, 3>> grid;  // for grid sweeps: (ix, iy, 0)
+};
+
+struct Trajectory {
+  std::string kind;
+  std::vector<TimedPose> poses;
+  double length_m() const;  // distance travelled on the floor
+};
+
+// Builds the trajectory a spec describes in `world`. Throws UsageError naming the bad key or
+// value (and listing the valid keys), InputError for a bad CSV file.
+Trajectory make_trajectory(const std::string& spec, const World& world);
+
+}  // namespace omninav::sim

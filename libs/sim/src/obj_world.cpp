@@ -1,0 +1,95 @@
+// Wavefront OBJ worlds, parsed with tinyobjloader (Debian's libtinyobjloader-dev) rather than
+// by hand: it handles polygons, negative indices and MTL files as the format intends.
+#include <tiny_obj_loader.h>
+
+#include <algorithm>
+#include <limits>
+#include <opencv2/imgcodecs.hpp>
+
+#include "omninav/core/errors.hpp"
+#include "omninav/core/log.hpp"
+#include "omninav/sim/world.hpp"
+
+namespace omninav::sim {
+namespace {
+
+cv::Vec3f to_world(const float* xyz, const ObjWorldParams& params) {
+  const float scale = static_cast<float>(params.scale_to_m);
+  if (params.y_up) return {xyz[0] * scale, -xyz[2] * scale, xyz[1] * scale};
+  return {xyz[0] * scale, xyz[1] * scale, xyz[2] * scale};
+}
+
+}  // namespace
+
+World load_obj_world(const std::filesystem::path& obj_file, const ObjWorldParams& params) {
+  if (!std::filesystem::is_regular_file(obj_file)) {
+    throw InputError(obj_file.string() + ": no such OBJ file");
+  }
+  tinyobj::ObjReaderConfig config;
+  config.triangulate = true;
+  config.mtl_search_path = obj_file.parent_path().string();
+  tinyobj::ObjReader reader;
+  if (!reader.ParseFromFile(obj_file.string(), config)) {
+    throw InputError(obj_file.string() + ": cannot parse OBJ: " + reader.Error());
+  }
+  if (!reader.Warning().empty()) log_debug(obj_file.string() + ": " + reader.Warning());
+
+  World world;
+  world.name = obj_file.stem().string();
+  const tinyobj::attrib_t& attrib = reader.GetAttrib();
+  for (std::size_t i = 0; i + 2 < attrib.vertices.size(); i += 3) {
+    world.vertices.push_back(to_world(&attrib.vertices[i], params));
+  }
+  for (const tinyobj::material_t& source : reader.GetMaterials()) {
+    Material material;
+    material.name = source.name;
+    material.colour_bgr =
+        cv::Vec3f(source.diffuse[2], source.diffuse[1], source.diffuse[0]) * 255.f;
+    if (!source.diffuse_texname.empty()) {
+      const std::filesystem::path texture_file = obj_file.parent_path() / source.diffuse_texname;
+      cv::Mat texture = cv::imread(texture_file.string(), cv::IMREAD_COLOR);
+      if (texture.empty()) {
+        throw InputError(texture_file.string() + ": cannot read the texture of material '" +
+                         source.name + "' in " + obj_file.string());
+      }
+      world.textures.push_back(texture);
+      material.texture = static_cast<int>(world.textures.size()) - 1;
+    }
+    world.materials.push_back(material);
+  }
+  const int default_material = static_cast<int>(world.materials.size());
+  world.materials.push_back({"default", {200.f, 200.f, 200.f}, -1});
+
+  for (const tinyobj::shape_t& shape : reader.GetShapes()) {
+    const auto& indices = shape.mesh.indices;
+    for (std::size_t face = 0; face < shape.mesh.num_face_vertices.size(); ++face) {
+      Triangle triangle;
+      for (int corner = 0; corner < 3; ++corner) {
+        const tinyobj::index_t& index = indices[3 * face + corner];
+        triangle.vertex[corner] = index.vertex_index;
+        if (index.texcoord_index >= 0) {
+          triangle.uv[corner] = {attrib.texcoords[2 * index.texcoord_index],
+                                 attrib.texcoords[2 * index.texcoord_index + 1]};
+        }
+      }
+      const int material_id = shape.mesh.material_ids[face];
+      triangle.material = material_id >= 0 ? material_id : default_material;
+      world.triangles.push_back(triangle);
+    }
+  }
+  if (world.triangles.empty()) throw InputError(obj_file.string() + ": the OBJ has no faces");
+
+  // The free area of an OBJ world is its bounding box: we know nothing of its furniture.
+  float min_x = std::numeric_limits<float>::max(), min_y = min_x;
+  float max_x = std::numeric_limits<float>::lowest(), max_y = max_x;
+  for (const cv::Vec3f& vertex : world.vertices) {
+    min_x = std::min(min_x, vertex[0]);
+    max_x = std::max(max_x, vertex[0]);
+    min_y = std::min(min_y, vertex[1]);
+    max_y = std::max(max_y, vertex[1]);
+  }
+  world.floor = {min_x, min_y, max_x, max_y};
+  return world;
+}
+
+}  // namespace omninav::sim

@@ -1,0 +1,354 @@
+#include "omninav/sim/renderer.hpp"
+
+#include <embree3/rtcore.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <opencv2/imgproc.hpp>
+
+#include "omninav/core/angles.hpp"
+#include "omninav/core/config.hpp"
+#include "omninav/core/errors.hpp"
+#include "texture_pyramid.hpp"
+
+namespace omninav::sim {
+namespace {
+
+// Direction towards the light, for Lambert shading: above, from one side, so that walls facing
+// different ways differ in brightness as they do in a real room.
+const cv::Vec3f kToLight = cv::normalize(cv::Vec3f(0.35f, 0.55f, 0.75f));
+
+// Heading is quantised to 2^-20 column so that headings a whole number of columns apart split
+// into the same fraction exactly (see the header's note on exactness); 2^-20 column is 3e-7°.
+constexpr double kHeadingQuantum = 1.0 / (1 << 20);
+
+struct Hit {
+  float distance_m = std::numeric_limits<float>::infinity();
+  cv::Vec3f colour;  // shaded, 0..255
+};
+
+// The occluder's box at `time_s`: it walks from one end to the other and back.
+FloorBox occluder_footprint(const OccluderParams& occluder, double time_s) {
+  const double dx = occluder.to_x_m - occluder.from_x_m;
+  const double dy = occluder.to_y_m - occluder.from_y_m;
+  const double length = std::hypot(dx, dy);
+  double along = 0.0;
+  if (length > 0.0) {
+    along = std::fmod(std::abs(occluder.speed_m_s * time_s), 2.0 * length);
+    if (along > length) along = 2.0 * length - along;
+    along /= length;
+  }
+  const double x = occluder.from_x_m + dx * along;
+  const double y = occluder.from_y_m + dy * along;
+  const double half = occluder.width_m / 2.0;
+  return {x - half, y - half, x + half, y + half};
+}
+
+// Slab test of a ray against an upright box; returns the entry distance and the entry face's
+// normal, or nothing when the ray misses (or starts inside).
+bool intersect_box(const cv::Vec3f& origin, const cv::Vec3f& direction, const cv::Vec3f& low,
+                   const cv::Vec3f& high, float& distance, cv::Vec3f& normal) {
+  float enter = 0.f, leave = std::numeric_limits<float>::infinity();
+  int enter_axis = -1;
+  for (int axis = 0; axis < 3; ++axis) {
+    if (std::abs(direction[axis]) < 1e-12f) {
+      if (origin[axis] < low[axis] || origin[axis] > high[axis]) return false;
+      continue;
+    }
+    float near = (low[axis] - origin[axis]) / direction[axis];
+    float far = (high[axis] - origin[axis]) / direction[axis];
+    if (near > far) std::swap(near, far);
+    if (near > enter) {
+      enter = near;
+      enter_axis = axis;
+    }
+    leave = std::min(leave, far);
+    if (enter > leave) return false;
+  }
+  if (enter_axis < 0) return false;
+  distance = enter;
+  normal = cv::Vec3f(0.f, 0.f, 0.f);
+  normal[enter_axis] = direction[enter_axis] > 0.f ? -1.f : 1.f;
+  return true;
+}
+
+}  // namespace
+
+void load_render_params(const ConfigReader& section, RenderParams& params) {
+  section.read("supersampling", params.supersampling, 1, 8);
+  section.read("ambient", params.ambient, 0.0, 1.0);
+  SensorEffects& effects = params.effects;
+  section.read("noise_stddev", effects.noise_stddev, 0.0, 100.0);
+  section.read("exposure_gain", effects.exposure_gain, 0.05, 20.0);
+  int seed = static_cast<int>(effects.seed);
+  section.read("seed", seed, 0, 1'000'000'000);
+  effects.seed = static_cast<std::uint32_t>(seed);
+  const ConfigReader occluder = section.section("occluder");
+  OccluderParams& o = effects.occluder;
+  occluder.read("enabled", o.enabled);
+  occluder.read("from_x_m", o.from_x_m, -1e4, 1e4);
+  occluder.read("from_y_m", o.from_y_m, -1e4, 1e4);
+  occluder.read("to_x_m", o.to_x_m, -1e4, 1e4);
+  occluder.read("to_y_m", o.to_y_m, -1e4, 1e4);
+  occluder.read("speed_m_s", o.speed_m_s, 0.0, 100.0);
+  occluder.read("width_m", o.width_m, 0.01, 10.0);
+  occluder.read("height_m", o.height_m, 0.01, 10.0);
+}
+
+struct Renderer::Impl {
+  RenderParams params;
+  RTCDevice device = nullptr;
+  RTCScene scene = nullptr;
+
+  // Per triangle: material colour, texture (or -1), unit normal, corners' texture coordinates
+  // and texels per metre (to choose the pyramid level from a ray's footprint).
+  struct Surface {
+    cv::Vec3f colour;
+    int texture = -1;
+    cv::Vec3f normal;
+    std::array<cv::Vec2f, 3> uv;
+    float texels_per_m = 1.f;
+  };
+  std::vector<Surface> surfaces;
+  std::vector<TexturePyramid> textures;
+  cv::Vec3f background;
+
+  // Ray directions that do not depend on the pose: per sub-row, cos and sin of its elevation.
+  std::vector<float> cos_elevation, sin_elevation;
+  std::vector<double> column_offsets;  // sub-column offsets within a pixel, in columns
+  float sample_angle_rad = 0.f;        // angle between neighbouring rays
+
+  // The shaded colour and distance of a ray Embree has intersected.
+  Hit shade(const RTCRayHit& ray) const;
+};
+
+Renderer::Renderer(const World& world, const RenderParams& params)
+    : impl_(std::make_unique<Impl>()) {
+  Impl& impl = *impl_;
+  impl.params = params;
+  impl.background = world.background_bgr;
+  if (world.triangles.empty())
+    throw UsageError("renderer: the world '" + world.name + "' is empty");
+
+  for (const cv::Mat& texture : world.textures) impl.textures.emplace_back(texture);
+  impl.surfaces.reserve(world.triangles.size());
+  for (const Triangle& triangle : world.triangles) {
+    const Material& material = world.materials.at(triangle.material);
+    const cv::Vec3f a = world.vertices.at(triangle.vertex[0]);
+    const cv::Vec3f b = world.vertices.at(triangle.vertex[1]);
+    const cv::Vec3f c = world.vertices.at(triangle.vertex[2]);
+    const cv::Vec3f cross = (b - a).cross(c - a);
+    const float world_area = 0.5f * static_cast<float>(cv::norm(cross));
+    Impl::Surface surface;
+    surface.colour = material.colour_bgr / 255.f;
+    surface.texture = material.texture;
+    surface.normal = world_area > 0.f ? cross / (2.f * world_area) : cv::Vec3f(0.f, 0.f, 1.f);
+    surface.uv = triangle.uv;
+    if (material.texture >= 0 && world_area > 0.f) {
+      const cv::Size size = world.textures[material.texture].size();
+      const cv::Vec2f du = triangle.uv[1] - triangle.uv[0];
+      const cv::Vec2f dv = triangle.uv[2] - triangle.uv[0];
+      const float uv_area =
+          0.5f * std::abs(du[0] * dv[1] - du[1] * dv[0]) * size.width * size.height;
+      surface.texels_per_m = std::sqrt(uv_area / world_area);
+    }
+    impl.surfaces.push_back(surface);
+  }
+
+  // One BVH over every triangle; the geometry's primitive ID is the World triangle index.
+  impl.device = rtcNewDevice("threads=1");
+  if (!impl.device) throw Error("renderer: cannot create an Embree device");
+  impl.scene = rtcNewScene(impl.device);
+  rtcSetSceneBuildQuality(impl.scene, RTC_BUILD_QUALITY_HIGH);
+  RTCGeometry geometry = rtcNewGeometry(impl.device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0,
+                                                               RTC_FORMAT_FLOAT3, 3 * sizeof(float),
+                                                               world.vertices.size()));
+  for (std::size_t i = 0; i < world.vertices.size(); ++i) {
+    for (int axis = 0; axis < 3; ++axis) vertices[3 * i + axis] = world.vertices[i][axis];
+  }
+  auto* indices = static_cast<unsigned*>(
+      rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                              3 * sizeof(unsigned), world.triangles.size()));
+  for (std::size_t i = 0; i < world.triangles.size(); ++i) {
+    for (int corner = 0; corner < 3; ++corner) {
+      indices[3 * i + corner] = static_cast<unsigned>(world.triangles[i].vertex[corner]);
+    }
+  }
+  rtcCommitGeometry(geometry);
+  rtcAttachGeometry(impl.scene, geometry);
+  rtcReleaseGeometry(geometry);
+  rtcCommitScene(impl.scene);
+
+  const PanoramaGeometry& panorama = params.geometry;
+  const int samples = std::max(1, params.supersampling);
+  for (int row = 0; row < panorama.height_px; ++row) {
+    for (int sub = 0; sub < samples; ++sub) {
+      const double elevation = panorama.elevation_of_row(row + (sub + 0.5) / samples - 0.5);
+      impl.cos_elevation.push_back(static_cast<float>(std::cos(elevation)));
+      impl.sin_elevation.push_back(static_cast<float>(std::sin(elevation)));
+    }
+  }
+  for (int sub = 0; sub < samples; ++sub)
+    impl.column_offsets.push_back((sub + 0.5) / samples - 0.5);
+  impl.sample_angle_rad = static_cast<float>(kTwoPi / panorama.width_px / samples);
+}
+
+Renderer::~Renderer() {
+  if (impl_->scene) rtcReleaseScene(impl_->scene);
+  if (impl_->device) rtcReleaseDevice(impl_->device);
+}
+
+const RenderParams& Renderer::params() const {
+  return impl_->params;
+}
+
+Hit Renderer::Impl::shade(const RTCRayHit& ray) const {
+  const cv::Vec3f direction(ray.ray.dir_x, ray.ray.dir_y, ray.ray.dir_z);
+  Hit hit;
+  if (ray.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
+    hit.colour = background;
+    return hit;
+  }
+  hit.distance_m = ray.ray.tfar;
+  const Surface& surface = surfaces[ray.hit.primID];
+  float facing = surface.normal.dot(direction);
+  const cv::Vec3f normal = facing > 0.f ? -surface.normal : surface.normal;  // two-sided
+  facing = std::abs(facing);
+  cv::Vec3f albedo = surface.colour;
+  if (surface.texture >= 0) {
+    const float u = ray.hit.u, v = ray.hit.v;
+    const cv::Vec2f uv = (1.f - u - v) * surface.uv[0] + u * surface.uv[1] + v * surface.uv[2];
+    // Footprint of one ray on the surface, in texels: grows with distance and obliquity.
+    const float footprint_m = hit.distance_m * sample_angle_rad / std::max(facing, 0.2f);
+    const float level = std::log2(std::max(footprint_m * surface.texels_per_m, 1.f));
+    albedo = albedo.mul(textures[surface.texture].sample(uv, level));
+  }
+  const float light =
+      static_cast<float>(params.ambient) +
+      static_cast<float>(1.0 - params.ambient) * std::max(0.f, normal.dot(kToLight));
+  hit.colour = albedo * (255.f * light);
+  return hit;
+}
+
+cv::Mat Renderer::render(const CameraPose& pose, double time_s, int frame_index) const {
+  const Impl& impl = *impl_;
+  const PanoramaGeometry& panorama = impl.params.geometry;
+  const int width = panorama.width_px;
+  const int height = panorama.height_px;
+  const int samples = static_cast<int>(impl.column_offsets.size());
+
+  // Heading in columns, split into a whole and a fractional part (see kHeadingQuantum).
+  const double heading_columns =
+      std::round(pose.heading_rad * width / kTwoPi / kHeadingQuantum) * kHeadingQuantum;
+  const double whole_columns = std::floor(heading_columns);
+  const double fraction = heading_columns - whole_columns;
+  const int shift = static_cast<int>(std::fmod(whole_columns, width));
+
+  // Tilt in the level frame: M = Rz(θ)·Ry(pitch)·Rx(roll)·Rz(−θ) takes a direction of the
+  // un-tilted camera (azimuth measured in the world) to the tilted one. Exactly the identity
+  // when pitch and roll are zero, which keeps whole-column turns bit-exact.
+  cv::Matx33f tilt = cv::Matx33f::eye();
+  if (pose.pitch_rad != 0.0 || pose.roll_rad != 0.0) {
+    const double ch = std::cos(pose.heading_rad), sh = std::sin(pose.heading_rad);
+    const double cp = std::cos(pose.pitch_rad), sp = std::sin(pose.pitch_rad);
+    const double cr = std::cos(pose.roll_rad), sr = std::sin(pose.roll_rad);
+    const cv::Matx33d yaw(ch, -sh, 0, sh, ch, 0, 0, 0, 1);
+    const cv::Matx33d pitch(cp, 0, sp, 0, 1, 0, -sp, 0, cp);
+    const cv::Matx33d roll(1, 0, 0, 0, cr, -sr, 0, sr, cr);
+    tilt = cv::Matx33f(yaw * pitch * roll * yaw.t());
+  }
+
+  const cv::Vec3f origin(static_cast<float>(pose.x_m), static_cast<float>(pose.y_m),
+                         static_cast<float>(pose.z_m));
+  const OccluderParams& occluder = impl.params.effects.occluder;
+  cv::Vec3f occluder_low, occluder_high;
+  if (occluder.enabled) {
+    const FloorBox box = occluder_footprint(occluder, time_s);
+    occluder_low = cv::Vec3f(static_cast<float>(box.min_x_m), static_cast<float>(box.min_y_m), 0.f);
+    occluder_high = cv::Vec3f(static_cast<float>(box.max_x_m), static_cast<float>(box.max_y_m),
+                              static_cast<float>(occluder.height_m));
+  }
+
+  // One column's rays go to Embree together, flagged coherent: they fan out from one point
+  // within a narrow wedge, which its stream traversal exploits (about twice as fast as one
+  // ray at a time here).
+  const std::size_t sub_rows = impl.cos_elevation.size();
+  std::vector<RTCRayHit> rays(samples * sub_rows);
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+
+  const SensorEffects& effects = impl.params.effects;
+  const float gain = static_cast<float>(effects.exposure_gain / (samples * samples));
+  cv::RNG noise((static_cast<std::uint64_t>(effects.seed) << 32) ^
+                static_cast<std::uint32_t>(frame_index) ^ 0x9e3779b97f4a7c15ULL);
+  std::vector<cv::Vec3f> column_sum(height);
+  cv::Mat panorama_8u(height, width, CV_8UC3);
+  for (int column = 0; column < width; ++column) {
+    // Column `column` at heading s looks where column (column − s) looks at heading 0.
+    const int world_column = ((column - shift) % width + width) % width;
+    for (int sub_column = 0; sub_column < samples; ++sub_column) {
+      const double azimuth =
+          kPi / 2.0 - kTwoPi * (world_column + impl.column_offsets[sub_column] - fraction) / width;
+      const float cos_azimuth = static_cast<float>(std::cos(azimuth));
+      const float sin_azimuth = static_cast<float>(std::sin(azimuth));
+      for (std::size_t sub_row = 0; sub_row < sub_rows; ++sub_row) {
+        const cv::Vec3f level(impl.cos_elevation[sub_row] * cos_azimuth,
+                              impl.cos_elevation[sub_row] * sin_azimuth,
+                              impl.sin_elevation[sub_row]);
+        const cv::Vec3f direction = tilt * level;
+        RTCRayHit& ray = rays[sub_column * sub_rows + sub_row];
+        ray.ray.org_x = origin[0];
+        ray.ray.org_y = origin[1];
+        ray.ray.org_z = origin[2];
+        ray.ray.dir_x = direction[0];
+        ray.ray.dir_y = direction[1];
+        ray.ray.dir_z = direction[2];
+        ray.ray.tnear = 1e-4f;
+        ray.ray.tfar = std::numeric_limits<float>::infinity();
+        ray.ray.mask = std::numeric_limits<unsigned>::max();
+        ray.ray.flags = 0;
+        ray.ray.time = 0.f;
+        ray.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+        ray.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+      }
+    }
+    rtcIntersect1M(impl.scene, &context, rays.data(), static_cast<unsigned>(rays.size()),
+                   sizeof(RTCRayHit));
+    for (std::size_t index = 0; index < rays.size(); ++index) {
+      Hit hit = impl.shade(rays[index]);
+      float occluder_distance = 0.f;
+      cv::Vec3f occluder_normal;
+      const cv::Vec3f direction(rays[index].ray.dir_x, rays[index].ray.dir_y,
+                                rays[index].ray.dir_z);
+      if (occluder.enabled &&
+          intersect_box(origin, direction, occluder_low, occluder_high, occluder_distance,
+                        occluder_normal) &&
+          occluder_distance < hit.distance_m) {
+        const float light = static_cast<float>(impl.params.ambient) +
+                            static_cast<float>(1.0 - impl.params.ambient) *
+                                std::max(0.f, occluder_normal.dot(kToLight));
+        hit.colour = occluder.colour_bgr * light;
+      }
+      column_sum[static_cast<int>(index % sub_rows) / samples] += hit.colour;
+    }
+    for (int row = 0; row < height; ++row) {
+      cv::Vec3f value = column_sum[row] * gain;
+      if (effects.noise_stddev > 0.0) {
+        for (int channel = 0; channel < 3; ++channel) {
+          value[channel] += static_cast<float>(noise.gaussian(effects.noise_stddev));
+        }
+      }
+      panorama_8u.at<cv::Vec3b>(row, column) =
+          cv::Vec3b(cv::saturate_cast<uchar>(value[0]), cv::saturate_cast<uchar>(value[1]),
+                    cv::saturate_cast<uchar>(value[2]));
+      column_sum[row] = cv::Vec3f(0.f, 0.f, 0.f);
+    }
+  }
+
+  return panorama_8u;
+}
+
+}  // namespace omninav::sim
