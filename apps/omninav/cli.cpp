@@ -42,7 +42,8 @@ int run(const std::vector<std::string>& args) {
   add_demo_command(app, global);
 
   try {
-    std::vector<std::string> reversed(args.rbegin(), args.rend());  // CLI11 parses a reversed vector
+    std::vector<std::string> reversed(args.rbegin(),
+                                      args.rend());  // CLI11 parses a reversed vector
     app.parse(reversed);
   } catch (const CLI::ParseError& error) {
     return app.exit(error);

@@ -1,9 +1,283 @@
+// omninav unwrap: raw omnidirectional images in, panoramas (DESIGN.md's column convention) out.
+
+#include <algorithm>
+#include <cctype>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <opencv2/imgcodecs.hpp>
+#include <optional>
+#include <set>
+#include <string>
+
 #include "cli.hpp"
+#include "omninav/core/angles.hpp"
+#include "omninav/core/config.hpp"
+#include "omninav/core/errors.hpp"
+#include "omninav/core/log.hpp"
+#include "omninav/core/panorama.hpp"
+#include "omninav/core/progress.hpp"
+#include "omninav/io/sequence.hpp"
+#include "omninav/omni/unwrap.hpp"
 
 namespace omninav::cli {
+namespace {
 
-void add_unwrap_command(CLI::App& app, const GlobalOptions& /*global*/) {
-  app.add_subcommand("unwrap", "(not yet available)");
+namespace fs = std::filesystem;
+
+struct UnwrapOptions {
+  fs::path input;
+  fs::path out;
+  double centre_x = 0.0;
+  double centre_y = 0.0;
+  double inner = 0.0;
+  double outer = 0.0;
+  std::string units = "pixels";
+  int width_px = 0;
+  int height_px = 0;
+  double front_offset_deg = 0.0;
+  bool detect = false;
+  bool nearest = false;
+  bool bilinear = false;
+  bool flip = false;
+  bool no_flip = false;
+  bool force = false;
+  // Which of the options above the user gave (the others keep camera.yaml's values).
+  CLI::Option* centre_x_option = nullptr;
+  CLI::Option* centre_y_option = nullptr;
+  CLI::Option* inner_option = nullptr;
+  CLI::Option* outer_option = nullptr;
+  CLI::Option* width_option = nullptr;
+  CLI::Option* height_option = nullptr;
+  CLI::Option* front_offset_option = nullptr;
+};
+
+bool is_video_file(const fs::path& input) {
+  std::error_code error;
+  if (!fs::is_regular_file(input, error)) return false;
+  std::string extension = input.extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return extension != ".csv";
+}
+
+// The output folder must not be a file, nor the folder the input images live in (the PNGs
+// could overwrite them), nor hold anything unless --force.
+void check_output_folder(const fs::path& out, const fs::path& input, bool force) {
+  std::error_code error;
+  if (!fs::exists(out, error)) return;
+  if (!fs::is_directory(out, error)) {
+    throw UsageError(out.string() + ": exists and is not a folder");
+  }
+  const fs::path input_folder = fs::is_directory(input, error) ? input : input.parent_path();
+  if (fs::equivalent(out, input_folder.empty() ? fs::path(".") : input_folder, error)) {
+    throw UsageError(out.string() + ": is the input's folder; write the panoramas elsewhere");
+  }
+  if (!force && !fs::is_empty(out, error)) {
+    throw UsageError(out.string() + ": is not empty; choose an empty folder or add --force");
+  }
+}
+
+// camera.yaml's `panorama:` and `unwrap:` sections; unknown keys are errors.
+omni::UnwrapParams load_camera(const fs::path& config_dir) {
+  const ConfigReader camera = ConfigReader::from_file(config_dir / "camera.yaml");
+  PanoramaGeometry geometry;
+  load_panorama_geometry(camera.section("panorama"), geometry);
+  omni::UnwrapParams params = omni::unwrap_params_for(geometry);
+  omni::load_unwrap_params(camera.section("unwrap"), params);
+  camera.require_all_known();
+  return params;
+}
+
+// Command-line values override the file's. Lengths are converted to pixels first, because the
+// command line's unit (--units) need not be the file's.
+omni::UnwrapParams apply_overrides(omni::UnwrapParams params, const UnwrapOptions& options,
+                                   int raw_width_px) {
+  params = omni::in_pixels(params, raw_width_px);
+  if (options.detect) {
+    params.centre_x.reset();
+    params.centre_y.reset();
+    params.inner_radius.reset();
+    params.outer_radius.reset();
+  }
+  const double scale = options.units == "fraction" ? raw_width_px : 1.0;
+  if (options.centre_x_option->count() > 0) params.centre_x = options.centre_x * scale;
+  if (options.centre_y_option->count() > 0) params.centre_y = options.centre_y * scale;
+  if (options.inner_option->count() > 0) params.inner_radius = options.inner * scale;
+  if (options.outer_option->count() > 0) params.outer_radius = options.outer * scale;
+  if (options.width_option->count() > 0) params.width_px = options.width_px;
+  if (options.height_option->count() > 0) params.height_px = options.height_px;
+  if (options.nearest) params.interpolation = omni::Interpolation::kNearest;
+  if (options.bilinear) params.interpolation = omni::Interpolation::kBilinear;
+  if (options.flip) params.flip = true;
+  if (options.no_flip) params.flip = false;
+  if (options.front_offset_option->count() > 0) {
+    params.front_offset_rad = deg_to_rad(options.front_offset_deg);
+  }
+  return params;
+}
+
+// `<stem of the source>.png`, or `frame_00012.png` for a video; a stem seen before (a.jpg and
+// a.png in one folder) gets the frame index appended rather than overwriting the first.
+std::string output_name(const io::Frame& frame, bool video, std::set<std::string>& used) {
+  char numbered[32];
+  std::snprintf(numbered, sizeof numbered, "frame_%05d", frame.index);
+  std::string stem = video ? numbered : fs::path(frame.source).stem().string();
+  if (stem.empty()) stem = numbered;
+  if (!used.insert(stem).second) {
+    const std::string renamed = stem + "_" + std::to_string(frame.index);
+    log_warning(frame.source + ": another input has the name '" + stem + "'; writing " + renamed +
+                ".png");
+    stem = renamed;
+    used.insert(stem);
+  }
+  return stem + ".png";
+}
+
+void run_unwrap(const UnwrapOptions& options, const GlobalOptions& global) {
+  const fs::path config_file = global.config_dir / "camera.yaml";
+  const omni::UnwrapParams from_file = load_camera(global.config_dir);
+  check_output_folder(options.out, options.input, options.force);
+
+  std::unique_ptr<io::SequenceReader> reader = io::open_sequence(options.input);
+  log_info("reading " + reader->describe());
+  std::optional<io::Frame> frame = reader->next();
+  if (!frame) throw InputError(options.input.string() + ": holds no images");
+
+  const omni::UnwrapParams params = apply_overrides(from_file, options, frame->image.cols);
+  std::optional<omni::Unwrapper> unwrapper;
+  try {
+    unwrapper.emplace(omni::make_unwrapper(params, frame->image));
+  } catch (const ConfigError& error) {
+    throw ConfigError(config_file.string() + " and the command line: " + error.what());
+  } catch (const InputError& error) {
+    throw InputError(frame->source + ": " + error.what());
+  }
+
+  std::error_code error;
+  fs::create_directories(options.out, error);
+  if (error) {
+    throw UsageError(options.out.string() + ": cannot create the folder: " + error.message());
+  }
+  const bool video = is_video_file(options.input);
+  std::set<std::string> used_names;
+  std::size_t written = 0;
+  {
+    Progress progress("unwrap", reader->size());
+    for (; frame; frame = reader->next()) {
+      cv::Mat panorama;
+      try {
+        panorama = unwrapper->unwrap(frame->image);
+      } catch (const InputError& unwrap_error) {
+        throw InputError(frame->source + ": " + unwrap_error.what());
+      }
+      const fs::path file = options.out / output_name(*frame, video, used_names);
+      bool ok = false;
+      try {
+        ok = cv::imwrite(file.string(), panorama);
+      } catch (const cv::Exception& write_error) {
+        throw Error(file.string() + ": cannot write the panorama: " + write_error.what());
+      }
+      if (!ok) throw Error(file.string() + ": cannot write the panorama");
+      ++written;
+      progress.advance();
+    }
+  }
+  if (!global.quiet) {
+    const cv::Size raw = unwrapper->raw_size();
+    const cv::Size panorama = unwrapper->panorama_size();
+    std::cout << "unwrapped " << written << (written == 1 ? " image" : " images") << " ("
+              << raw.width << "×" << raw.height << " px raw) into " << panorama.width << "×"
+              << panorama.height << " px panoramas in " << options.out.string() << "\n";
+  }
+}
+
+}  // namespace
+
+void add_unwrap_command(CLI::App& app, const GlobalOptions& global) {
+  auto options = std::make_shared<UnwrapOptions>();
+  CLI::App* command = app.add_subcommand(
+      "unwrap",
+      "Unwrap raw omnidirectional images into panoramas.\n"
+      "Reads camera.yaml (sections panorama: and unwrap:) from --config-dir; the options below\n"
+      "override it. Each panorama has the robot's front at column 0.25*width, its left at\n"
+      "column 0, and the outer mirror radius at the top (see camera.yaml). Without a centre in\n"
+      "camera.yaml or on the command line, the mirror is detected in the first image.\n"
+      "Writes <out>/<input file stem>.png, or <out>/frame_00000.png ... for a video.");
+  command
+      ->add_option("-i,--input", options->input,
+                   "Raw images: a folder of images, a video file, a BoB image database "
+                   "folder, or a CSV of file,x_m,y_m,heading_deg")
+      ->required()
+      ->check(CLI::ExistingPath);
+  command
+      ->add_option("-o,--out", options->out,
+                   "Folder for the panoramas (created if missing; must be empty unless "
+                   "--force)")
+      ->required();
+  options->centre_x_option =
+      command
+          ->add_option("--centre-x", options->centre_x,
+                       "Mirror centre, x (to the right), in --units; overrides "
+                       "unwrap.centre_x")
+          ->check(CLI::NonNegativeNumber);
+  options->centre_y_option =
+      command
+          ->add_option("--centre-y", options->centre_y,
+                       "Mirror centre, y (downwards), in --units; overrides unwrap.centre_y")
+          ->check(CLI::NonNegativeNumber);
+  options->inner_option =
+      command
+          ->add_option("--inner", options->inner,
+                       "Inner radius (robot and camera, excluded), in --units; overrides "
+                       "unwrap.inner_radius")
+          ->check(CLI::NonNegativeNumber);
+  options->outer_option = command
+                              ->add_option("--outer", options->outer,
+                                           "Outer radius (the mirror's rim), in --units; overrides "
+                                           "unwrap.outer_radius")
+                              ->check(CLI::PositiveNumber);
+  command
+      ->add_option("--units", options->units,
+                   "Unit of --centre-x, --centre-y, --inner, --outer: pixels of the raw image, "
+                   "or fraction of its width")
+      ->check(CLI::IsMember({"pixels", "fraction"}))
+      ->capture_default_str();
+  command->add_flag("--detect", options->detect,
+                    "Ignore camera.yaml's centre and radii and detect the mirror in the first "
+                    "image");
+  options->width_option = command
+                              ->add_option("--width", options->width_px,
+                                           "Panorama width, pixels (columns); overrides "
+                                           "panorama.width_px")
+                              ->check(CLI::Range(8, 16384));
+  options->height_option = command
+                               ->add_option("--height", options->height_px,
+                                            "Panorama height, pixels (rows); overrides "
+                                            "panorama.height_px")
+                               ->check(CLI::Range(1, 4096));
+  CLI::Option* nearest =
+      command->add_flag("--nearest", options->nearest,
+                        "Take the nearest raw pixel (the papers' unsmoothed unwrapping)");
+  CLI::Option* bilinear =
+      command->add_flag("--bilinear", options->bilinear, "Interpolate the four nearest raw pixels");
+  nearest->excludes(bilinear);
+  CLI::Option* flip = command->add_flag(
+      "--flip", options->flip,
+      "The raw image is mirrored (left and right inverted, as a camera looking up at a mirror "
+      "sees it)");
+  CLI::Option* no_flip = command->add_flag("--no-flip", options->no_flip,
+                                           "The raw image looks like the robot seen from above");
+  flip->excludes(no_flip);
+  options->front_offset_option =
+      command
+          ->add_option("--front-offset", options->front_offset_deg,
+                       "Where the robot's front is in the raw image: degrees "
+                       "counter-clockwise from the top (90 = left edge)")
+          ->check(CLI::Range(-360.0, 360.0));
+  command->add_flag("--force", options->force, "Write into a non-empty output folder");
+  command->callback([options, &global] { run_unwrap(*options, global); });
 }
 
 }  // namespace omninav::cli
