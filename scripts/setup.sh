@@ -56,6 +56,6 @@ case "$action" in
   demo) cd "$root" && exec "$build_dir/bin/omninav" demo "$@" ;;
   test) exec ctest --test-dir "$build_dir" --output-on-failure --parallel "$(nproc)" "$@" ;;
   bench)
-    for program in "$build_dir"/tests/bench/*_bench; do "$program" "$@"; done ;;
+    for program in "$build_dir"/bin/*_bench; do "$program" "$@"; done ;;
   *) echo "usage: scripts/setup.sh [build|demo|test|bench]" >&2; exit 2 ;;
 esac

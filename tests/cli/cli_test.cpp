@@ -1,0 +1,116 @@
+// The command line end to end, run in-process: exit status, messages and files written.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <fstream>
+
+#include "cli.hpp"
+#include "omninav/core/angles.hpp"
+#include "omninav/io/sequence.hpp"
+#include "support/shared_data.hpp"
+
+namespace omninav::cli {
+namespace {
+
+class CommandLine : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    folder_ = std::filesystem::temp_directory_path() /
+              ("omninav_cli_" + std::to_string(::getpid()) + "_" +
+               ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    std::filesystem::remove_all(folder_);
+    std::filesystem::create_directories(folder_);
+  }
+  void TearDown() override { std::filesystem::remove_all(folder_); }
+
+  // Runs omninav with `args`; returns the exit status and keeps what it printed to stderr.
+  int run_omninav(std::vector<std::string> args) {
+    args.insert(args.begin(), {"--config-dir", config_dir_.string()});
+    ::testing::internal::CaptureStderr();
+    const int status = run(args);
+    errors_ = ::testing::internal::GetCapturedStderr();
+    return status;
+  }
+
+  std::filesystem::path folder_;
+  std::filesystem::path config_dir_ = omninav::testing::config_dir();
+  std::string errors_;
+};
+
+TEST_F(CommandLine, RenderWritesADatabaseWithExactGroundTruth) {
+  const std::filesystem::path out = folder_ / "run";
+  ASSERT_EQ(run_omninav({"render", "--trajectory", "rotate:x=1.0,y=1.0,turns=0.25,rate_deg_s=45,fps=4",
+                         "--out", out.string(), "--width", "180", "--height", "20"}),
+            0)
+      << errors_;
+  EXPECT_TRUE(std::filesystem::exists(out / "contact_sheet.png"));
+  const std::unique_ptr<io::SequenceReader> reader = io::open_sequence(out);
+  const std::vector<io::Frame> frames = io::read_all(*reader);
+  // A quarter turn at 45°/s lasts 2 s: 8 intervals of 0.25 s, 9 frames.
+  ASSERT_EQ(frames.size(), 9u);
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    ASSERT_TRUE(frames[i].truth.has_value());
+    EXPECT_NEAR(frames[i].truth->x_m, 1.0, 1e-9);
+    EXPECT_NEAR(frames[i].truth->z_m, 1.0, 1e-9);
+    EXPECT_NEAR(frames[i].truth->heading_rad, deg_to_rad(11.25 * i), 1e-9);
+    ASSERT_TRUE(frames[i].time_s.has_value());
+    EXPECT_NEAR(*frames[i].time_s, 0.25 * i, 1e-9);
+    EXPECT_EQ(frames[i].image.cols, 180);
+    EXPECT_EQ(frames[i].image.rows, 20);
+  }
+  // Refuses to replace the database unless told to.
+  EXPECT_NE(run_omninav({"render", "--trajectory", "rotate:turns=0.1", "--out", out.string()}), 0);
+  EXPECT_EQ(run_omninav({"render", "--trajectory", "rotate:turns=0.1", "--out", out.string(), "--force"}), 0)
+      << errors_;
+}
+
+TEST_F(CommandLine, BadTrajectoryIsOneLineNamingTheProblem) {
+  EXPECT_EQ(run_omninav({"render", "--trajectory", "spiral:turns=2", "--out", (folder_ / "x").string()}), 1);
+  EXPECT_NE(errors_.find("spiral"), std::string::npos) << errors_;
+  EXPECT_EQ(std::count(errors_.begin(), errors_.end(), '\n'), 1) << errors_;
+  EXPECT_FALSE(std::filesystem::exists(folder_ / "x" / "database_entries.csv"));
+}
+
+TEST_F(CommandLine, MissingWorldFileIsAnError) {
+  EXPECT_EQ(run_omninav({"render", "--world", (folder_ / "nowhere.obj").string(), "--trajectory", "rotate",
+                         "--out", (folder_ / "x").string()}),
+            1);
+  EXPECT_NE(errors_.find("nowhere.obj"), std::string::npos) << errors_;
+}
+
+TEST_F(CommandLine, ConfigWithAnUnknownKeyNamesFileAndKey) {
+  const std::filesystem::path config = folder_ / "config";
+  std::filesystem::create_directories(config);
+  std::filesystem::copy(config_dir_, config, std::filesystem::copy_options::recursive);
+  std::ofstream(config / "worlds.yaml", std::ios::app) << "\nrender_quality: high\n";
+  config_dir_ = config;
+  EXPECT_EQ(run_omninav({"render", "--trajectory", "rotate", "--out", (folder_ / "x").string()}), 1);
+  EXPECT_NE(errors_.find("worlds.yaml"), std::string::npos) << errors_;
+  EXPECT_NE(errors_.find("render_quality"), std::string::npos) << errors_;
+}
+
+TEST_F(CommandLine, ShippedConfigIsValid) {
+  // Every shipped YAML file loads strictly: no unknown keys, every value in range.
+  EXPECT_EQ(run_omninav({"render", "--trajectory", "rotate:turns=0.05", "--out", (folder_ / "ok").string(),
+                         "--width", "36", "--height", "4"}),
+            0)
+      << errors_;
+}
+
+TEST_F(CommandLine, HelpAndUsageErrors) {
+  EXPECT_EQ(run_omninav({"--help"}), 0);
+  EXPECT_EQ(run_omninav({"render", "--help"}), 0);
+  EXPECT_NE(run_omninav({"render"}), 0);  // --trajectory and --out are required
+  EXPECT_NE(run_omninav({"no-such-command"}), 0);
+}
+
+TEST_F(CommandLine, DemoWritesItsReport) {
+  const std::filesystem::path report = folder_ / "report";
+  ASSERT_EQ(run_omninav({"demo", "--report", report.string(), "--steps", "12"}), 0) << errors_;
+  EXPECT_TRUE(std::filesystem::exists(report / "contact_sheet.png"));
+  EXPECT_EQ(io::open_sequence(report / "exploration")->size(), 12u);
+}
+
+}  // namespace
+}  // namespace omninav::cli
