@@ -19,7 +19,7 @@ struct RenderOptions {
   std::filesystem::path out;
   int width_px = 0;  // 0: from camera.yaml
   int height_px = 0;
-  int supersampling = 0;  // 0: from worlds.yaml
+  int rays_per_pixel = 0;  // 0: from worlds.yaml
   double noise_stddev = -1.0;
   double exposure_gain = -1.0;
   bool occluder = false;
@@ -32,7 +32,7 @@ void run_render(const GlobalOptions& global, const RenderOptions& options) {
   if (options.width_px > 0) panorama.width_px = options.width_px;
   if (options.height_px > 0) panorama.height_px = options.height_px;
   sim::WorldsConfig worlds = load_worlds_config(global.config_dir, panorama);
-  if (options.supersampling > 0) worlds.render.supersampling = options.supersampling;
+  if (options.rays_per_pixel > 0) worlds.render.rays_per_pixel = options.rays_per_pixel;
   if (options.noise_stddev >= 0.0) worlds.render.effects.noise_stddev = options.noise_stddev;
   if (options.exposure_gain > 0.0) worlds.render.effects.exposure_gain = options.exposure_gain;
   if (options.occluder) worlds.render.effects.occluder.enabled = true;
@@ -102,9 +102,9 @@ void add_render_command(CLI::App& app, const GlobalOptions& global) {
                    "Panorama height in pixels (default: camera.yaml)")
       ->check(CLI::Range(1, 4096));
   command
-      ->add_option("--supersampling", options->supersampling,
-                   "Rays per pixel along each axis (default: worlds.yaml)")
-      ->check(CLI::Range(1, 8));
+      ->add_option("--rays-per-pixel", options->rays_per_pixel,
+                   "Anti-aliasing rays per pixel (default: worlds.yaml)")
+      ->check(CLI::Range(1, 16));
   command
       ->add_option("--noise", options->noise_stddev,
                    "Gaussian pixel noise, grey levels (default: worlds.yaml)")

@@ -12,12 +12,12 @@ using omninav::sim::Renderer;
 using omninav::sim::RenderParams;
 
 // Renders a short walk across the default room so that the cost is averaged over views.
-void render_default_room(benchmark::State& state, int width, int height, int supersampling) {
+void render_default_room(benchmark::State& state, int width, int height, int rays_per_pixel) {
   const omninav::sim::World world = omninav::sim::make_room({});
   RenderParams params;
   params.geometry.width_px = width;
   params.geometry.height_px = height;
-  params.supersampling = supersampling;
+  params.rays_per_pixel = rays_per_pixel;
   const Renderer renderer(world, params);
   int frame = 0;
   for (auto _ : state) {
@@ -25,16 +25,16 @@ void render_default_room(benchmark::State& state, int width, int height, int sup
     benchmark::DoNotOptimize(renderer.render(CameraPose{x, 2.2, 1.0, 0.3 * frame, 0.0, 0.0}));
     ++frame;
   }
-  state.counters["rays_per_s"] = benchmark::Counter(
-      static_cast<double>(state.iterations()) * width * height * supersampling * supersampling,
-      benchmark::Counter::kIsRate);
+  state.counters["rays_per_s"] =
+      benchmark::Counter(static_cast<double>(state.iterations()) * width * height * rays_per_pixel,
+                         benchmark::Counter::kIsRate);
 }
 
-BENCHMARK_CAPTURE(render_default_room, 360x45_ss1, 360, 45, 1)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(render_default_room, 360x45_ss2_default, 360, 45, 2)
+BENCHMARK_CAPTURE(render_default_room, 360x45_1ray, 360, 45, 1)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(render_default_room, 360x45_3rays_default, 360, 45, 3)
     ->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(render_default_room, 360x45_ss3, 360, 45, 3)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(render_default_room, 1080x135_ss2, 1080, 135, 2)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(render_default_room, 360x45_4rays, 360, 45, 4)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(render_default_room, 1080x135_3rays, 1080, 135, 3)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

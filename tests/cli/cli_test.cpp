@@ -1,11 +1,12 @@
 // The command line end to end, run in-process: exit status, messages and files written.
+#include "cli.hpp"
+
 #include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <fstream>
 
-#include "cli.hpp"
 #include "omninav/core/angles.hpp"
 #include "omninav/io/sequence.hpp"
 #include "support/shared_data.hpp"
@@ -40,9 +41,10 @@ class CommandLine : public ::testing::Test {
 
 TEST_F(CommandLine, RenderWritesADatabaseWithExactGroundTruth) {
   const std::filesystem::path out = folder_ / "run";
-  ASSERT_EQ(run_omninav({"render", "--trajectory", "rotate:x=1.0,y=1.0,turns=0.25,rate_deg_s=45,fps=4",
-                         "--out", out.string(), "--width", "180", "--height", "20"}),
-            0)
+  ASSERT_EQ(
+      run_omninav({"render", "--trajectory", "rotate:x=1.0,y=1.0,turns=0.25,rate_deg_s=45,fps=4",
+                   "--out", out.string(), "--width", "180", "--height", "20"}),
+      0)
       << errors_;
   EXPECT_TRUE(std::filesystem::exists(out / "contact_sheet.png"));
   const std::unique_ptr<io::SequenceReader> reader = io::open_sequence(out);
@@ -61,20 +63,24 @@ TEST_F(CommandLine, RenderWritesADatabaseWithExactGroundTruth) {
   }
   // Refuses to replace the database unless told to.
   EXPECT_NE(run_omninav({"render", "--trajectory", "rotate:turns=0.1", "--out", out.string()}), 0);
-  EXPECT_EQ(run_omninav({"render", "--trajectory", "rotate:turns=0.1", "--out", out.string(), "--force"}), 0)
+  EXPECT_EQ(
+      run_omninav({"render", "--trajectory", "rotate:turns=0.1", "--out", out.string(), "--force"}),
+      0)
       << errors_;
 }
 
 TEST_F(CommandLine, BadTrajectoryIsOneLineNamingTheProblem) {
-  EXPECT_EQ(run_omninav({"render", "--trajectory", "spiral:turns=2", "--out", (folder_ / "x").string()}), 1);
+  EXPECT_EQ(
+      run_omninav({"render", "--trajectory", "spiral:turns=2", "--out", (folder_ / "x").string()}),
+      1);
   EXPECT_NE(errors_.find("spiral"), std::string::npos) << errors_;
   EXPECT_EQ(std::count(errors_.begin(), errors_.end(), '\n'), 1) << errors_;
   EXPECT_FALSE(std::filesystem::exists(folder_ / "x" / "database_entries.csv"));
 }
 
 TEST_F(CommandLine, MissingWorldFileIsAnError) {
-  EXPECT_EQ(run_omninav({"render", "--world", (folder_ / "nowhere.obj").string(), "--trajectory", "rotate",
-                         "--out", (folder_ / "x").string()}),
+  EXPECT_EQ(run_omninav({"render", "--world", (folder_ / "nowhere.obj").string(), "--trajectory",
+                         "rotate", "--out", (folder_ / "x").string()}),
             1);
   EXPECT_NE(errors_.find("nowhere.obj"), std::string::npos) << errors_;
 }
@@ -85,15 +91,16 @@ TEST_F(CommandLine, ConfigWithAnUnknownKeyNamesFileAndKey) {
   std::filesystem::copy(config_dir_, config, std::filesystem::copy_options::recursive);
   std::ofstream(config / "worlds.yaml", std::ios::app) << "\nrender_quality: high\n";
   config_dir_ = config;
-  EXPECT_EQ(run_omninav({"render", "--trajectory", "rotate", "--out", (folder_ / "x").string()}), 1);
+  EXPECT_EQ(run_omninav({"render", "--trajectory", "rotate", "--out", (folder_ / "x").string()}),
+            1);
   EXPECT_NE(errors_.find("worlds.yaml"), std::string::npos) << errors_;
   EXPECT_NE(errors_.find("render_quality"), std::string::npos) << errors_;
 }
 
 TEST_F(CommandLine, ShippedConfigIsValid) {
   // Every shipped YAML file loads strictly: no unknown keys, every value in range.
-  EXPECT_EQ(run_omninav({"render", "--trajectory", "rotate:turns=0.05", "--out", (folder_ / "ok").string(),
-                         "--width", "36", "--height", "4"}),
+  EXPECT_EQ(run_omninav({"render", "--trajectory", "rotate:turns=0.05", "--out",
+                         (folder_ / "ok").string(), "--width", "36", "--height", "4"}),
             0)
       << errors_;
 }

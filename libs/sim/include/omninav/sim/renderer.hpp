@@ -4,9 +4,10 @@
 // PanoramaGeometry. Rays are cast with Intel Embree (Debian's libembree-dev): a well-kept BVH
 // and intersection kernel, far faster than anything we would write.
 //
-// Anti-aliasing: each pixel averages supersampling × supersampling rays on a regular grid,
-// and textures are sampled from a Gaussian pyramid at the level matching a ray's footprint
-// (trilinear), so that a sub-column rotation changes the image smoothly.
+// Anti-aliasing: each pixel averages N rays on an N-rooks pattern (N distinct offsets along
+// each axis, one ray per sub-column and per sub-row), and textures are sampled from a Gaussian
+// pyramid at the level matching a ray's footprint (trilinear), so that a sub-column rotation
+// changes the image smoothly.
 //
 // Exactness: with zero pitch and roll, a turn by a whole number of columns casts bit-identical
 // rays into rolled columns, so render(θ + k·2π/W) == roll_columns(render(θ), k) exactly.
@@ -46,12 +47,12 @@ struct SensorEffects {
 
 struct RenderParams {
   PanoramaGeometry geometry;  // size and vertical field of view, from camera.yaml
-  int supersampling = 2;      // rays per pixel along each axis (1 = none)
+  int rays_per_pixel = 3;     // anti-aliasing samples, on an N-rooks pattern (1 = none)
   double ambient = 0.55;      // share of light reaching every surface
   SensorEffects effects;
 };
 
-// Reads the `render:` section of worlds.yaml (supersampling, ambient, noise_stddev,
+// Reads the `render:` section of worlds.yaml (rays_per_pixel, ambient, noise_stddev,
 // exposure_gain, seed, and an `occluder:` subsection).
 void load_render_params(const ConfigReader& section, RenderParams& params);
 

@@ -1,0 +1,42 @@
+#pragma once
+// Readers of image sequences (DESIGN.md, Data formats: Input sequences). Every reader checks
+// its input and throws InputError naming the file (and line, for text files) on bad input:
+// unreadable or corrupt image, mixed image sizes, empty folder, missing CSV column,
+// non-numeric field, database entries whose image files are missing.
+
+#include <cstddef>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "omninav/io/frame.hpp"
+
+namespace omninav::io {
+
+class SequenceReader {
+ public:
+  virtual ~SequenceReader() = default;
+
+  // The next frame in order, or nothing at the end. Throws InputError on a bad frame.
+  virtual std::optional<Frame> next() = 0;
+
+  // How many frames the sequence holds (for a video, what its container says).
+  virtual std::size_t size() const = 0;
+
+  // One line saying what is being read, e.g. "BoB database grid/ (80 images, with poses)".
+  virtual std::string describe() const = 0;
+};
+
+// Opens `path` as whichever kind it is:
+//   - a folder holding database_entries.csv: a BoB robotics image database;
+//   - any other folder: its images (png, jpg, jpeg, bmp, tif, tiff, ppm, pgm), natural sort;
+//   - a .csv file: rows of `file, x_m, y_m, heading_deg` (files relative to the CSV);
+//   - any other file: a video, read with cv::VideoCapture.
+std::unique_ptr<SequenceReader> open_sequence(const std::filesystem::path& path);
+
+// Reads every frame (convenience for small sequences and tests).
+std::vector<Frame> read_all(SequenceReader& reader);
+
+}  // namespace omninav::io

@@ -1,0 +1,60 @@
+#include "omninav/io/csv_sequence.hpp"
+
+#include "csv_table.hpp"
+#include "omninav/core/angles.hpp"
+#include "omninav/core/errors.hpp"
+#include "omninav/core/parse.hpp"
+
+namespace omninav::io {
+
+CsvSequence::CsvSequence(const std::filesystem::path& csv_file) : csv_file_(csv_file) {
+  const CsvTable table = CsvTable::read(csv_file);
+  const std::size_t file_column = table.require_column("file");
+  const std::size_t x_column = table.require_column("x_m");
+  const std::size_t y_column = table.require_column("y_m");
+  const std::size_t heading_column = table.require_column("heading_deg");
+  const std::optional<std::size_t> z_column = table.find_column("z_m");
+  const std::optional<std::size_t> time_column = table.find_column("time_s");
+  if (table.rows().empty()) throw InputError(csv_file.string() + ": no rows after the header");
+
+  const std::filesystem::path folder = csv_file.parent_path();
+  for (const CsvTable::Row& row : table.rows()) {
+    const std::string where = table.where(row);
+    const auto number = [&](std::size_t column) {
+      return parse_double(row.fields[column], where + ": column '" + table.columns()[column] + "'");
+    };
+    Row parsed;
+    parsed.image_file = folder / row.fields[file_column];
+    parsed.truth.x_m = number(x_column);
+    parsed.truth.y_m = number(y_column);
+    if (z_column) parsed.truth.z_m = number(*z_column);
+    parsed.truth.heading_rad = deg_to_rad(number(heading_column));
+    if (time_column) parsed.time_s = number(*time_column);
+    std::error_code error;
+    if (!std::filesystem::is_regular_file(parsed.image_file, error)) {
+      throw InputError(where + ": image file '" + row.fields[file_column] + "' not found (" +
+                       parsed.image_file.string() + ")");
+    }
+    rows_.push_back(std::move(parsed));
+  }
+}
+
+std::optional<Frame> CsvSequence::next() {
+  if (next_index_ == rows_.size()) return std::nullopt;
+  const Row& row = rows_[next_index_];
+  Frame frame;
+  frame.index = static_cast<int>(next_index_);
+  frame.time_s = row.time_s;
+  frame.image = read_image(row.image_file);
+  frame.truth = row.truth;
+  frame.source = row.image_file.string();
+  size_check_.check(frame.image, frame.source);
+  ++next_index_;
+  return frame;
+}
+
+std::string CsvSequence::describe() const {
+  return "CSV " + csv_file_.string() + " (" + std::to_string(rows_.size()) + " images, with poses)";
+}
+
+}  // namespace omninav::io
