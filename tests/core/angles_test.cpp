@@ -7,8 +7,8 @@ namespace {
 
 TEST(WrapAngle, KeepsValuesInsideTheHalfOpenInterval) {
   EXPECT_DOUBLE_EQ(wrap_angle(0.3), 0.3);
-  EXPECT_DOUBLE_EQ(wrap_angle(kPi), kPi);     // +π is inside (-π, π]
-  EXPECT_DOUBLE_EQ(wrap_angle(-kPi), kPi);    // -π is not: it maps to +π
+  EXPECT_DOUBLE_EQ(wrap_angle(kPi), kPi);   // +π is inside (-π, π]
+  EXPECT_DOUBLE_EQ(wrap_angle(-kPi), kPi);  // -π is not: it maps to +π
   EXPECT_NEAR(wrap_angle(3 * kPi), kPi, 1e-12);
   EXPECT_NEAR(wrap_angle(-3 * kPi + 0.1), -kPi + 0.1, 1e-12);
   EXPECT_NEAR(wrap_angle(kTwoPi * 1000 + 0.25), 0.25, 1e-9);

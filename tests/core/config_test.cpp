@@ -91,11 +91,13 @@ TEST(ConfigReader, OptionalNumbersMayBeNull) {
 }
 
 TEST(ConfigReader, BadYamlAndMissingFilesAreErrorsNamingTheFile) {
-  EXPECT_NE(message_of([] { ConfigReader::from_string("a: [1, 2\n", "broken.yaml"); })
-                .find("broken.yaml"),
+  EXPECT_NE(message_of([] {
+              ConfigReader::from_string("a: [1, 2\n", "broken.yaml");
+            }).find("broken.yaml"),
             std::string::npos);
-  EXPECT_NE(message_of([] { ConfigReader::from_file("/nonexistent/camera.yaml"); })
-                .find("/nonexistent/camera.yaml"),
+  EXPECT_NE(message_of([] {
+              ConfigReader::from_file("/nonexistent/camera.yaml");
+            }).find("/nonexistent/camera.yaml"),
             std::string::npos);
   EXPECT_THROW(ConfigReader::from_string("- 1\n- 2\n", "list.yaml"), ConfigError);
 }

@@ -89,7 +89,7 @@ TEST(PanoramaGeometry, RowsSpanTheElevationRange) {
   geometry.height_px = 60;
   geometry.elevation_min_rad = deg_to_rad(-40.0);
   geometry.elevation_max_rad = deg_to_rad(20.0);
-  EXPECT_NEAR(geometry.elevation_of_row(-0.5), deg_to_rad(20.0), 1e-12);  // top edge
+  EXPECT_NEAR(geometry.elevation_of_row(-0.5), deg_to_rad(20.0), 1e-12);   // top edge
   EXPECT_NEAR(geometry.elevation_of_row(59.5), deg_to_rad(-40.0), 1e-12);  // bottom edge
   EXPECT_NEAR(geometry.elevation_of_row(0), deg_to_rad(19.5), 1e-12);
   EXPECT_NEAR(geometry.row_of_elevation(0.0), 19.5, 1e-9);

@@ -1,0 +1,114 @@
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <unistd.h>
+
+#include "omninav/core/angles.hpp"
+#include "omninav/core/errors.hpp"
+#include "omninav/core/panorama.hpp"
+#include "omninav/sim/renderer.hpp"
+#include "omninav/sim/world.hpp"
+#include "support/shared_data.hpp"
+
+namespace omninav::sim {
+namespace {
+
+class TempFolder {
+ public:
+  TempFolder() : path_(std::filesystem::temp_directory_path() / ("omninav_obj_" + std::to_string(::getpid()))) {
+    std::filesystem::create_directories(path_);
+  }
+  ~TempFolder() { std::filesystem::remove_all(path_); }
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+};
+
+// A 2 m cube around the origin, seen from inside: the +x wall textured (left half blue, right
+// half green in the texture), the other faces one diffuse colour.
+void write_textured_cube(const std::filesystem::path& folder) {
+  cv::Mat texture(64, 64, CV_8UC3, cv::Scalar(255, 0, 0));
+  texture.colRange(32, 64).setTo(cv::Scalar(0, 255, 0));
+  cv::imwrite((folder / "wall.png").string(), texture);
+  std::ofstream(folder / "cube.mtl") << "newmtl painted\nKd 1 1 1\nmap_Kd wall.png\n"
+                                        "newmtl plain\nKd 0.8 0.2 0.2\n";
+  std::ofstream obj(folder / "cube.obj");
+  obj << "mtllib cube.mtl\n"
+      << "v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\nv -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\n"
+      << "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+      // The +x wall, as a quad from y = -1 (u = 0) to y = +1 (u = 1).
+      << "usemtl painted\nf 2/1 3/2 7/3 6/4\n"
+      << "usemtl plain\nf 1 2 6 5\nf 3 4 8 7\nf 4 1 5 8\nf 1 4 3 2\nf 5 6 7 8\n";
+}
+
+TEST(ObjWorld, LoadsGeometryMaterialsAndTextures) {
+  TempFolder folder;
+  write_textured_cube(folder.path());
+  const World world = load_obj_world(folder.path() / "cube.obj");
+  EXPECT_EQ(world.vertices.size(), 8u);
+  EXPECT_EQ(world.triangles.size(), 12u);  // six quads, triangulated
+  ASSERT_EQ(world.textures.size(), 1u);
+  EXPECT_NEAR(world.floor.min_x_m, -1.0, 1e-6);
+  EXPECT_NEAR(world.floor.max_y_m, 1.0, 1e-6);
+}
+
+TEST(ObjWorld, TextureAppearsWhereItsCoordinatesPutIt) {
+  TempFolder folder;
+  write_textured_cube(folder.path());
+  const World world = load_obj_world(folder.path() / "cube.obj");
+  RenderParams params;
+  params.geometry.width_px = 360;
+  params.geometry.height_px = 30;
+  const cv::Mat panorama = Renderer(world, params).render({0.0, 0.0, 0.0, 0.0, 0.0, 0.0});
+  // Facing +x: u grows with y, so the texture's left half (blue, u < 0.5, y < 0) is on the
+  // robot's right (azimuth −20°), its right half (green, y > 0) on the left (azimuth +20°).
+  const cv::Vec3b right = panorama.at<cv::Vec3b>(15, static_cast<int>(column_of_azimuth(deg_to_rad(-20), 360)));
+  const cv::Vec3b left = panorama.at<cv::Vec3b>(15, static_cast<int>(column_of_azimuth(deg_to_rad(20), 360)));
+  EXPECT_GT(right[0], 100);
+  EXPECT_LT(right[1], 30);
+  EXPECT_GT(left[1], 100);
+  EXPECT_LT(left[0], 30);
+  // Behind, the plain material: red dominates (Kd 0.8 0.2 0.2).
+  const cv::Vec3b behind = panorama.at<cv::Vec3b>(15, 270);
+  EXPECT_GT(behind[2], 2 * behind[1]);
+}
+
+TEST(ObjWorld, BadFilesAreClearErrors) {
+  TempFolder folder;
+  EXPECT_THROW(load_obj_world(folder.path() / "missing.obj"), InputError);
+  write_textured_cube(folder.path());
+  std::filesystem::remove(folder.path() / "wall.png");
+  try {
+    load_obj_world(folder.path() / "cube.obj");
+    FAIL();
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what()).find("wall.png"), std::string::npos) << error.what();
+  }
+  std::ofstream(folder.path() / "empty.obj") << "# nothing\n";
+  EXPECT_THROW(load_obj_world(folder.path() / "empty.obj"), InputError);
+}
+
+TEST(ObjWorld, OfstadArenaLoadsAndRendersItsTexture) {
+  OMNINAV_REQUIRE_SHARED_DATA("worlds/ofstad/ofstad.obj");
+  const World world = load_obj_world(omninav::testing::shared_data_dir() / "worlds/ofstad/ofstad.obj");
+  EXPECT_EQ(world.triangles.size(), 64u);
+  ASSERT_EQ(world.textures.size(), 1u);
+  RenderParams params;
+  params.geometry.elevation_min_rad = deg_to_rad(-20);
+  params.geometry.elevation_max_rad = deg_to_rad(20);
+  // The arena is 0.123 m in radius and 0.256 m tall: look from its centre at mid-height.
+  const cv::Mat panorama = Renderer(world, params).render({0.0, 0.0, 0.128, 0.0, 0.0, 0.0});
+  cv::Mat grey;
+  cv::cvtColor(panorama, grey, cv::COLOR_BGR2GRAY);
+  double darkest = 0, brightest = 0;
+  cv::minMaxLoc(grey, &darkest, &brightest);
+  // The texture is black-and-white bars: both must show.
+  EXPECT_LT(darkest, 40);
+  EXPECT_GT(brightest, 120);
+}
+
+}  // namespace
+}  // namespace omninav::sim
