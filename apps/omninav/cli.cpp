@@ -39,6 +39,10 @@ int run(const std::vector<std::string>& args) {
 
   add_render_command(app, global);
   add_unwrap_command(app, global);
+  add_compass_command(app, global);
+  add_explore_command(app, global);
+  add_localise_command(app, global);
+  add_export_command(app, global);
   add_demo_command(app, global);
 
   try {

@@ -23,6 +23,10 @@ int run(const std::vector<std::string>& args);  // args without the program name
 // Each subcommand registers itself; its callback runs when the user picks it.
 void add_render_command(CLI::App& app, const GlobalOptions& global);
 void add_unwrap_command(CLI::App& app, const GlobalOptions& global);
+void add_compass_command(CLI::App& app, const GlobalOptions& global);
+void add_explore_command(CLI::App& app, const GlobalOptions& global);
+void add_localise_command(CLI::App& app, const GlobalOptions& global);
+void add_export_command(CLI::App& app, const GlobalOptions& global);
 void add_demo_command(CLI::App& app, const GlobalOptions& global);
 
 }  // namespace omninav::cli
