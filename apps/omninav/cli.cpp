@@ -49,8 +49,18 @@ int run(const std::vector<std::string>& args) {
     std::vector<std::string> reversed(args.rbegin(),
                                       args.rend());  // CLI11 parses a reversed vector
     app.parse(reversed);
+  } catch (const CLI::CallForHelp& help) {
+    return app.exit(help);
+  } catch (const CLI::CallForAllHelp& help) {
+    return app.exit(help);
+  } catch (const CLI::CallForVersion& version) {
+    return app.exit(version);
   } catch (const CLI::ParseError& error) {
-    return app.exit(error);
+    app.exit(error);  // prints the message and a hint to use --help
+    return 2;         // a usage error, whatever CLI11's own code for it
+  } catch (const UsageError& error) {
+    log_error(error.what());
+    return 2;
   } catch (const Error& error) {
     log_error(error.what());
     return 1;

@@ -16,7 +16,8 @@ struct GlobalOptions {
   bool verbose = false;
 };
 
-// Runs the command line; returns the process exit status (0 success, 1 error, 2 usage).
+// Runs the command line; returns the process exit status: 0 success, 1 an error in the input
+// or the configuration, 2 a usage error (bad or missing arguments).
 int run(int argc, const char* const* argv);
 int run(const std::vector<std::string>& args);  // args without the program name
 

@@ -11,9 +11,9 @@
 #include <set>
 #include <string>
 
+#include "app_config.hpp"
 #include "cli.hpp"
 #include "omninav/core/angles.hpp"
-#include "omninav/core/config.hpp"
 #include "omninav/core/errors.hpp"
 #include "omninav/core/log.hpp"
 #include "omninav/core/panorama.hpp"
@@ -79,17 +79,6 @@ void check_output_folder(const fs::path& out, const fs::path& input, bool force)
   }
 }
 
-// camera.yaml's `panorama:` and `unwrap:` sections; unknown keys are errors.
-omni::UnwrapParams load_camera(const fs::path& config_dir) {
-  const ConfigReader camera = ConfigReader::from_file(config_dir / "camera.yaml");
-  PanoramaGeometry geometry;
-  load_panorama_geometry(camera.section("panorama"), geometry);
-  omni::UnwrapParams params = omni::unwrap_params_for(geometry);
-  omni::load_unwrap_params(camera.section("unwrap"), params);
-  camera.require_all_known();
-  return params;
-}
-
 // Command-line values override the file's. Lengths are converted to pixels first, because the
 // command line's unit (--units) need not be the file's.
 omni::UnwrapParams apply_overrides(omni::UnwrapParams params, const UnwrapOptions& options,
@@ -137,7 +126,7 @@ std::string output_name(const io::Frame& frame, bool video, std::set<std::string
 
 void run_unwrap(const UnwrapOptions& options, const GlobalOptions& global) {
   const fs::path config_file = global.config_dir / "camera.yaml";
-  const omni::UnwrapParams from_file = load_camera(global.config_dir);
+  const omni::UnwrapParams from_file = load_camera_config(global.config_dir).unwrap;
   check_output_folder(options.out, options.input, options.force);
 
   std::unique_ptr<io::SequenceReader> reader = io::open_sequence(options.input);
@@ -202,60 +191,61 @@ void add_unwrap_command(CLI::App& app, const GlobalOptions& global) {
       "Unwrap raw omnidirectional images into panoramas.\n"
       "Reads camera.yaml (sections panorama: and unwrap:) from --config-dir; the options below\n"
       "override it. Each panorama has the robot's front at column 0.25*width, its left at\n"
-      "column 0, and the outer mirror radius at the top (see camera.yaml). Without a centre in\n"
-      "camera.yaml or on the command line, the mirror is detected in the first image.\n"
-      "Writes <out>/<input file stem>.png, or <out>/frame_00000.png ... for a video.");
+      "column 0, and (by default) the mirror's rim at the top; camera.yaml explains each key.\n"
+      "Without a centre in camera.yaml or on the command line, the mirror is detected in the\n"
+      "first image. Writes <out>/<input file stem>.png, or <out>/frame_00000.png ... for a\n"
+      "video, and prints a one-line summary.");
   command
       ->add_option("-i,--input", options->input,
-                   "Raw images: a folder of images, a video file, a BoB image database "
-                   "folder, or a CSV of file,x_m,y_m,heading_deg")
+                   "Raw images: a folder of images, a video file, a BoB image database folder, "
+                   "or a CSV of file,x_m,y_m,heading_deg")
+      ->type_name("PATH")
       ->required()
       ->check(CLI::ExistingPath);
   command
       ->add_option("-o,--out", options->out,
-                   "Folder for the panoramas (created if missing; must be empty unless "
-                   "--force)")
+                   "Folder for the panoramas (created if missing; must be empty unless --force)")
+      ->type_name("FOLDER")
       ->required();
-  options->centre_x_option =
-      command
-          ->add_option("--centre-x", options->centre_x,
-                       "Mirror centre, x (to the right), in --units; overrides "
-                       "unwrap.centre_x")
-          ->check(CLI::NonNegativeNumber);
-  options->centre_y_option =
-      command
-          ->add_option("--centre-y", options->centre_y,
-                       "Mirror centre, y (downwards), in --units; overrides unwrap.centre_y")
-          ->check(CLI::NonNegativeNumber);
-  options->inner_option =
-      command
-          ->add_option("--inner", options->inner,
-                       "Inner radius (robot and camera, excluded), in --units; overrides "
-                       "unwrap.inner_radius")
-          ->check(CLI::NonNegativeNumber);
-  options->outer_option = command
-                              ->add_option("--outer", options->outer,
-                                           "Outer radius (the mirror's rim), in --units; overrides "
-                                           "unwrap.outer_radius")
-                              ->check(CLI::PositiveNumber);
+
+  // Lengths: in --units, overriding camera.yaml's unwrap: keys.
+  const auto add_length = [&](const char* name, double& value, const char* help) {
+    return command->add_option(name, value, help)
+        ->type_name("LENGTH")
+        ->check(CLI::NonNegativeNumber);
+  };
+  options->centre_x_option = add_length("--centre-x", options->centre_x,
+                                        "Mirror centre, x (to the right); overrides "
+                                        "unwrap.centre_x");
+  options->centre_y_option = add_length("--centre-y", options->centre_y,
+                                        "Mirror centre, y (downwards); overrides unwrap.centre_y");
+  options->inner_option = add_length("--inner", options->inner,
+                                     "Inner radius (the robot and camera, left out); overrides "
+                                     "unwrap.inner_radius");
+  options->outer_option = add_length("--outer", options->outer,
+                                     "Outer radius (the mirror's rim); overrides "
+                                     "unwrap.outer_radius");
   command
       ->add_option("--units", options->units,
-                   "Unit of --centre-x, --centre-y, --inner, --outer: pixels of the raw image, "
-                   "or fraction of its width")
+                   "Unit of --centre-x, --centre-y, --inner and --outer: pixels of the raw "
+                   "image (x right, y down, pixel centres at whole numbers), or fraction of the "
+                   "raw image's width")
       ->check(CLI::IsMember({"pixels", "fraction"}))
       ->capture_default_str();
   command->add_flag("--detect", options->detect,
-                    "Ignore camera.yaml's centre and radii and detect the mirror in the first "
-                    "image");
+                    "Ignore camera.yaml's centre and radii: detect the mirror in the first image");
+
   options->width_option = command
                               ->add_option("--width", options->width_px,
-                                           "Panorama width, pixels (columns); overrides "
-                                           "panorama.width_px")
+                                           "Panorama width, pixels (columns; 360 = one per "
+                                           "degree); overrides panorama.width_px")
+                              ->type_name("PX")
                               ->check(CLI::Range(8, 16384));
   options->height_option = command
                                ->add_option("--height", options->height_px,
                                             "Panorama height, pixels (rows); overrides "
                                             "panorama.height_px")
+                               ->type_name("PX")
                                ->check(CLI::Range(1, 4096));
   CLI::Option* nearest =
       command->add_flag("--nearest", options->nearest,
@@ -265,18 +255,22 @@ void add_unwrap_command(CLI::App& app, const GlobalOptions& global) {
   nearest->excludes(bilinear);
   CLI::Option* flip = command->add_flag(
       "--flip", options->flip,
-      "The raw image is mirrored (left and right inverted, as a camera looking up at a mirror "
-      "sees it)");
-  CLI::Option* no_flip = command->add_flag("--no-flip", options->no_flip,
-                                           "The raw image looks like the robot seen from above");
+      "The raw image is mirrored: the robot's left lies clockwise from its front, as a camera "
+      "looking up at a mirror sees it");
+  CLI::Option* no_flip =
+      command->add_flag("--no-flip", options->no_flip,
+                        "The raw image looks like the robot seen from above: its left lies "
+                        "counter-clockwise from its front");
   flip->excludes(no_flip);
   options->front_offset_option =
       command
           ->add_option("--front-offset", options->front_offset_deg,
-                       "Where the robot's front is in the raw image: degrees "
-                       "counter-clockwise from the top (90 = left edge)")
+                       "Where the robot's front is in the raw image: degrees counter-clockwise "
+                       "from the top (0 = top, 90 = left edge); overrides unwrap.front_offset_deg")
+          ->type_name("DEG")
           ->check(CLI::Range(-360.0, 360.0));
-  command->add_flag("--force", options->force, "Write into a non-empty output folder");
+  command->add_flag("--force", options->force,
+                    "Write into a non-empty output folder (files of the same name are replaced)");
   command->callback([options, &global] { run_unwrap(*options, global); });
 }
 
