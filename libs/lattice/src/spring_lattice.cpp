@@ -1,0 +1,100 @@
+#include "omninav/lattice/spring_lattice.hpp"
+
+#include <ceres/ceres.h>
+
+#include "omninav/core/errors.hpp"
+#include "omninav/lattice/residuals.hpp"
+#include "omninav/lattice/stiffness.hpp"
+
+namespace omninav::lattice {
+namespace {
+
+void require_place(int place, int place_count, const std::string& what) {
+  if (place < 0 || place >= place_count) {
+    throw UsageError("lattice: " + what + " names place " + std::to_string(place) + " of " +
+                     std::to_string(place_count));
+  }
+}
+
+}  // namespace
+
+LatticeResult solve_lattice(int place_count, const std::vector<SpringMeasurement>& springs,
+                            const std::vector<MotionMeasurement>& motions,
+                            const LatticeParams& params) {
+  if (place_count < 1) throw UsageError("lattice: no places to arrange");
+  for (const SpringMeasurement& spring : springs) {
+    require_place(spring.a, place_count, "a spring");
+    require_place(spring.b, place_count, "a spring");
+  }
+  for (const MotionMeasurement& motion : motions) {
+    require_place(motion.from, place_count, "a motion constraint");
+    require_place(motion.to, place_count, "a motion constraint");
+  }
+
+  LatticeResult result;
+  result.springs_given = springs.size();
+  result.motion_constraints = motions.size();
+  result.positions = initial_positions(place_count, springs, motions);
+  if (place_count == 1) {
+    result.converged = true;
+    return result;
+  }
+
+  ceres::Problem problem;
+  // Cauchy rather than Huber: an aliased pair (two far places that look alike) gives a spring
+  // that is simply wrong, and Cauchy's influence falls back towards zero for such residuals.
+  ceres::LossFunction* spring_loss = new ceres::CauchyLoss(params.loss_scale_m);
+  const double negligible = negligible_length_m(params.correlation_range_m, params.min_stiffness);
+  for (const SpringMeasurement& spring : springs) {
+    if (spring.a == spring.b || spring.length_m > negligible) continue;  // Eq. 5: K < min_stiffness
+    const double stiffness = spring_stiffness(spring.length_m, params.correlation_range_m);
+    problem.AddResidualBlock(SpringResidual::Create(spring.length_m, stiffness), spring_loss,
+                             result.positions[spring.a].data(), result.positions[spring.b].data());
+    ++result.springs_kept;
+  }
+  for (const MotionMeasurement& motion : motions) {
+    problem.AddResidualBlock(
+        MotionDirectionResidual::Create(motion.direction_rad, 1.0 / motion.stddev_rad), nullptr,
+        result.positions[motion.from].data(), result.positions[motion.to].data());
+  }
+  for (int place = 0; place < place_count; ++place) {
+    if (!problem.HasParameterBlock(result.positions[place].data())) {
+      throw UsageError("lattice: place " + std::to_string(place) +
+                       " has no spring short enough to hold it and no motion constraint");
+    }
+  }
+
+  // The gauge, fixed explicitly. Translation: place 0 stays at the origin. Rotation (and
+  // reflection): the motion constraints fix them when there are any; otherwise the second place
+  // keeps the direction it starts in (its y = 0 after rotating the start so), and reflection is
+  // whatever the start had: distances alone cannot tell a lattice from its mirror image.
+  problem.SetParameterBlockConstant(result.positions[0].data());
+  if (motions.empty()) {
+    const Eigen::Vector2d second = result.positions[1];
+    const double angle = std::atan2(second.y(), second.x());
+    const Eigen::Rotation2Dd unrotate(-angle);
+    for (Eigen::Vector2d& position : result.positions) position = unrotate * position;
+    result.positions[1].y() = 0.0;
+    problem.SetManifold(result.positions[1].data(), new ceres::SubsetManifold(2, {1}));
+  }
+
+  ceres::Solver::Options solver;
+  // The normal equations of a lattice are sparse (a place springs to its neighbours only).
+  solver.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
+  // Unbending a dead-reckoned start takes many small steps; non-monotonic steps let the trust
+  // region grow faster, and a 1e-4 relative cost change is far below what moves a place visibly.
+  solver.use_nonmonotonic_steps = true;
+  solver.function_tolerance = 1e-4;
+  solver.max_num_iterations = params.max_iterations;
+  solver.num_threads = params.threads;
+  solver.logging_type = ceres::SILENT;
+  ceres::Solver::Summary summary;
+  ceres::Solve(solver, &problem, &summary);
+  result.converged = summary.termination_type == ceres::CONVERGENCE;
+  result.initial_cost = summary.initial_cost;
+  result.final_cost = summary.final_cost;
+  result.summary = summary.BriefReport();
+  return result;
+}
+
+}  // namespace omninav::lattice
