@@ -1,0 +1,46 @@
+#pragma once
+// Route planning over the organised visual memory (001_5bb151a4e28490b4.txt §3.5): from the
+// goal, a search tree over the memory graph (Boost.Graph's Dijkstra), which gives every place
+// the neighbour to head for next and the direction to it. The direction is given relative to
+// the place's own stored heading, so that a robot that recognises the place can follow it
+// whatever its own heading (it measures its heading against the place's image by the phase or
+// the compass).
+
+#include <Eigen/Core>
+#include <optional>
+#include <utility>
+#include <vector>
+
+namespace omninav::navigation {
+
+// A place of the memory as the planner sees it: where the lattice put it, and its stored
+// heading in the lattice frame.
+struct PlaceNode {
+  Eigen::Vector2d position_m = Eigen::Vector2d::Zero();
+  double heading_rad = 0.0;
+};
+
+using Edge = std::pair<int, int>;
+
+// Links every pair of places closer than `radius_m` on the lattice (the lattice neighbours).
+std::vector<Edge> lattice_neighbours(const std::vector<PlaceNode>& places, double radius_m);
+
+struct RoutePlan {
+  int goal = -1;
+  std::vector<int> next;                       // the neighbour to go to next; -1 for the goal and
+                                               // for places that cannot reach it
+  std::vector<double> cost_m;                  // length of the route to the goal (∞ if none)
+  std::vector<double> direction_rad;           // towards `next`, in the lattice frame
+  std::vector<double> direction_in_place_rad;  // the same, relative to the place's heading
+
+  bool reaches_goal(int place) const;
+  // The places from `start` to the goal, both included; empty when there is no route.
+  std::vector<int> route_from(int start) const;
+};
+
+// Plans from every place to `goal` over `edges`, weighted by lattice distance. Throws UsageError
+// for a goal or an edge that names no place.
+RoutePlan plan_to_goal(const std::vector<PlaceNode>& places, const std::vector<Edge>& edges,
+                       int goal);
+
+}  // namespace omninav::navigation

@@ -1,0 +1,87 @@
+#include "omninav/navigation/route_planner.hpp"
+
+#include <boost/graph/adjacency_list.hpp>
+#include <boost/graph/dijkstra_shortest_paths.hpp>
+#include <cmath>
+#include <limits>
+
+#include "omninav/core/angles.hpp"
+#include "omninav/core/errors.hpp"
+
+namespace omninav::navigation {
+namespace {
+
+using Graph =
+    boost::adjacency_list<boost::vecS, boost::vecS, boost::undirectedS, boost::no_property,
+                          boost::property<boost::edge_weight_t, double>>;
+
+void require_place(int place, std::size_t count, const char* what) {
+  if (place < 0 || static_cast<std::size_t>(place) >= count) {
+    throw UsageError(std::string("route: ") + what + " " + std::to_string(place) +
+                     " is not one of the " + std::to_string(count) + " places");
+  }
+}
+
+}  // namespace
+
+std::vector<Edge> lattice_neighbours(const std::vector<PlaceNode>& places, double radius_m) {
+  std::vector<Edge> edges;
+  for (std::size_t a = 0; a < places.size(); ++a) {
+    for (std::size_t b = a + 1; b < places.size(); ++b) {
+      if ((places[a].position_m - places[b].position_m).norm() <= radius_m) {
+        edges.emplace_back(static_cast<int>(a), static_cast<int>(b));
+      }
+    }
+  }
+  return edges;
+}
+
+bool RoutePlan::reaches_goal(int place) const {
+  return std::isfinite(cost_m.at(place));
+}
+
+std::vector<int> RoutePlan::route_from(int start) const {
+  if (!reaches_goal(start)) return {};
+  std::vector<int> route{start};
+  while (route.back() != goal) route.push_back(next[route.back()]);
+  return route;
+}
+
+RoutePlan plan_to_goal(const std::vector<PlaceNode>& places, const std::vector<Edge>& edges,
+                       int goal) {
+  require_place(goal, places.size(), "the goal");
+  Graph graph(places.size());
+  for (const auto& [a, b] : edges) {
+    require_place(a, places.size(), "an edge's place");
+    require_place(b, places.size(), "an edge's place");
+    boost::add_edge(a, b, (places[a].position_m - places[b].position_m).norm(), graph);
+  }
+  // Dijkstra from the goal: in an undirected graph, each place's predecessor on its shortest
+  // path from the goal is its next step towards the goal (§3.5's search tree).
+  std::vector<Graph::vertex_descriptor> predecessor(places.size());
+  std::vector<double> distance(places.size());
+  boost::dijkstra_shortest_paths(
+      graph, static_cast<Graph::vertex_descriptor>(goal),
+      boost::predecessor_map(predecessor.data()).distance_map(distance.data()));
+
+  RoutePlan plan;
+  plan.goal = goal;
+  plan.next.assign(places.size(), -1);
+  plan.cost_m.assign(places.size(), std::numeric_limits<double>::infinity());
+  plan.direction_rad.assign(places.size(), 0.0);
+  plan.direction_in_place_rad.assign(places.size(), 0.0);
+  for (std::size_t place = 0; place < places.size(); ++place) {
+    if (distance[place] == std::numeric_limits<double>::max()) continue;  // unreachable
+    plan.cost_m[place] = distance[place];
+    if (static_cast<int>(place) == goal) continue;
+    const int next = static_cast<int>(predecessor[place]);
+    const Eigen::Vector2d step = places[next].position_m - places[place].position_m;
+    plan.next[place] = next;
+    plan.direction_rad[place] = std::atan2(step.y(), step.x());
+    plan.direction_in_place_rad[place] =
+        signed_difference(plan.direction_rad[place], places[place].heading_rad);
+  }
+  return plan;
+}
+
+}  // namespace omninav::navigation
