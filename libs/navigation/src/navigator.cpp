@@ -1,0 +1,84 @@
+#include "omninav/navigation/navigator.hpp"
+
+#include <cmath>
+
+#include "omninav/core/angles.hpp"
+#include "omninav/core/config.hpp"
+
+namespace omninav::navigation {
+namespace {
+
+constexpr int kEscapeSteps = 3;
+
+}  // namespace
+
+void load_navigator_params(const ConfigReader& section, NavigatorParams& params) {
+  section.read("step_m", params.step_m, 0.01, 5.0);
+  section.read("max_steps", params.max_steps, 1, 100000);
+  section.read("goal_similarity", params.goal_similarity, 0.0, 1000.0);
+  section.read("goal_confirmations", params.goal_confirmations, 1, 100);
+  section.read("unstick_turn_deg", params.unstick_turn_deg, 0.0, 180.0);
+}
+
+NavigationResult navigate(sim::VirtualRobot& robot, const sim::Renderer& renderer,
+                          const std::vector<PlaceNode>& places, const RoutePlan& plan,
+                          const Localiser& localise, const NavigatorParams& params) {
+  NavigationResult result;
+  int expected = -1;  // the place the plan said we would reach next
+  int goal_matches = 0;
+  // Escaping an obstacle the plan runs into (the lattice knows nothing of furniture): drive a
+  // few steps at an angle from the planned direction, turning the other way each time the
+  // robot is blocked again, then follow the plan again.
+  int escape_steps_left = 0;
+  int escape_side = 1;
+  for (int index = 0; index < params.max_steps; ++index) {
+    NavigationStep step;
+    step.index = index;
+    step.truth = robot.pose();
+    step.match = localise(renderer.render(robot.pose(), robot.elapsed_s(), index));
+    const int place = step.match.place;
+    step.heading_estimate_rad =
+        wrap_angle(places[place].heading_rad + step.match.heading_in_place_rad);
+    // A jump: neither where we were, nor where we were heading, nor next to either.
+    if (expected >= 0) {
+      const Eigen::Vector2d here = places[place].position_m;
+      const double near_m = 2.0 * params.step_m + 1e-9;
+      step.jump = (here - places[expected].position_m).norm() > near_m &&
+                  (result.steps.empty() ||
+                   (here - places[result.steps.back().match.place].position_m).norm() > near_m);
+      result.jumps += step.jump ? 1 : 0;
+    }
+
+    if (place == plan.goal && step.match.similarity >= params.goal_similarity) {
+      if (++goal_matches >= params.goal_confirmations) {
+        result.steps.push_back(step);
+        result.reached = true;
+        return result;
+      }
+    } else {
+      goal_matches = 0;
+    }
+
+    // Turn to the place's assigned direction, measured against the place's own heading: the
+    // robot's heading relative to the place is what the image tells, whatever the lattice.
+    double direction_in_place = plan.direction_in_place_rad[place];
+    if (place == plan.goal || !plan.reaches_goal(place))
+      direction_in_place = step.match.heading_in_place_rad;
+    if (escape_steps_left > 0) {
+      direction_in_place += escape_side * deg_to_rad(params.unstick_turn_deg);
+      --escape_steps_left;
+    }
+    step.turn_rad = signed_difference(direction_in_place, step.match.heading_in_place_rad);
+    const double driven = robot.move(step.turn_rad, params.step_m);
+    if (driven < 0.5 * params.step_m) {
+      escape_side = -escape_side;
+      escape_steps_left = kEscapeSteps;
+    }
+    result.path_length_m += driven;
+    expected = plan.next[place] >= 0 ? plan.next[place] : place;
+    result.steps.push_back(step);
+  }
+  return result;
+}
+
+}  // namespace omninav::navigation
