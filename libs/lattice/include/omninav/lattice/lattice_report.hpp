@@ -1,0 +1,32 @@
+#pragma once
+// How good a lattice is, when the map has ground truth (DESIGN.md, Evaluation: Lattice): the
+// RMSE of the places after a similarity (Procrustes) alignment to the truth, in units of the
+// reference spacing, interior and boundary places apart; and the picture of Figs. 14-17.
+
+#include <opencv2/core.hpp>
+#include <optional>
+
+#include "omninav/eval/procrustes.hpp"
+#include "omninav/lattice/organise.hpp"
+
+namespace omninav::lattice {
+
+struct LatticeEvaluation {
+  double spacing_m = 0.0;         // the truth's typical spacing (median nearest-neighbour distance)
+  eval::SplitRmse rmse;           // in spacings
+  std::vector<std::size_t> boundary;  // places with fewer than 8 true neighbours within 1.5 spacings
+  std::vector<Eigen::Vector2d> aligned;  // the lattice aligned onto the truth
+};
+
+// Nothing when the places lack ground truth or lattice positions. Reflection is allowed in the
+// alignment when the lattice had no motion constraints (distances alone cannot tell a lattice
+// from its mirror image).
+std::optional<LatticeEvaluation> evaluate_against_truth(const memory::VisualMemory& memory,
+                                                        bool allow_reflection);
+
+// The lattice with its springs shaded by stiffness (dark = stiff) and, beside it when given,
+// the truth with the aligned lattice over it.
+cv::Mat lattice_picture(const memory::VisualMemory& memory, const OrganiseResult& organised,
+                        const std::optional<LatticeEvaluation>& evaluation);
+
+}  // namespace omninav::lattice
