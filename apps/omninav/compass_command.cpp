@@ -1,9 +1,366 @@
+// omninav compass: the visual compass over a sequence of panoramas (libs/compass), with the
+// evaluation of Tables 3-4 of 000_9e80abd5855643af.txt when the input has ground truth.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "app_config.hpp"
 #include "cli.hpp"
+#include "omninav/compass/evaluation.hpp"
+#include "omninav/compass/resample.hpp"
+#include "omninav/compass/visual_compass.hpp"
+#include "omninav/core/angles.hpp"
+#include "omninav/core/errors.hpp"
+#include "omninav/core/log.hpp"
+#include "omninav/core/parse.hpp"
+#include "omninav/core/progress.hpp"
+#include "omninav/eval/png.hpp"
+#include "omninav/io/bob_database.hpp"
+#include "omninav/io/sequence.hpp"
+#include "omninav/omni/unwrap.hpp"
 
 namespace omninav::cli {
+namespace {
 
-void add_compass_command(CLI::App& app, const GlobalOptions& /*global*/) {
-  app.add_subcommand("compass", "(not yet available)");
+namespace fs = std::filesystem;
+
+struct CompassOptions {
+  fs::path input;
+  std::string method = "alg1";
+  std::string minimiser;    // empty: compass.yaml's
+  int width_px = 0;         // 0: compass.yaml's input.width_px, else the input's own
+  double threshold = -1.0;  // < 0: compass.yaml's sampling.threshold_norm_amp
+  bool truth = false;
+  bool unwrap = false;
+  std::string out;  // CSV; "-" for stdout
+  fs::path plot;
+  fs::path stats;
+  std::string label;
+};
+
+// --method: the sampling policy, and for exhaustive|fft|phase the minimiser too.
+void apply_method(const std::string& method, compass::CompassParams& params) {
+  compass::SamplingParams& sampling = params.sampling;
+  if (method == "alg1") {
+    sampling.policy = compass::SamplingPolicy::kThreshold;
+  } else if (method.rfind("fx:", 0) == 0) {
+    sampling.policy = compass::SamplingPolicy::kFixedSkip;
+    const int skip = parse_int(method.substr(3), "--method " + method);
+    if (skip < 0) throw UsageError("--method " + method + ": the skip must be 0 or more");
+    sampling.fixed_skip_frames = skip;
+  } else if (method == "exhaustive" || method == "fft" || method == "phase") {
+    sampling.policy = compass::SamplingPolicy::kThreshold;
+    params.matcher.minimiser.kind = compass::minimiser_kind_of(method);
+  } else {
+    throw UsageError("--method " + method +
+                     ": expected alg1, fx:N (N frames skipped), exhaustive, fft or phase");
+  }
+}
+
+std::string csv_quoted(const std::string& text) {
+  if (text.find_first_of(",\"\n") == std::string::npos) return text;
+  std::string quoted = "\"";
+  for (const char c : text) {
+    if (c == '"') quoted += '"';
+    quoted += c;
+  }
+  return quoted + '"';
+}
+
+std::string fixed(double value, int decimals) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.*f", decimals, value);
+  return text;
+}
+
+struct Row {
+  compass::CompassEstimate estimate;
+  std::string source;
+  std::optional<double> time_s;
+  std::optional<CameraPose> truth;
+};
+
+void write_csv(std::ostream& out, const std::vector<Row>& rows, bool with_truth) {
+  out << "frame,source,time_s,heading_deg,heading_unwrapped_deg,rotation_deg,amplitude_norm,"
+         "reference_frame,confidence,shift_px,evaluations";
+  if (with_truth) out << ",truth_heading_deg,error_deg,distance_m";
+  out << '\n';
+  double travelled = 0.0;
+  std::optional<CameraPose> last_truth;
+  for (const Row& row : rows) {
+    const compass::CompassEstimate& e = row.estimate;
+    out << e.frame_index << ',' << csv_quoted(row.source) << ','
+        << (row.time_s ? fixed(*row.time_s, 4) : "") << ','
+        << fixed(rad_to_deg(wrap_angle(e.heading_rad)), 4) << ','
+        << fixed(rad_to_deg(e.heading_rad), 4) << ',' << fixed(rad_to_deg(e.rotation_rad), 4) << ','
+        << fixed(e.amplitude_norm, 4) << ',' << e.reference_index << ',' << e.flags.describe()
+        << ',' << fixed(e.shift_px, 4) << ',' << e.evaluations;
+    if (with_truth) {
+      if (row.truth) {
+        if (last_truth) {
+          travelled +=
+              std::hypot(row.truth->x_m - last_truth->x_m, row.truth->y_m - last_truth->y_m);
+        }
+        last_truth = row.truth;
+        out << ',' << fixed(rad_to_deg(wrap_angle(row.truth->heading_rad)), 4) << ','
+            << fixed(rad_to_deg(signed_difference(e.heading_rad, row.truth->heading_rad)), 4) << ','
+            << fixed(travelled, 4);
+      } else {
+        out << ",,,";
+      }
+    }
+    out << '\n';
+  }
+}
+
+// Writes `text` to `path` through a temporary file renamed into place: never half a file.
+void write_file(const fs::path& path, const std::string& text) {
+  const fs::path temporary = path.string() + ".part";
+  {
+    std::ofstream file(temporary, std::ios::binary);
+    if (!file) throw InputError(path.string() + ": cannot be written");
+    file << text;
+    if (!file.flush()) throw InputError(path.string() + ": cannot be written");
+  }
+  std::error_code error;
+  fs::rename(temporary, path, error);
+  if (error) {
+    fs::remove(temporary, error);
+    throw InputError(path.string() + ": cannot be written");
+  }
+}
+
+void run_compass(const GlobalOptions& global, const CompassOptions& options) {
+  compass::CompassConfig config = load_compass_config(global.config_dir);
+  compass::CompassParams params = config.compass;
+  apply_method(options.method, params);
+  if (!options.minimiser.empty()) {
+    params.matcher.minimiser.kind = compass::minimiser_kind_of(options.minimiser);
+  }
+  if (options.threshold >= 0.0) params.sampling.threshold_norm_amp = options.threshold;
+  if (params.matcher.minimiser.kind == compass::MinimiserKind::kFft &&
+      params.matcher.distance.metric == compass::Metric::kL1) {
+    throw UsageError("the fft minimiser needs distance.metric l2 (compass.yaml has l1)");
+  }
+  const std::optional<int> width =
+      options.width_px > 0 ? std::optional<int>(options.width_px) : config.width_px;
+
+  std::unique_ptr<io::SequenceReader> reader = io::open_sequence(options.input);
+  log_info("reading " + reader->describe());
+  bool unwrap = options.unwrap;
+  if (const auto* database = dynamic_cast<const io::BobDatabaseReader*>(reader.get())) {
+    if (database->info().needs_unwrapping.value_or(false)) unwrap = true;
+  }
+  std::optional<omni::Unwrapper> unwrapper;
+
+  std::vector<Row> rows;
+  std::unique_ptr<compass::VisualCompass> compass;
+  std::optional<int> input_width;
+  const auto start = std::chrono::steady_clock::now();
+  {
+    Progress progress("compass", reader->size());
+    while (std::optional<io::Frame> frame = reader->next()) {
+      cv::Mat panorama = frame->image;
+      if (unwrap) {
+        if (!unwrapper) {
+          unwrapper.emplace(
+              omni::make_unwrapper(load_camera_config(global.config_dir).unwrap, panorama));
+          log_info("unwrapping raw images with camera.yaml");
+        }
+        panorama = unwrapper->unwrap(panorama);
+      }
+      if (panorama.empty()) throw InputError(frame->source + ": empty image");
+      if (!input_width) {
+        input_width = panorama.cols;
+        if (width && *width != panorama.cols) {
+          log_info("resampling " + std::to_string(panorama.cols) + "-column panoramas to " +
+                   std::to_string(*width) +
+                   " columns (circular tent filter, front kept at 0.25*width, rows unchanged)");
+        }
+      } else if (panorama.cols != *input_width) {
+        throw InputError(frame->source + ": " + std::to_string(panorama.cols) +
+                         " columns where the sequence's first image has " +
+                         std::to_string(*input_width));
+      }
+      if (width && *width != panorama.cols) {
+        panorama = compass::resample_columns(panorama, *width);
+      }
+      if (!compass) {
+        if (options.truth && !frame->truth) {
+          throw UsageError(frame->source + ": --truth needs ground truth, and " +
+                           options.input.string() + " has none for its first image");
+        }
+        // §4.1: with an absolute heading available, the compass starts from it.
+        const double initial = frame->truth ? frame->truth->heading_rad : 0.0;
+        compass = std::make_unique<compass::VisualCompass>(params, initial);
+        log_info(
+            std::string("visual compass: ") + describe(params.sampling) + ", minimiser " +
+            to_string(params.matcher.minimiser.kind) + ", field of view " +
+            (params.matcher.distance.field_of_view.front_back ? "front and back bands" : "whole") +
+            ", sub-pixel " + to_string(params.matcher.subpixel.mode) +
+            (frame->truth ? ", started at the true heading" : ", started at 0"));
+      }
+      const compass::CompassFrame compass_frame(panorama, frame->index, frame->source);
+      rows.push_back({compass->push(compass_frame), frame->source, frame->time_s, frame->truth});
+      progress.advance();
+    }
+  }
+  if (rows.empty()) throw InputError(options.input.string() + ": holds no images");
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  log_info("processed " + std::to_string(rows.size()) + " frames in " + fixed(seconds, 2) + " s (" +
+           fixed(rows.size() / std::max(seconds, 1e-9), 1) +
+           " frames/s, reading and decoding included)");
+
+  const bool has_truth =
+      std::any_of(rows.begin(), rows.end(), [](const Row& r) { return r.truth.has_value(); });
+  if (!options.out.empty()) {
+    std::ostringstream csv;
+    write_csv(csv, rows, has_truth);
+    if (options.out == "-") {
+      std::cout << csv.str();
+    } else {
+      write_file(options.out, csv.str());
+    }
+  }
+
+  // Evaluation over the frames that have ground truth.
+  std::vector<compass::CompassEstimate> estimates;
+  std::vector<compass::TruthSample> truth;
+  for (const Row& row : rows) {
+    if (!row.truth) continue;
+    estimates.push_back(row.estimate);
+    truth.push_back({row.truth->heading_rad, row.truth->x_m, row.truth->y_m, row.time_s});
+  }
+  fs::path input_name = fs::absolute(options.input).lexically_normal();
+  if (input_name.filename().empty()) input_name = input_name.parent_path();  // "folder/"
+  const std::string label = options.label.empty() ? input_name.filename().string() : options.label;
+  const std::string method = describe(params.sampling) +
+                             (params.matcher.minimiser.kind == compass::MinimiserKind::kLocalScan
+                                  ? std::string()
+                                  : " (" + to_string(params.matcher.minimiser.kind) + ")");
+  std::optional<compass::CompassEvaluation> evaluation;
+  if (options.truth) {
+    if (estimates.size() < rows.size()) {
+      log_warning(std::to_string(rows.size() - estimates.size()) +
+                  " frames have no ground truth and are left out of the statistics");
+    }
+    evaluation = compass::evaluate_compass(estimates, truth, compass->reference_count());
+    if (!global.quiet && options.out != "-") {
+      std::cout << compass::format_evaluation_table(label, method, *evaluation);
+    }
+  } else if (!global.quiet && options.out != "-") {
+    const compass::CompassEstimate& last = rows.back().estimate;
+    int flagged = 0;
+    for (const Row& row : rows) flagged += row.estimate.flags.ok() ? 0 : 1;
+    std::cout << rows.size() << " frames, " << compass->reference_count() << " reference frames ("
+              << method << "); final heading " << fixed(rad_to_deg(wrap_angle(last.heading_rad)), 3)
+              << " deg (" << fixed(rad_to_deg(last.heading_rad), 3) << " deg unwrapped); "
+              << flagged << " frames with a low-confidence flag\n";
+  }
+  if (!options.stats.empty()) {
+    if (!evaluation) throw UsageError("--stats needs --truth");
+    std::ostringstream csv;
+    csv << "dataset,method,width_px,reference_frames,total_frames,max_abs_error_deg,"
+           "mean_error_deg,std_error_deg,slope_deg_per_s,slope_deg_per_m,final_error_deg\n";
+    csv << csv_quoted(label) << ',' << csv_quoted(method) << ',' << (width ? *width : *input_width)
+        << ',' << evaluation->reference_frames << ',' << evaluation->total_frames << ','
+        << fixed(evaluation->error_deg.max_abs, 4) << ',' << fixed(evaluation->error_deg.mean, 4)
+        << ','
+        << (std::isfinite(evaluation->error_deg.stddev) ? fixed(evaluation->error_deg.stddev, 4)
+                                                        : "")
+        << ',' << (evaluation->slope_deg_per_s ? fixed(*evaluation->slope_deg_per_s, 5) : "") << ','
+        << (evaluation->slope_deg_per_m ? fixed(*evaluation->slope_deg_per_m, 4) : "") << ','
+        << fixed(evaluation->final_error_deg, 4) << '\n';
+    write_file(options.stats, csv.str());
+  }
+  if (!options.plot.empty()) {
+    std::vector<compass::CompassEstimate> all;
+    std::vector<compass::TruthSample> all_truth;
+    for (const Row& row : rows) all.push_back(row.estimate);
+    if (estimates.size() == rows.size()) all_truth = truth;
+    eval::save_png(compass::plot_compass_run(all, all_truth, label + ", " + method), options.plot);
+  }
+}
+
+}  // namespace
+
+void add_compass_command(CLI::App& app, const GlobalOptions& global) {
+  auto options = std::make_shared<CompassOptions>();
+  CLI::App* command = app.add_subcommand(
+      "compass",
+      "The visual compass: the robot's heading from successive panoramas alone\n"
+      "(Labrosse 2004, 2006). Reads compass.yaml from --config-dir (its defaults are Table 2\n"
+      "of the 2006 paper). Headings are in degrees, counter-clockwise positive; the compass\n"
+      "starts at the input's true heading when it has one, else at 0.\n"
+      "With --truth, prints the statistics of Tables 3-4: reference frames used (total), max\n"
+      "|error|, mean, standard deviation, and the slope of the error against time (deg/s) and\n"
+      "distance travelled (deg/m) by Theil-Sen robust regression.\n"
+      "Examples:\n"
+      "  omninav compass --input rotate_db --truth --out headings.csv --plot headings.png\n"
+      "  omninav compass --input route_db --method fx:3 --width 1080 --out -");
+  command
+      ->add_option("-i,--input", options->input,
+                   "Panoramas: a folder of images, a video, a BoB image database folder, or a CSV "
+                   "of file,x_m,y_m,heading_deg (DESIGN.md, Data formats)")
+      ->type_name("PATH")
+      ->required()
+      ->check(CLI::ExistingPath);
+  command
+      ->add_option("-m,--method", options->method,
+                   "alg1: Algorithm 1, a new reference image when the normalised amplitude falls\n"
+                   "      below sampling.threshold_norm_amp (\"Atm 0.6\");\n"
+                   "fx:N: a new reference every N+1 frames (\"Fx N\"; fx:0 = successive frames);\n"
+                   "exhaustive | fft | phase: Algorithm 1 with that minimiser instead of\n"
+                   "      compass.yaml's (exhaustive search, FFT correlation, Fourier phase)")
+      ->capture_default_str();
+  command
+      ->add_option("--minimiser", options->minimiser,
+                   "Override compass.yaml's minimiser.kind: local_scan, exhaustive, fft or phase "
+                   "(e.g. with fx:N)")
+      ->type_name("KIND");
+  command
+      ->add_option("--threshold", options->threshold,
+                   "Override sampling.threshold_norm_amp, t of Algorithm 1 (Table 2: 0.6055)")
+      ->type_name("T")
+      ->check(CLI::Range(0.0, 1.0));
+  command
+      ->add_option("-w,--width", options->width_px,
+                   "Resample the panoramas to this many columns first (e.g. 360 = 1 px/deg, "
+                   "1080 = 3 px/deg): circular tent filter, front kept at 0.25*width, rows "
+                   "unchanged. Default: compass.yaml's input.width_px, else the input's width")
+      ->type_name("COLUMNS")
+      ->check(CLI::Range(8, 16384));
+  command->add_flag("--truth", options->truth,
+                    "Evaluate against the input's ground truth and print the statistics");
+  command->add_flag("--unwrap", options->unwrap,
+                    "The input is raw omnidirectional images: unwrap them with camera.yaml "
+                    "(automatic for BoB databases marked needsUnwrapping)");
+  command
+      ->add_option("-o,--out", options->out,
+                   "Write one CSV row per frame (frame, source, time_s, heading_deg,\n"
+                   "heading_unwrapped_deg, rotation_deg, amplitude_norm, reference_frame,\n"
+                   "confidence, shift_px, evaluations; truth_heading_deg, error_deg, distance_m\n"
+                   "when the input has ground truth); '-' for standard output")
+      ->type_name("FILE");
+  command->add_option("--plot", options->plot, "Write a PNG of heading and error against frame")
+      ->type_name("FILE.png");
+  command
+      ->add_option("--stats", options->stats,
+                   "With --truth: write the statistics as a one-row CSV (for scripts)")
+      ->type_name("FILE.csv");
+  command->add_option("--label", options->label,
+                      "Dataset name for the statistics (default: the input's name)");
+  command->callback([&global, options] { run_compass(global, *options); });
 }
 
 }  // namespace omninav::cli

@@ -1,0 +1,56 @@
+#pragma once
+// The evaluation of a compass run against ground truth, as Tables 3 and 4 of
+// 000_9e80abd5855643af.txt and DESIGN.md (Evaluation) define it:
+//   e = estimate − truth, wrapped to (−180°, 180°] per frame;
+//   "Nb (total)": reference frames used, out of all frames;
+//   Max. |e|, Mean, Std. dev. over the whole sequence (not only its end, §4.3);
+//   Slope (°/s) and (°/m): the slope of a robust linear regression of e against time and
+//   against distance travelled. The paper does not name its robust regression; we use Theil–Sen
+//   (median of pairwise slopes, omninav::eval::theil_sen_fit, whose header says why).
+// The compass is started at the true heading of the first frame (§4.1: "the visual compass is
+// initialised with the absolute value at the beginning of the experiment").
+
+#include <filesystem>
+#include <opencv2/core.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "omninav/compass/visual_compass.hpp"
+#include "omninav/eval/error_stats.hpp"
+
+namespace omninav::compass {
+
+// Ground truth for one frame.
+struct TruthSample {
+  double heading_rad = 0.0;
+  double x_m = 0.0;
+  double y_m = 0.0;
+  std::optional<double> time_s;
+};
+
+struct CompassEvaluation {
+  int reference_frames = 0;
+  int total_frames = 0;
+  std::vector<double> errors_deg;         // per frame, wrapped to (−180, 180]
+  std::vector<double> distance_m;         // travelled on the floor up to each frame
+  eval::ErrorStats error_deg;             // max |e|, mean, std (degrees)
+  std::optional<double> slope_deg_per_s;  // absent without times
+  std::optional<double> slope_deg_per_m;  // absent when the camera did not travel (on the spot)
+  double final_error_deg = 0.0;
+};
+
+// Throws UsageError when the sizes differ or there are no frames.
+CompassEvaluation evaluate_compass(const std::vector<CompassEstimate>& estimates,
+                                   const std::vector<TruthSample>& truth, int reference_frames);
+
+// One line per statistic, in the layout of Table 3 (header and a row for `method`).
+std::string format_evaluation_table(const std::string& dataset, const std::string& method,
+                                    const CompassEvaluation& evaluation);
+
+// Heading (estimate, and truth when given) and error against frame, two panels one above the
+// other, as Figs. 8-9 and 16-19 of the papers. Unwrapped headings so turns show as ramps.
+cv::Mat plot_compass_run(const std::vector<CompassEstimate>& estimates,
+                         const std::vector<TruthSample>& truth, const std::string& title);
+
+}  // namespace omninav::compass

@@ -1,0 +1,101 @@
+#pragma once
+// The visual compass: Algorithm 1 of 000_9e80abd5855643af.txt §3.5, and its fixed-skip variant
+// "Fx n" (§4.3), over a sequence of panoramas pushed one at a time.
+//
+// Algorithm 1, as implemented (ω: orientations, r: rotations, all counter-clockwise positive):
+//   first frame:  I_r ← I_c; ω_r ← ω_c ← initial heading; r_rc ← 0
+//   each frame:   I_p ← I_c; I_c ← new frame; r_rp ← r_rc
+//                 r_rc ← −α_m(I_r, I_c), minimised from the shift of r_rp            (line 9)
+//                 if 𝒜_n(I_r, I_c) < t:                                              (line 10)
+//                     ω_r ← ω_r + r_rp           the firewall: the reference's orientation
+//                                                changes only when it is replaced     (line 11)
+//                     r_rc ← −α_m(I_p, I_c), minimised from 0                         (line 12)
+//                     I_r ← I_p                                                       (line 13)
+//                 ω_c ← ω_r + r_rc                                                    (line 15)
+// with t = 0.6055 (Table 2). When I_p is I_r itself (the second frame of a sequence) there is
+// nothing to fall back on: the match stands and is flagged low_amplitude.
+//
+// "Fx n" (§4.3: "skipping a fixed number of frames"): the same loop with line 10's test
+// replaced by "I_c is more than n + 1 frames after I_r". The reference frames are then frames
+// 0, n+1, 2(n+1), ...; each is measured against the one before it, and every frame in between
+// against the latest reference. Fx 0 compares successive frames: the 2004 compass (Fig. 3 of
+// 004_5a2a3172f8969a85.txt) when used with the exhaustive minimiser and no sub-pixel fit.
+
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "omninav/compass/frame.hpp"
+#include "omninav/compass/pair_matcher.hpp"
+
+namespace omninav::compass {
+
+enum class SamplingPolicy {
+  kThreshold,  // Algorithm 1: switch the reference when 𝒜_n < t ("Atm t" in Tables 3-4)
+  kFixedSkip,  // "Fx n": a new reference every n + 1 frames
+};
+
+struct SamplingParams {
+  SamplingPolicy policy = SamplingPolicy::kThreshold;
+  // t, Algorithm 1 line 1 and Table 2: the median normalised amplitude at the best skip + 1 on
+  // CIRCLE1 (Table 1 of 000_9e80abd5855643af.txt).
+  double threshold_norm_amp = 0.6055;
+  // n of "Fx n": frames skipped between references.
+  int fixed_skip_frames = 3;
+};
+
+struct CompassParams {
+  PairMatcherParams matcher;
+  SamplingParams sampling;
+};
+
+// What the compass says about one frame.
+struct CompassEstimate {
+  int frame_index = 0;          // CompassFrame::index()
+  double heading_rad = 0.0;     // ω_c, unwrapped (turns accumulate; wrap it for display)
+  double rotation_rad = 0.0;    // ω_c − ω of the previous frame
+  double amplitude_norm = 0.0;  // 𝒜_n of the pair that gave r_rc (1 for the first frame)
+  int reference_index = 0;      // CompassFrame::index() of the reference I_r used
+  bool new_reference = false;   // the reference changed at this frame (lines 11-13)
+  double shift_px = 0.0;        // α_m of that pair (sub-pixel)
+  ConfidenceFlags flags;
+  int evaluations = 0;  // distance evaluations spent on this frame
+};
+
+class VisualCompass {
+ public:
+  // Throws UsageError for impossible parameters (see make_minimiser).
+  explicit VisualCompass(const CompassParams& params, double initial_heading_rad = 0.0);
+  ~VisualCompass();
+  VisualCompass(const VisualCompass&) = delete;
+  VisualCompass& operator=(const VisualCompass&) = delete;
+
+  // Feeds the next frame and returns its estimate. Throws InputError naming the frame when it
+  // differs in shape from the first one.
+  CompassEstimate push(const CompassFrame& frame);
+
+  // Frames pushed so far, and how many of them served as a reference (the "Nb" of Tables 3-4).
+  int frame_count() const { return frame_count_; }
+  int reference_count() const { return reference_count_; }
+
+  const CompassParams& params() const { return params_; }
+  const PairMatcher& matcher() const { return matcher_; }
+
+ private:
+  CompassParams params_;
+  PairMatcher matcher_;
+  double initial_heading_rad_;
+  std::optional<CompassFrame> reference_;
+  std::optional<CompassFrame> current_;
+  int reference_position_ = 0;  // position in the sequence of I_r
+  int frame_count_ = 0;
+  int reference_count_ = 0;
+  double reference_heading_rad_ = 0.0;     // ω_r
+  double rotation_ref_current_rad_ = 0.0;  // r_rc
+  double current_heading_rad_ = 0.0;       // ω_c
+};
+
+// How Tables 3-4 name the method: "Atm 0.6055", "Fx 3".
+std::string describe(const SamplingParams& sampling);
+
+}  // namespace omninav::compass

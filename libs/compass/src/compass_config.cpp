@@ -1,0 +1,81 @@
+#include "omninav/compass/compass_config.hpp"
+
+#include <cmath>
+#include <string>
+
+#include "omninav/core/angles.hpp"
+#include "omninav/core/config.hpp"
+#include "omninav/core/errors.hpp"
+
+namespace omninav::compass {
+
+void load_compass_config(const ConfigReader& config, CompassConfig& out) {
+  PairMatcherParams& matcher = out.compass.matcher;
+
+  const ConfigReader distance = config.section("distance");
+  std::string metric = to_string(matcher.distance.metric);
+  distance.read("metric", metric, {"l2", "l1"});
+  matcher.distance.metric = metric == "l1" ? Metric::kL1 : Metric::kL2;
+  std::string field_of_view = matcher.distance.field_of_view.front_back ? "front_back" : "whole";
+  distance.read("field_of_view", field_of_view, {"front_back", "whole"});
+  matcher.distance.field_of_view.front_back = field_of_view == "front_back";
+  distance.read_deg("band_width_deg", matcher.distance.field_of_view.band_width_rad, 1.0, 180.0);
+
+  const ConfigReader minimiser = config.section("minimiser");
+  std::string kind = to_string(matcher.minimiser.kind);
+  minimiser.read("kind", kind, {"local_scan", "exhaustive", "fft", "phase"});
+  matcher.minimiser.kind = minimiser_kind_of(kind);
+  minimiser.read("scan_values", matcher.minimiser.scan_values, 2, 64);
+  minimiser.read_deg("scan_span_deg", matcher.minimiser.scan_span_rad, 0.1, 180.0);
+  minimiser.read("seed_with_phase", matcher.minimiser.seed_with_phase);
+  std::string planning =
+      matcher.minimiser.fft_planning == FftPlanning::kMeasure ? "measure" : "estimate";
+  minimiser.read("fft_planning", planning, {"estimate", "measure"});
+  matcher.minimiser.fft_planning =
+      planning == "measure" ? FftPlanning::kMeasure : FftPlanning::kEstimate;
+
+  const ConfigReader phase = config.section("phase");
+  phase.read("components", matcher.minimiser.phase.components, 1, 4096);
+
+  const ConfigReader subpixel = config.section("subpixel");
+  std::string mode = to_string(matcher.subpixel.mode);
+  subpixel.read("mode", mode, {"mixture", "parabolic", "linear", "none"});
+  matcher.subpixel.mode = subpixel_mode_of(mode);
+  subpixel.read("parabolic_up_to_norm_amp", matcher.subpixel.parabolic_up_to_norm_amp, 0.0, 10.0);
+  subpixel.read("linear_from_norm_amp", matcher.subpixel.linear_from_norm_amp, 0.0, 10.0);
+
+  const ConfigReader sampling = config.section("sampling");
+  SamplingParams& sampling_params = out.compass.sampling;
+  std::string policy =
+      sampling_params.policy == SamplingPolicy::kFixedSkip ? "fixed_skip" : "threshold";
+  sampling.read("policy", policy, {"threshold", "fixed_skip"});
+  sampling_params.policy =
+      policy == "fixed_skip" ? SamplingPolicy::kFixedSkip : SamplingPolicy::kThreshold;
+  sampling.read("threshold_norm_amp", sampling_params.threshold_norm_amp, 0.0, 1.0);
+  sampling.read("fixed_skip_frames", sampling_params.fixed_skip_frames, 0, 100000);
+
+  const ConfigReader confidence = config.section("confidence");
+  ConfidenceParams& confidence_params = matcher.confidence;
+  confidence.read("flat_below_grey", confidence_params.flat_below_grey, 0.0, 255.0);
+  confidence.read_deg("competing_separation_deg", confidence_params.competing_separation_rad, 0.1,
+                      180.0);
+  confidence.read("competing_depth_ratio", confidence_params.competing_depth_ratio, 0.0, 1.0);
+
+  const ConfigReader input = config.section("input");
+  std::optional<double> width = out.width_px ? std::optional<double>(*out.width_px) : std::nullopt;
+  input.read("width_px", width, 8, 16384);
+  if (width && *width != std::floor(*width)) {
+    throw ConfigError(config.source_name() + ": key 'input.width_px' = " + std::to_string(*width) +
+                      " must be a whole number of columns");
+  }
+  out.width_px = width ? std::optional<int>(static_cast<int>(*width)) : std::nullopt;
+
+  // Combinations that cannot work fail here, naming the file.
+  if (matcher.minimiser.kind == MinimiserKind::kFft && matcher.distance.metric == Metric::kL1) {
+    throw ConfigError(config.source_name() +
+                      ": minimiser.kind 'fft' needs distance.metric 'l2' (the FFT expands the "
+                      "square of Eq. 2)");
+  }
+}
+
+}  // namespace omninav::compass

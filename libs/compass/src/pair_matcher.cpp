@@ -1,0 +1,166 @@
+#include "omninav/compass/pair_matcher.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+
+#include "frame_caches.hpp"
+#include "omninav/core/angles.hpp"
+#include "omninav/core/panorama.hpp"
+
+namespace omninav::compass {
+namespace {
+
+// d at a fractional shift, linear between its two integer neighbours (used at α_m + W/2 for
+// Eq. 12, and at a_m + W/2 for odd widths).
+double distance_at(CostTable& table, double shift_px) {
+  const double lower = std::floor(shift_px);
+  const double fraction = shift_px - lower;
+  const int base = static_cast<int>(lower);
+  const double at_lower = table.distance_at(base);
+  if (fraction == 0.0) return at_lower;
+  return (1.0 - fraction) * at_lower + fraction * table.distance_at(base + 1);
+}
+
+int circular_gap(int a, int b, int width) {
+  const int gap = wrap_shift(a - b, width);
+  return std::min(gap, width - gap);
+}
+
+// Another local minimum at least `separation` columns from `best` and below `ceiling`.
+bool has_competing_minimum(CostTable& table, int best, int separation, double ceiling) {
+  const int width = table.width_px();
+  if (2 * separation > width) return false;
+  if (table.complete()) {
+    const std::vector<Cost>& costs = table.costs();
+    for (int s = 0; s < width; ++s) {
+      if (circular_gap(s, best, width) < separation) continue;
+      const Cost here = costs[static_cast<std::size_t>(s)];
+      const Cost left = costs[static_cast<std::size_t>(wrap_shift(s - 1, width))];
+      const Cost right = costs[static_cast<std::size_t>(wrap_shift(s + 1, width))];
+      // Strict on the left, so that a plateau counts once.
+      if (here < left && here <= right && table.distance().distance(here) < ceiling) return true;
+    }
+    return false;
+  }
+  // Only some shifts are known (local_scan): descend from the lowest known ones that come
+  // close enough, and flag a descent that ends far from the best.
+  std::vector<std::pair<Cost, int>> candidates;
+  const std::vector<Cost>& costs = table.costs();
+  for (int s = 0; s < width; ++s) {
+    const Cost cost = costs[static_cast<std::size_t>(s)];
+    if (cost < 0 || circular_gap(s, best, width) < separation) continue;
+    if (table.distance().distance(cost) < ceiling) candidates.emplace_back(cost, s);
+  }
+  std::sort(candidates.begin(), candidates.end());
+  constexpr std::size_t kMaxDescents = 3;
+  for (std::size_t i = 0; i < std::min(candidates.size(), kMaxDescents); ++i) {
+    const int minimum = descend(table, candidates[i].second);
+    if (circular_gap(minimum, best, width) >= separation && table.distance_at(minimum) < ceiling) {
+      return true;
+    }
+  }
+  return false;
+}
+
+std::uint64_t distance_key(const DistanceFunction& distance) {
+  return distance.mask().key() * 2 + (distance.metric() == Metric::kL2 ? 0 : 1);
+}
+
+}  // namespace
+
+std::string ConfidenceFlags::describe() const {
+  std::string text;
+  const auto add = [&text](bool flag, const char* name) {
+    if (!flag) return;
+    if (!text.empty()) text += '+';
+    text += name;
+  };
+  add(featureless, "featureless");
+  add(competing_minima, "competing_minima");
+  add(low_amplitude, "low_amplitude");
+  return text.empty() ? "ok" : text;
+}
+
+PairMatcher::PairMatcher(const PairMatcherParams& params)
+    : params_(params), minimiser_(make_minimiser(params.minimiser, params.distance.metric)) {}
+
+PairMatcher::~PairMatcher() = default;
+
+const DistanceFunction& PairMatcher::distance_function(int width_px) const {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  auto& slot = distances_[width_px];
+  if (!slot) slot = std::make_unique<DistanceFunction>(params_.distance, width_px);
+  return *slot;
+}
+
+double PairMatcher::self_amplitude(const CompassFrame& frame) const {
+  const DistanceFunction& distance = distance_function(frame.width());
+  const std::uint64_t key = distance_key(distance);
+  detail::FrameCaches& caches = frame.caches();
+  {
+    const std::lock_guard<std::mutex> lock(caches.mutex);
+    if (const auto found = caches.self_amplitude.find(key); found != caches.self_amplitude.end()) {
+      return found->second;
+    }
+  }
+  // A(I, I) = d(I, I, W/2) − d(I, I, 0), and d(I, I, 0) = 0.
+  CostTable table(distance, frame, frame);
+  const double amplitude = distance_at(table, frame.width() / 2.0) - table.distance_at(0);
+  const std::lock_guard<std::mutex> lock(caches.mutex);
+  caches.self_amplitude[key] = amplitude;
+  return amplitude;
+}
+
+PairMatch PairMatcher::match(const CompassFrame& first, const CompassFrame& second,
+                             int start_shift_px) const {
+  require_same_shape(first, second);
+  const int width = first.width();
+  const DistanceFunction& distance = distance_function(width);
+  CostTable table(distance, first, second);
+  const ShiftSearch search = minimiser_->minimise(table, start_shift_px);
+
+  PairMatch match;
+  match.shift_px = search.shift_px;
+  const int a = search.shift_px;
+  const double d_minus = table.distance_at(a - 1);
+  const double d_0 = table.distance_at(a);
+  const double d_plus = table.distance_at(a + 1);
+  const double half_turn = width / 2.0;
+
+  // Eq. 9 and its normalisation by A(I_i, I_i) (Eq. 8).
+  match.self_amplitude = self_amplitude(first);
+  const double amplitude_px = distance_at(table, a + half_turn) - d_0;
+  match.amplitude_norm_px = match.self_amplitude > 0.0 ? amplitude_px / match.self_amplitude : 0.0;
+
+  // Eqs. 10-11, or the phase estimate itself when the minimiser is (d).
+  if (search.continuous_shift_px) {
+    match.subpixel_shift_px = *search.continuous_shift_px;
+    match.distance_min = d_0;
+  } else {
+    const SubpixelFit fit =
+        subpixel_fit(d_minus, d_0, d_plus, match.amplitude_norm_px, params_.subpixel);
+    match.subpixel_shift_px = a + fit.offset_px;
+    match.distance_min = fit.value;
+  }
+  // Eq. 12 and Eq. 8.
+  match.amplitude = distance_at(table, match.subpixel_shift_px + half_turn) - match.distance_min;
+  match.amplitude_norm = match.self_amplitude > 0.0 ? match.amplitude / match.self_amplitude : 0.0;
+  // Eq. 4: ρ = −α_m·360/W, counter-clockwise positive (distance.hpp).
+  match.rotation_rad = wrap_angle(-rotation_of_shift_px(match.subpixel_shift_px, width));
+
+  // Confidence.
+  const ConfidenceParams& confidence = params_.confidence;
+  const double flat = distance.distance_of_mean_difference(confidence.flat_below_grey, first);
+  match.flags.featureless = !(amplitude_px >= flat) || !(match.self_amplitude >= flat);
+  if (!match.flags.featureless) {
+    const int separation = std::max(
+        2, static_cast<int>(std::lround(confidence.competing_separation_rad * width / kTwoPi)));
+    match.flags.competing_minima = has_competing_minimum(
+        table, a, separation, d_0 + confidence.competing_depth_ratio * amplitude_px);
+  }
+  match.evaluations = table.evaluations();
+  return match;
+}
+
+}  // namespace omninav::compass

@@ -1,0 +1,112 @@
+#include "omninav/compass/visual_compass.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include "omninav/core/angles.hpp"
+#include "omninav/core/errors.hpp"
+#include "omninav/core/panorama.hpp"
+
+namespace omninav::compass {
+
+std::string describe(const SamplingParams& sampling) {
+  std::ostringstream text;
+  if (sampling.policy == SamplingPolicy::kFixedSkip) {
+    text << "Fx " << sampling.fixed_skip_frames;
+  } else {
+    text << "Atm " << sampling.threshold_norm_amp;
+  }
+  return text.str();
+}
+
+VisualCompass::VisualCompass(const CompassParams& params, double initial_heading_rad)
+    : params_(params), matcher_(params.matcher), initial_heading_rad_(initial_heading_rad) {
+  if (params.sampling.policy == SamplingPolicy::kFixedSkip &&
+      params.sampling.fixed_skip_frames < 0) {
+    throw UsageError("Fx n needs n >= 0 frames skipped, got " +
+                     std::to_string(params.sampling.fixed_skip_frames));
+  }
+}
+
+VisualCompass::~VisualCompass() = default;
+
+CompassEstimate VisualCompass::push(const CompassFrame& frame) {
+  CompassEstimate estimate;
+  estimate.frame_index = frame.index();
+  if (!current_) {
+    // Lines 2-4: the first image is the reference; ω_r = ω_c = the initial heading.
+    reference_ = frame;
+    current_ = frame;
+    reference_position_ = 0;
+    frame_count_ = 1;
+    reference_count_ = 1;
+    reference_heading_rad_ = initial_heading_rad_;
+    current_heading_rad_ = initial_heading_rad_;
+    rotation_ref_current_rad_ = 0.0;
+    estimate.heading_rad = current_heading_rad_;
+    estimate.amplitude_norm = 1.0;
+    estimate.reference_index = frame.index();
+    estimate.new_reference = true;
+    return estimate;
+  }
+  require_same_shape(*reference_, frame);
+
+  const CompassFrame previous = *current_;  // line 6
+  current_ = frame;                         // line 7
+  ++frame_count_;
+  const double rotation_ref_previous_rad = rotation_ref_current_rad_;  // line 8
+  const double previous_heading_rad = current_heading_rad_;
+  const int width = frame.width();
+
+  const bool previous_is_reference = frame_count_ - 2 == reference_position_;
+  const bool fixed_skip = params_.sampling.policy == SamplingPolicy::kFixedSkip;
+  PairMatch match;
+  bool switch_reference = false;
+  if (fixed_skip) {
+    // "Fx n" decides from positions alone, so line 9's match is skipped when it switches.
+    switch_reference =
+        frame_count_ - 1 - reference_position_ > params_.sampling.fixed_skip_frames + 1;
+  }
+  if (!switch_reference) {
+    // Line 9, started from the shift of r_rp (§3.5, "In the actual implementation").
+    const int start_shift =
+        static_cast<int>(std::lround(-shift_px_of_rotation(rotation_ref_previous_rad, width)));
+    match = matcher_.match(*reference_, frame, start_shift);
+    estimate.evaluations = match.evaluations;
+    // Line 10.
+    switch_reference = !fixed_skip && match.amplitude_norm < params_.sampling.threshold_norm_amp;
+  }
+  if (switch_reference) {
+    if (!previous_is_reference) {
+      reference_heading_rad_ += rotation_ref_previous_rad;  // line 11, the firewall
+      match = matcher_.match(previous, frame, 0);           // line 12, started from 0
+      estimate.evaluations += match.evaluations;
+      reference_ = previous;  // line 13
+      reference_position_ = frame_count_ - 2;
+      ++reference_count_;
+      estimate.new_reference = true;
+    }
+    // Even the frame just before is too different (or there is none to fall back on).
+    if (!fixed_skip && match.amplitude_norm < params_.sampling.threshold_norm_amp) {
+      match.flags.low_amplitude = true;
+    }
+  }
+  // r_rc moves little from frame to frame, so it is unwrapped next to r_rp: a reference that is
+  // never replaced (a pure rotation on the spot matches perfectly at any angle) still
+  // accumulates whole turns. After a switch r_rc is the small rotation between two frames.
+  rotation_ref_current_rad_ =
+      estimate.new_reference ? match.rotation_rad
+                             : rotation_ref_previous_rad +
+                                   signed_difference(match.rotation_rad, rotation_ref_previous_rad);
+  current_heading_rad_ = reference_heading_rad_ + rotation_ref_current_rad_;  // line 15
+
+  estimate.heading_rad = current_heading_rad_;
+  estimate.rotation_rad = current_heading_rad_ - previous_heading_rad;
+  estimate.amplitude_norm = match.amplitude_norm;
+  estimate.reference_index = reference_->index();
+  estimate.shift_px = match.subpixel_shift_px;
+  estimate.flags = match.flags;
+  return estimate;
+}
+
+}  // namespace omninav::compass

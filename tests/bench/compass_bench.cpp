@@ -1,0 +1,205 @@
+// The visual compass's speed (issue 3, §3): pairs per second for the minimisers (a) exhaustive,
+// (b) local + scan and (c) FFT at 360×45 and 1080×135 RGB, with and without the field-of-view
+// mask, and frames per second for Algorithm 1 over a sequence. The ratios asked for are printed
+// at the end, from the times of this one run.
+//
+// Run on one core:  taskset -c 0 build/bin/compass_bench
+//
+// What a "pair" costs here: PairMatcher::match, the whole answer a user gets (minimum, sub-pixel
+// fit, amplitudes, confidence), on consecutive frames of a rendered circle (~3° and 4 cm apart),
+// in steady state: each pair brings one new frame (a fresh CompassFrame, its pixels copied, its
+// caches empty) and reuses the previous one, so (c) transforms every frame once per role, as it
+// does along a sequence. (b) starts from 0, as for successive frames. The exhaustive search is
+// measured twice: "exhaustive" is the oracle, the plain transcription of Eq. 2 that the tests
+// trust; "exhaustive_fast" evaluates every shift with (b)'s vectorised kernel, to show how much
+// of (c)'s lead is the FFT and how much is the oracle's plain code. The FFT is measured with
+// FFTW_ESTIMATE plans (compass.yaml's default) and with FFTW_MEASURE plans ("fft_measure").
+#include <benchmark/benchmark.h>
+
+#include <cstdio>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "omninav/compass/pair_matcher.hpp"
+#include "omninav/compass/visual_compass.hpp"
+#include "omninav/core/angles.hpp"
+#include "omninav/sim/renderer.hpp"
+#include "omninav/sim/room.hpp"
+#include "omninav/sim/trajectory.hpp"
+
+namespace {
+
+using omninav::compass::CompassFrame;
+using omninav::compass::MinimiserKind;
+using omninav::compass::PairMatcher;
+using omninav::compass::PairMatcherParams;
+
+constexpr int kFrames = 24;
+
+// Frames along a circle in the default room, rendered once per size.
+const std::vector<cv::Mat>& frames(int width, int height) {
+  static std::map<std::pair<int, int>, std::vector<cv::Mat>> cache;
+  auto& images = cache[{width, height}];
+  if (images.empty()) {
+    const omninav::sim::World world = omninav::sim::make_room({});
+    omninav::sim::RenderParams params;
+    params.geometry.width_px = width;
+    params.geometry.height_px = height;
+    const omninav::sim::Renderer renderer(world, params);
+    const omninav::sim::Trajectory circle = omninav::sim::make_trajectory(
+        "circle:cx=1.5,cy=2.6,radius_m=0.9,turns=1,speed_m_s=0.2,fps=5", world);
+    for (int i = 0; i < kFrames; ++i) {
+      images.push_back(renderer.render(circle.poses[static_cast<std::size_t>(i)].pose));
+    }
+  }
+  return images;
+}
+
+PairMatcherParams matcher_params(MinimiserKind kind, bool mask, bool variant = false) {
+  PairMatcherParams params;
+  params.minimiser.kind = kind;
+  // The variant: the exhaustive search with (b)'s fast kernel; the FFT with FFTW_MEASURE plans.
+  params.minimiser.exhaustive_fast_kernel = variant;
+  if (variant) params.minimiser.fft_planning = omninav::compass::FftPlanning::kMeasure;
+  params.distance.field_of_view.front_back = mask;
+  return params;
+}
+
+void pairs(benchmark::State& state, MinimiserKind kind, bool variant, int width, int height,
+           bool mask) {
+  const std::vector<cv::Mat>& images = frames(width, height);
+  const PairMatcher matcher(matcher_params(kind, mask, variant));
+  // FFTW plans are made on first use (FFTW_MEASURE: ~0.7 s at 1080): once, before timing.
+  matcher.match(CompassFrame(images[0]), CompassFrame(images[1]), 0);
+  auto previous = std::make_unique<CompassFrame>(images[0], 0);
+  int next = 1;
+  long evaluations = 0;
+  for (auto _ : state) {
+    auto current = std::make_unique<CompassFrame>(images[static_cast<std::size_t>(next)], next);
+    const auto match = matcher.match(*previous, *current, 0);
+    benchmark::DoNotOptimize(match);
+    evaluations += match.evaluations;
+    previous = std::move(current);
+    next = (next + 1) % kFrames;
+  }
+  state.counters["pairs_per_s"] =
+      benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+  state.counters["evaluations_per_pair"] =
+      static_cast<double>(evaluations) / static_cast<double>(state.iterations());
+}
+
+// Algorithm 1 (Table 2's parameters) over the sequence, frames made as a camera would hand
+// them over (fresh CompassFrames); Fx 0 is the successive-pair compass.
+void algorithm1(benchmark::State& state, MinimiserKind kind, int width, int height,
+                bool fixed_skip) {
+  const std::vector<cv::Mat>& images = frames(width, height);
+  omninav::compass::CompassParams params;
+  params.matcher.minimiser.kind = kind;
+  if (fixed_skip) {
+    params.sampling.policy = omninav::compass::SamplingPolicy::kFixedSkip;
+    params.sampling.fixed_skip_frames = 0;
+  }
+  {
+    omninav::compass::VisualCompass warm_up(params, 0.0);  // plans made before timing
+    warm_up.push(CompassFrame(images[0], 0));
+    warm_up.push(CompassFrame(images[1], 1));
+  }
+  std::int64_t frames_done = 0;
+  for (auto _ : state) {
+    omninav::compass::VisualCompass compass(params, 0.0);
+    for (int i = 0; i < kFrames; ++i) {
+      benchmark::DoNotOptimize(compass.push(CompassFrame(images[static_cast<std::size_t>(i)], i)));
+    }
+    frames_done += kFrames;
+  }
+  state.counters["frames_per_s"] =
+      benchmark::Counter(static_cast<double>(frames_done), benchmark::Counter::kIsRate);
+}
+
+void register_all() {
+  for (const auto& [width, height] : {std::make_pair(360, 45), std::make_pair(1080, 135)}) {
+    const std::string size = std::to_string(width) + "x" + std::to_string(height);
+    for (const bool mask : {true, false}) {
+      const std::string suffix = size + (mask ? "/mask" : "/whole");
+      const auto add = [&](const std::string& name, MinimiserKind kind, bool fast) {
+        benchmark::RegisterBenchmark(("pair/" + name + "/" + suffix).c_str(), pairs, kind, fast,
+                                     width, height, mask)
+            ->Unit(benchmark::kMicrosecond);
+      };
+      add("exhaustive", MinimiserKind::kExhaustive, false);
+      add("exhaustive_fast", MinimiserKind::kExhaustive, true);
+      add("local_scan", MinimiserKind::kLocalScan, false);
+      add("fft", MinimiserKind::kFft, false);
+      add("fft_measure", MinimiserKind::kFft, true);
+    }
+    for (const auto& [name, kind] : {std::make_pair("local_scan", MinimiserKind::kLocalScan),
+                                     std::make_pair("fft", MinimiserKind::kFft)}) {
+      benchmark::RegisterBenchmark(("algorithm1/" + std::string(name) + "/" + size).c_str(),
+                                   algorithm1, kind, width, height, false)
+          ->Unit(benchmark::kMicrosecond);
+    }
+    benchmark::RegisterBenchmark(("fx0/fft/" + size).c_str(), algorithm1, MinimiserKind::kFft,
+                                 width, height, true)
+        ->Unit(benchmark::kMicrosecond);
+  }
+}
+
+// Keeps every run's time per iteration, then prints the ratios of the issue.
+class RatioReporter : public benchmark::ConsoleReporter {
+ public:
+  void ReportRuns(const std::vector<Run>& runs) override {
+    for (const Run& run : runs) {
+      // Seconds per iteration.
+      seconds_[run.benchmark_name()] =
+          run.GetAdjustedRealTime() / benchmark::GetTimeUnitMultiplier(run.time_unit);
+    }
+    ConsoleReporter::ReportRuns(runs);
+  }
+
+  void print_ratios() const {
+    std::printf("\nRatios from this run (time per pair or frame; higher = faster):\n");
+    for (const char* size : {"360x45", "1080x135"}) {
+      for (const char* mask : {"mask", "whole"}) {
+        const std::string suffix = std::string(size) + "/" + mask;
+        const double oracle = get("pair/exhaustive/" + suffix);
+        const double fast = get("pair/exhaustive_fast/" + suffix);
+        const double local = get("pair/local_scan/" + suffix);
+        const double fft = get("pair/fft/" + suffix);
+        const double fft_measure = get("pair/fft_measure/" + suffix);
+        if (oracle <= 0 || fft <= 0) continue;
+        std::printf(
+            "  %-15s fft vs exhaustive (oracle) %6.1fx (FFTW_MEASURE plans: %6.1fx) | fft vs "
+            "exhaustive_fast %5.1fx | local_scan %6.0f pairs/s | fft %5.0f pairs/s\n",
+            suffix.c_str(), oracle / fft, oracle / fft_measure, fast / fft, 1.0 / local, 1.0 / fft);
+      }
+      const double alg1_local = get(std::string("algorithm1/local_scan/") + size);
+      const double alg1_fft = get(std::string("algorithm1/fft/") + size);
+      if (alg1_local > 0) {
+        std::printf("  %-15s Algorithm 1: local_scan %8.0f frames/s, fft %8.0f frames/s\n", size,
+                    kFrames / alg1_local, kFrames / alg1_fft);
+      }
+    }
+  }
+
+ private:
+  double get(const std::string& name) const {
+    const auto found = seconds_.find(name);
+    return found == seconds_.end() ? -1.0 : found->second;
+  }
+  std::map<std::string, double> seconds_;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  register_all();
+  RatioReporter reporter;
+  benchmark::RunSpecifiedBenchmarks(&reporter);
+  reporter.print_ratios();
+  benchmark::Shutdown();
+  return 0;
+}

@@ -1,0 +1,98 @@
+// config/compass.yaml: the shipped defaults are Table 2's, and the loader is strict.
+#include "omninav/compass/compass_config.hpp"
+
+#include <gtest/gtest.h>
+
+#include "omninav/core/angles.hpp"
+#include "omninav/core/config.hpp"
+#include "omninav/core/errors.hpp"
+#include "support/shared_data.hpp"
+
+namespace omninav::compass {
+namespace {
+
+CompassConfig load(const ConfigReader& config) {
+  CompassConfig out;
+  load_compass_config(config, out);
+  config.require_all_known();
+  return out;
+}
+
+// The shipped file gives exactly the defaults of the Params structs, which are Table 2's.
+TEST(CompassConfig, ShippedFileHoldsTheTable2Defaults) {
+  const CompassConfig shipped =
+      load(ConfigReader::from_file(omninav::testing::config_dir() / "compass.yaml"));
+  const PairMatcherParams& matcher = shipped.compass.matcher;
+  EXPECT_EQ(matcher.distance.metric, Metric::kL2);
+  EXPECT_TRUE(matcher.distance.field_of_view.front_back);
+  EXPECT_NEAR(rad_to_deg(matcher.distance.field_of_view.band_width_rad), 60.0, 1e-12);
+  EXPECT_EQ(matcher.minimiser.kind, MinimiserKind::kLocalScan);
+  EXPECT_EQ(matcher.minimiser.scan_values, 8);
+  EXPECT_NEAR(rad_to_deg(matcher.minimiser.scan_span_rad), 20.0, 1e-12);
+  EXPECT_EQ(matcher.subpixel.mode, SubpixelMode::kMixture);
+  EXPECT_EQ(shipped.compass.sampling.policy, SamplingPolicy::kThreshold);
+  EXPECT_EQ(shipped.compass.sampling.threshold_norm_amp, 0.6055);
+  EXPECT_FALSE(shipped.width_px.has_value());
+
+  const CompassConfig defaults;
+  EXPECT_EQ(matcher.minimiser.seed_with_phase, defaults.compass.matcher.minimiser.seed_with_phase);
+  EXPECT_EQ(matcher.minimiser.phase.components,
+            defaults.compass.matcher.minimiser.phase.components);
+  EXPECT_EQ(shipped.compass.sampling.fixed_skip_frames,
+            defaults.compass.sampling.fixed_skip_frames);
+  EXPECT_EQ(matcher.confidence.flat_below_grey,
+            defaults.compass.matcher.confidence.flat_below_grey);
+  EXPECT_NEAR(matcher.confidence.competing_separation_rad,
+              defaults.compass.matcher.confidence.competing_separation_rad, 1e-12);
+  EXPECT_EQ(matcher.confidence.competing_depth_ratio,
+            defaults.compass.matcher.confidence.competing_depth_ratio);
+  EXPECT_EQ(matcher.subpixel.parabolic_up_to_norm_amp,
+            defaults.compass.matcher.subpixel.parabolic_up_to_norm_amp);
+  EXPECT_EQ(matcher.subpixel.linear_from_norm_amp,
+            defaults.compass.matcher.subpixel.linear_from_norm_amp);
+}
+
+TEST(CompassConfig, ReadsEveryKey) {
+  const CompassConfig read = load(ConfigReader::from_string(
+      "distance: {metric: l2, field_of_view: whole, band_width_deg: 90}\n"
+      "minimiser: {kind: fft, scan_values: 6, scan_span_deg: 30, seed_with_phase: true, "
+      "fft_planning: measure}\n"
+      "phase: {components: 4}\n"
+      "subpixel: {mode: parabolic, parabolic_up_to_norm_amp: 0.4, linear_from_norm_amp: 0.9}\n"
+      "sampling: {policy: fixed_skip, threshold_norm_amp: 0.7, fixed_skip_frames: 5}\n"
+      "confidence: {flat_below_grey: 2, competing_separation_deg: 5, competing_depth_ratio: 0.2}\n"
+      "input: {width_px: 1080}\n",
+      "compass.yaml"));
+  EXPECT_FALSE(read.compass.matcher.distance.field_of_view.front_back);
+  EXPECT_EQ(read.compass.matcher.minimiser.kind, MinimiserKind::kFft);
+  EXPECT_EQ(read.compass.matcher.minimiser.fft_planning, FftPlanning::kMeasure);
+  EXPECT_EQ(read.compass.matcher.minimiser.phase.components, 4);
+  EXPECT_EQ(read.compass.matcher.subpixel.mode, SubpixelMode::kParabolic);
+  EXPECT_EQ(read.compass.sampling.policy, SamplingPolicy::kFixedSkip);
+  EXPECT_EQ(read.compass.sampling.fixed_skip_frames, 5);
+  EXPECT_EQ(read.width_px, 1080);
+}
+
+TEST(CompassConfig, RejectsUnknownKeysBadValuesAndImpossibleCombinations) {
+  const auto message_of = [](const std::string& yaml) -> std::string {
+    try {
+      load(ConfigReader::from_string(yaml, "compass.yaml"));
+    } catch (const Error& error) {
+      return error.what();
+    }
+    return "";
+  };
+  EXPECT_NE(message_of("sampling: {threshold: 0.6}\n").find("sampling.threshold"),
+            std::string::npos);
+  EXPECT_NE(message_of("sampling: {threshold_norm_amp: 1.6}\n").find("threshold_norm_amp"),
+            std::string::npos);
+  EXPECT_NE(message_of("minimiser: {kind: newton}\n").find("minimiser.kind"), std::string::npos);
+  EXPECT_NE(message_of("distance: {metric: l1}\nminimiser: {kind: fft}\n").find("l2"),
+            std::string::npos);
+  EXPECT_NE(message_of("input: {width_px: 360.5}\n").find("width_px"), std::string::npos);
+  EXPECT_NE(message_of("input: {width_px: 360.5}\n").find("compass.yaml"), std::string::npos);
+  EXPECT_FALSE(load(ConfigReader::from_string("input: {width_px: ~}\n", "c.yaml")).width_px);
+}
+
+}  // namespace
+}  // namespace omninav::compass
