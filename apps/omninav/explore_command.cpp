@@ -1,9 +1,162 @@
+// omninav explore: a stream of panoramas into places of a visual memory (a .vmem map).
+#include <iostream>
+#include <sstream>
+
+#include "app_config.hpp"
 #include "cli.hpp"
+#include "omninav/core/errors.hpp"
+#include "omninav/core/log.hpp"
+#include "omninav/core/progress.hpp"
+#include "omninav/memory/exploration.hpp"
+#include "omninav/memory/map_file.hpp"
+#include "panorama_input.hpp"
 
 namespace omninav::cli {
+namespace {
 
-void add_explore_command(CLI::App& app, const GlobalOptions& /*global*/) {
-  app.add_subcommand("explore", "(not yet available)");
+struct ExploreOptions {
+  std::filesystem::path input;
+  std::filesystem::path out;
+  double dissimilarity = -1.0;  // < 0: from memory.yaml
+  int every_n_frames = -1;
+  double every_m = -1.0;
+  std::string heading_source;
+  std::string colour;
+  std::string brightness;
+  int components = 0;
+  bool all_frames = false;
+  bool unwrap = false;
+  bool overwrite = false;
+};
+
+void run_explore(const GlobalOptions& global, const ExploreOptions& options) {
+  memory::MemoryConfig config = load_memory_config(global.config_dir);
+  memory::ExplorationParams& params = config.exploration;
+  if (options.dissimilarity >= 0.0) params.new_place_dissimilarity = options.dissimilarity;
+  if (options.every_n_frames >= 0) params.every_n_frames = options.every_n_frames;
+  if (options.every_m >= 0.0) params.every_m = options.every_m;
+  if (!options.heading_source.empty()) params.heading_source = options.heading_source;
+  if (!options.colour.empty()) {
+    config.map.signature.colour = signature::colour_mode_from_string(options.colour);
+  }
+  if (options.components > 0) config.map.signature.components = options.components;
+  if (!options.brightness.empty()) {
+    config.map.signature.normalise_brightness = options.brightness == "normalised";
+  }
+
+  std::error_code error;
+  const bool extending = std::filesystem::exists(options.out, error) && !options.overwrite;
+  memory::VisualMemory memory =
+      extending ? memory::load_map(options.out) : memory::VisualMemory(config.map);
+  if (extending) {
+    const memory::MapParameters& map = memory.parameters();
+    if (map.signature.colour != config.map.signature.colour ||
+        map.signature.components != config.map.signature.components ||
+        map.signature.normalise_brightness != config.map.signature.normalise_brightness ||
+        map.weights.alpha != config.map.weights.alpha) {
+      log_warning(options.out.string() + " was made with colour " +
+                  signature::to_string(map.signature.colour) + ", " +
+                  std::to_string(map.signature.components) + " components, weights " +
+                  signature::to_string(map.weights) + ", brightness " +
+                  (map.signature.normalise_brightness ? "normalised" : "raw") +
+                  ": extending it with those");
+    }
+  }
+  const std::size_t places_before = memory.place_count();
+
+  PanoramaInput input(options.input, global.config_dir, options.unwrap);
+  const bool every_frame = options.all_frames || input.is_grid();
+  std::ostringstream description;
+  description << "omninav explore --input " << options.input.string() << "; "
+              << (every_frame ? std::string("every frame a place")
+                              : "new_place_dissimilarity " +
+                                    std::to_string(params.new_place_dissimilarity) +
+                                    ", every_n_frames " + std::to_string(params.every_n_frames) +
+                                    ", every_m " + std::to_string(params.every_m))
+              << ", heading_source " << params.heading_source;
+  log_info("exploring " + input.describe() + (extending ? " into " : " into a new map ") +
+           options.out.string() +
+           (every_frame
+                ? " (every frame a place: " +
+                      std::string(input.is_grid() ? "a grid database" : "--all-frames") + ")"
+                : ""));
+  memory::Explorer explorer(memory, params, options.input.string(), description.str());
+  {
+    Progress progress("explore", input.size());
+    while (std::optional<io::Frame> frame = input.next()) {
+      if (every_frame) {
+        explorer.add_place(*frame);
+      } else {
+        explorer.add(*frame);
+      }
+      progress.advance();
+    }
+  }
+  if (explorer.frames_seen() == 0) throw InputError(options.input.string() + ": no frames");
+  memory::save_map(memory, options.out, {.overwrite = options.overwrite, .after_place = {}});
+  const std::size_t added = memory.place_count() - places_before;
+  std::cout << "explored " << explorer.frames_seen() << " frames of " << options.input.string()
+            << ": added " << added << (added == 1 ? " place" : " places") << " ("
+            << memory.place_count() << " in the map, " << memory.edge_count() << " edges, "
+            << memory.runs().size() << (memory.runs().size() == 1 ? " run" : " runs")
+            << ", headings: " << explorer.run().heading_source << ") to " << options.out.string()
+            << "\n";
+}
+
+}  // namespace
+
+void add_explore_command(CLI::App& app, const GlobalOptions& global) {
+  auto options = std::make_shared<ExploreOptions>();
+  CLI::App* command = app.add_subcommand(
+      "explore",
+      "Turn a stream of panoramas into places of a visual memory (001_5bb151a4e28490b4.txt "
+      "§2-3): each place keeps its Fourier signature, heading, a thumbnail, its source and "
+      "frame (and the ground truth when the input has it, for evaluation), with an edge to the "
+      "previous place (relative heading and direction of motion from the phases). Exploring "
+      "into an existing map extends it. Every image of a BoB grid database becomes a place; "
+      "otherwise memory.yaml's exploration rules (or the options below) decide.");
+  command
+      ->add_option("--input", options->input,
+                   "Images: a folder, a video, a BoB database or a CSV of file,x_m,y_m,heading_deg")
+      ->required();
+  command->add_option("--out", options->out, "The map to write or extend, e.g. maps/room.vmem")
+      ->required();
+  command
+      ->add_option("--dissimilarity", options->dissimilarity,
+                   "New place when the mean magnitude difference per value to the last place "
+                   "reaches this, grey levels; 0 = off (default: memory.yaml)")
+      ->check(CLI::Range(0.0, 1000.0));
+  command
+      ->add_option("--every-n-frames", options->every_n_frames,
+                   "Also a place every n frames; 0 = off (default: memory.yaml)")
+      ->check(CLI::Range(0, 1000000));
+  command
+      ->add_option("--every-m", options->every_m,
+                   "Also a place every d metres travelled (inputs with poses); 0 = off")
+      ->check(CLI::Range(0.0, 1000.0));
+  command->add_flag("--all-frames", options->all_frames, "Make every frame a place");
+  command
+      ->add_option("--heading-source", options->heading_source,
+                   "Headings of places: auto (ground truth when known), truth, none")
+      ->check(CLI::IsMember({"auto", "truth", "none"}));
+  command
+      ->add_option("--colour", options->colour,
+                   "Signature of a new map: luminance or per_channel (default: memory.yaml)")
+      ->check(CLI::IsMember({"luminance", "per_channel"}));
+  command
+      ->add_option("--brightness", options->brightness,
+                   "Signature of a new map: raw magnitudes (the paper) or normalised per channel "
+                   "to a mean of 128 (default: memory.yaml)")
+      ->check(CLI::IsMember({"raw", "normalised"}));
+  command
+      ->add_option("--components", options->components,
+                   "Fourier components per row of a new map (default: memory.yaml)")
+      ->check(CLI::Range(1, 4096));
+  command->add_flag("--unwrap", options->unwrap,
+                    "The images are raw omnidirectional images: unwrap them with camera.yaml");
+  command->add_flag("--overwrite", options->overwrite,
+                    "Replace the map at --out instead of extending it");
+  command->callback([&global, options] { run_explore(global, *options); });
 }
 
 }  // namespace omninav::cli

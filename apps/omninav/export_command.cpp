@@ -1,9 +1,74 @@
+// omninav export: a map's places and edges for other tools (CSV, GraphML), and the figures of
+// 001_5bb151a4e28490b4.txt §2 from a map of a rendered grid.
+#include <fstream>
+#include <iostream>
+
 #include "cli.hpp"
+#include "omninav/core/errors.hpp"
+#include "omninav/core/log.hpp"
+#include "omninav/memory/export.hpp"
+#include "omninav/memory/figures.hpp"
+#include "omninav/memory/map_file.hpp"
 
 namespace omninav::cli {
+namespace {
+
+struct ExportOptions {
+  std::filesystem::path map;
+  std::string what = "places";
+  std::string format = "csv";
+  std::filesystem::path out;
+};
+
+void run_export(const ExportOptions& options) {
+  const memory::VisualMemory map = memory::load_map(options.map);
+  if (options.what == "figures") {
+    if (options.out.empty()) throw UsageError("--what figures needs --out <folder>");
+    const memory::SignatureFigures figures = memory::write_signature_figures(map, options.out);
+    std::cout << figures.summary;
+    log_info("wrote " + std::to_string(figures.files.size()) + " files to " + options.out.string());
+    return;
+  }
+  std::ofstream file;
+  if (!options.out.empty()) {
+    file.open(options.out, std::ios::binary);
+    if (!file) throw InputError(options.out.string() + ": cannot write");
+  }
+  std::ostream& out = options.out.empty() ? std::cout : file;
+  if (options.format == "graphml") {
+    // GraphML holds the whole graph: places as nodes, edges as edges.
+    memory::write_graphml(map, out);
+  } else if (options.what == "edges") {
+    memory::write_edges_csv(map, out);
+  } else {
+    memory::write_places_csv(map, out);
+  }
+  out.flush();
+  if (!out)
+    throw InputError((options.out.empty() ? "stdout" : options.out.string()) + ": write failed");
+}
+
+}  // namespace
 
 void add_export_command(CLI::App& app, const GlobalOptions& /*global*/) {
-  app.add_subcommand("export", "(not yet available)");
+  auto options = std::make_shared<ExportOptions>();
+  CLI::App* command = app.add_subcommand(
+      "export",
+      "Export a map: its places or edges as CSV (degrees, units in the column names), the "
+      "whole graph as GraphML, or, for a map of a rendered grid, the figures of "
+      "001_5bb151a4e28490b4.txt §2 (Figs. 5-7, PNG and CSV; docs/memory.md).");
+  command->add_option("map", options->map, "The map, e.g. maps/room.vmem")->required();
+  command->add_option("--what", options->what, "places, edges or figures")
+      ->check(CLI::IsMember({"places", "edges", "figures"}))
+      ->capture_default_str();
+  command
+      ->add_option("--format", options->format,
+                   "csv or graphml (GraphML holds places and edges together)")
+      ->check(CLI::IsMember({"csv", "graphml"}))
+      ->capture_default_str();
+  command->add_option("--out", options->out,
+                      "File to write (default: standard output); a folder for --what figures");
+  command->callback([options] { run_export(*options); });
 }
 
 }  // namespace omninav::cli

@@ -1,0 +1,26 @@
+#pragma once
+// config/memory.yaml: the signature, exploration and localisation parameters in one file
+// (DESIGN.md, Conventions: Config). The file documents every key with its unit, range and
+// source.
+
+#include "omninav/memory/exploration.hpp"
+#include "omninav/memory/localisation.hpp"
+#include "omninav/memory/visual_memory.hpp"
+
+namespace omninav {
+class ConfigReader;
+}
+
+namespace omninav::memory {
+
+struct MemoryConfig {
+  MapParameters map;  // signature: components, colour; weights (Eq. 6)
+  ExplorationParams exploration;
+  LocalisationParams localisation;
+};
+
+// Reads sections signature (components, colour, weights), exploration and localisation, then
+// rejects unknown keys. Throws ConfigError naming the file and key.
+MemoryConfig load_memory_config(const ConfigReader& config);
+
+}  // namespace omninav::memory

@@ -1,0 +1,149 @@
+#pragma once
+// The visual memory (001_5bb151a4e28490b4.txt §2-3): places, each a reference image reduced to
+// its Fourier signature, and edges between places met one after the other. In memory it is a
+// Boost.Graph adjacency_list whose vertex i is place i (places are only ever appended, so a
+// place's index, its vertex and its id in the map file are one number). On disk it is one
+// SQLite file (map_file.hpp).
+
+#include <boost/graph/adjacency_list.hpp>
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "omninav/core/pose.hpp"
+#include "omninav/signature/dissimilarity.hpp"
+#include "omninav/signature/signature.hpp"
+
+namespace omninav::memory {
+
+// Where a place's heading came from. The map says so for every place, so that evaluation and
+// later tools know whether headings are measured (compass), borrowed (truth) or absent.
+enum class HeadingSource { kNone, kTruth, kCompass };
+
+std::string to_string(HeadingSource source);
+// "none", "truth" or "compass"; throws InputError otherwise.
+HeadingSource heading_source_from_string(const std::string& text);
+
+// A position on the lattice of issue 5 (spring model, §3.2-3.4), in the lattice's own unit.
+struct LatticePosition {
+  double x = 0.0;
+  double y = 0.0;
+};
+
+struct Place {
+  signature::Signature signature;        // magnitudes and phases (§2.1)
+  std::optional<double> heading_rad;     // the robot's heading at this place, REP 103
+  HeadingSource heading_source = HeadingSource::kNone;
+  std::vector<std::uint8_t> thumbnail_png;  // a small copy of the panorama, PNG-encoded
+  std::string source;                    // the image file (or "video#frame n") it came from
+  int frame_index = 0;                   // its index in that input sequence
+  int run = 0;                           // the exploration run that added it (Run::id)
+  std::optional<double> time_s;          // capture time, when the input knows it
+  std::optional<CameraPose> truth;       // ground truth: for evaluation only, never used to map
+  std::optional<LatticePosition> lattice;  // filled by the lattice (issue 5)
+};
+
+enum class EdgeKind {
+  kSequence,  // the robot went from one place to the next during exploration
+};
+std::string to_string(EdgeKind kind);
+EdgeKind edge_kind_from_string(const std::string& text);
+
+struct Edge {
+  EdgeKind kind = EdgeKind::kSequence;
+  double dissimilarity = 0.0;          // Eq. 2/6 between the two places' signatures
+  double relative_heading_rad = 0.0;   // heading(to) − heading(from) from the phases (Eq. 1)
+  double heading_confidence = 0.0;     // signature::PhaseHeading::confidence
+  // Direction of travel from `from` to `to` seen from `from`, counter-clockwise from its front
+  // (§3.4, signature/motion.hpp); none when the translation was too small to measure.
+  std::optional<double> motion_bearing_rad;
+  double motion_bearing_stddev_rad = 0.0;
+  double parallax_rad = 0.0;  // how far things abeam moved between the two views
+};
+
+// One `omninav explore` into the map.
+struct Run {
+  int id = 0;
+  std::string input;        // what was explored (a folder, database, video)
+  std::string started_utc;  // ISO 8601
+  int frames = 0;           // frames read
+  int places = 0;           // places added
+  std::string heading_source;  // what the run's places used: none, truth or compass
+  std::string description;     // the command line or the caller's note
+};
+
+using Graph = boost::adjacency_list<boost::vecS, boost::vecS, boost::bidirectionalS, Place, Edge>;
+using PlaceIndex = std::size_t;
+
+// The parameters every place of a map shares: its signatures must be comparable.
+struct MapParameters {
+  signature::SignatureParams signature;
+  signature::ComponentWeights weights;  // α_k of Eq. 6, stored so queries use the same
+  int panorama_rows = 0;                // rows of the panoramas (0: set by the first place)
+};
+
+class VisualMemory {
+ public:
+  explicit VisualMemory(MapParameters parameters = {});
+
+  const MapParameters& parameters() const { return parameters_; }
+
+  // Other parameters, recorded for the reader (e.g. "exploration.new_place_dissimilarity").
+  const std::map<std::string, std::string>& notes() const { return notes_; }
+  void set_note(const std::string& key, const std::string& value) { notes_[key] = value; }
+
+  std::size_t place_count() const { return boost::num_vertices(graph_); }
+  std::size_t edge_count() const { return boost::num_edges(graph_); }
+  const Place& place(PlaceIndex index) const;
+  Place& place(PlaceIndex index);
+
+  // Appends a place; returns its index. Throws UsageError when its signature does not match
+  // the map's (rows, colour, components).
+  PlaceIndex add_place(Place place);
+  void add_edge(PlaceIndex from, PlaceIndex to, const Edge& edge);
+
+  const Graph& graph() const { return graph_; }
+
+  // Edges in the order they were added: (from, to, properties).
+  struct EdgeRef {
+    PlaceIndex from;
+    PlaceIndex to;
+    const Edge* edge;
+  };
+  std::vector<EdgeRef> edges() const;
+  std::vector<Run>& runs() { return runs_; }
+  const std::vector<Run>& runs() const { return runs_; }
+
+  // How much of this memory the map file already holds (set by load_map and save_map), so
+  // that saving again only appends the rest.
+  struct Persisted {
+    std::size_t places = 0, edges = 0, runs = 0;
+  };
+  const Persisted& persisted() const { return persisted_; }
+  void mark_persisted() { persisted_ = {place_count(), edge_count(), runs_.size()}; }
+
+  // Whether every place has a ground-truth pose / a lattice position.
+  bool all_have_truth() const;
+  bool all_have_lattice() const;
+
+  // Approximate bytes held (signatures, thumbnails, graph), for the benchmarks.
+  std::size_t bytes() const;
+
+ private:
+  MapParameters parameters_;
+  std::map<std::string, std::string> notes_;
+  Graph graph_;
+  // Edges in the order added, by position: the `out_position`-th out-edge of `from` (vecS
+  // out-edge lists only grow at the end). Positions, unlike edge descriptors, survive copies.
+  struct EdgeSlot {
+    PlaceIndex from;
+    std::size_t out_position;
+  };
+  std::vector<EdgeSlot> edge_order_;
+  std::vector<Run> runs_;
+  Persisted persisted_;
+};
+
+}  // namespace omninav::memory

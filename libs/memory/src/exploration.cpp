@@ -1,0 +1,155 @@
+#include "omninav/memory/exploration.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <ctime>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "omninav/core/config.hpp"
+#include "omninav/core/errors.hpp"
+#include "omninav/signature/dissimilarity.hpp"
+#include "omninav/signature/motion.hpp"
+#include "omninav/signature/phase_heading.hpp"
+
+namespace omninav::memory {
+
+void load_exploration_params(const ConfigReader& section, ExplorationParams& params) {
+  section.read("new_place_dissimilarity", params.new_place_dissimilarity, 0.0, 1000.0);
+  section.read("every_n_frames", params.every_n_frames, 0, 1000000);
+  section.read("every_m", params.every_m, 0.0, 1000.0);
+  section.read("thumbnail_width_px", params.thumbnail_width_px, 8, 4096);
+  section.read("heading_source", params.heading_source, {"auto", "truth", "none"});
+  section.read("motion_components", params.motion_components, 0, 4096);
+}
+
+std::vector<std::uint8_t> make_thumbnail(const cv::Mat& panorama, int width_px) {
+  cv::Mat small;
+  const int height =
+      std::max(1, static_cast<int>(std::lround(panorama.rows * double(width_px) / panorama.cols)));
+  cv::resize(panorama, small, cv::Size(width_px, height), 0, 0, cv::INTER_AREA);
+  std::vector<std::uint8_t> png;
+  if (!cv::imencode(".png", small, png)) throw Error("cannot encode a thumbnail as PNG");
+  return png;
+}
+
+namespace {
+
+std::string utc_now() {
+  const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  std::tm tm{};
+  gmtime_r(&now, &tm);
+  char text[32];
+  std::strftime(text, sizeof(text), "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return text;
+}
+
+}  // namespace
+
+Explorer::Explorer(VisualMemory& memory, ExplorationParams params, std::string input,
+                   std::string description)
+    : memory_(memory), params_(std::move(params)), extractor_(memory.parameters().signature) {
+  Run run;
+  run.id = 0;
+  for (const Run& r : memory_.runs()) run.id = std::max(run.id, r.id + 1);
+  run.input = std::move(input);
+  run.description = std::move(description);
+  run.started_utc = utc_now();
+  run.heading_source = params_.heading_source == "auto" ? "none" : params_.heading_source;
+  memory_.runs().push_back(run);
+  run_index_ = memory_.runs().size() - 1;
+}
+
+const Run& Explorer::run() const {
+  return memory_.runs()[run_index_];
+}
+
+std::optional<PlaceIndex> Explorer::add(const io::Frame& frame) {
+  const signature::Signature signature = extractor_.compute(frame.image, frame.source);
+  ++frames_;
+  memory_.runs()[run_index_].frames = frames_;
+  ++frames_since_place_;
+  if (frame.truth && previous_pose_) {
+    metres_since_place_ +=
+        std::hypot(frame.truth->x_m - previous_pose_->x_m, frame.truth->y_m - previous_pose_->y_m);
+  }
+  previous_pose_ = frame.truth;
+
+  bool new_place = !last_place_;
+  if (!new_place && params_.every_n_frames > 0 && frames_since_place_ >= params_.every_n_frames) {
+    new_place = true;
+  }
+  // Travelled distance: a hair of slack so that a 0.3 m grid step counts as 0.3 m.
+  if (!new_place && params_.every_m > 0.0 && frame.truth &&
+      metres_since_place_ >= params_.every_m * (1.0 - 1e-9)) {
+    new_place = true;
+  }
+  if (!new_place && params_.new_place_dissimilarity > 0.0) {
+    const signature::Signature& last = memory_.place(*last_place_).signature;
+    const double per_value =
+        signature::dissimilarity(last, signature, -1, memory_.parameters().weights) /
+        static_cast<double>(signature.size());
+    new_place = per_value >= params_.new_place_dissimilarity;
+  }
+  if (!new_place) return std::nullopt;
+  return make_place(frame, signature);
+}
+
+PlaceIndex Explorer::add_place(const io::Frame& frame) {
+  const signature::Signature signature = extractor_.compute(frame.image, frame.source);
+  ++frames_;
+  memory_.runs()[run_index_].frames = frames_;
+  previous_pose_ = frame.truth;
+  return make_place(frame, signature);
+}
+
+PlaceIndex Explorer::make_place(const io::Frame& frame, const signature::Signature& signature) {
+  Place place;
+  place.signature = signature;
+  place.source = frame.source;
+  place.frame_index = frame.index;
+  place.run = memory_.runs()[run_index_].id;
+  place.time_s = frame.time_s;
+  place.truth = frame.truth;
+  if (params_.heading_source == "truth" && !frame.truth) {
+    throw UsageError(frame.source +
+                     ": heading_source is 'truth' but this frame has no ground-truth pose");
+  }
+  if (params_.heading_source != "none" && frame.truth) {
+    place.heading_rad = frame.truth->heading_rad;
+    place.heading_source = HeadingSource::kTruth;
+    memory_.runs()[run_index_].heading_source = "truth";
+  }
+  if (params_.thumbnail_width_px > 0) {
+    place.thumbnail_png = make_thumbnail(frame.image, params_.thumbnail_width_px);
+  }
+  const PlaceIndex index = memory_.add_place(std::move(place));
+
+  if (last_place_) {
+    const signature::Signature& from = memory_.place(*last_place_).signature;
+    const signature::Signature& to = memory_.place(index).signature;
+    Edge edge;
+    edge.kind = EdgeKind::kSequence;
+    edge.dissimilarity = signature::dissimilarity(from, to, -1, memory_.parameters().weights);
+    const signature::PhaseHeading heading = signature::relative_heading(from, to);
+    edge.relative_heading_rad = heading.turn_rad;
+    edge.heading_confidence = heading.confidence;
+    const int motion_m = params_.motion_components > 0
+                             ? std::min(params_.motion_components, from.components)
+                             : from.components;
+    if (motion_m >= 2) {
+      const signature::MotionEstimate motion = signature::estimate_motion(from, to, motion_m);
+      if (motion.valid) edge.motion_bearing_rad = motion.bearing_rad;
+      edge.motion_bearing_stddev_rad = motion.bearing_stddev_rad;
+      edge.parallax_rad = motion.parallax_rad;
+    }
+    memory_.add_edge(*last_place_, index, edge);
+  }
+  last_place_ = index;
+  frames_since_place_ = 0;
+  metres_since_place_ = 0.0;
+  memory_.runs()[run_index_].places += 1;
+  return index;
+}
+
+}  // namespace omninav::memory

@@ -1,0 +1,441 @@
+#include "omninav/memory/figures.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <map>
+#include <numeric>
+#include <opencv2/imgproc.hpp>
+#include <sstream>
+
+#include "omninav/core/errors.hpp"
+#include "omninav/eval/plot.hpp"
+#include "omninav/eval/png.hpp"
+#include "omninav/io/image_file.hpp"
+#include "omninav/signature/dissimilarity.hpp"
+#include "omninav/signature/signature.hpp"
+
+namespace omninav::memory {
+namespace {
+
+cv::Scalar viridis(double similarity) {
+  cv::Mat level(1, 1, CV_8UC1,
+                cv::Scalar(std::clamp(similarity / 1000.0 * 255.0, 0.0, 255.0)));
+  cv::Mat colour;
+  cv::applyColorMap(level, colour, cv::COLORMAP_VIRIDIS);
+  const cv::Vec3b c = colour.at<cv::Vec3b>(0, 0);
+  return cv::Scalar(c[0], c[1], c[2]);
+}
+
+void put_text(cv::Mat& image, const std::string& text, cv::Point origin, double scale = 0.5,
+              cv::Scalar colour = cv::Scalar(30, 30, 30)) {
+  cv::putText(image, text, origin, cv::FONT_HERSHEY_SIMPLEX, scale, colour, 1, cv::LINE_AA);
+}
+
+}  // namespace
+
+cv::Mat localisation_figure(const Localiser& localiser, const signature::Signature& query,
+                            const Localisation& result, std::optional<cv::Point2d> truth,
+                            const std::string& title) {
+  const auto positions = place_positions(localiser.memory());
+  if (!positions) {
+    throw UsageError("the map's places have no positions (no lattice, no ground truth) to draw");
+  }
+  const std::vector<cv::Point2d>& points = positions->second;
+  const std::vector<int>& levels = localiser.index().levels();
+  const double spacing = typical_spacing(points);
+
+  // Bounds with a margin of one spacing.
+  double min_x = 1e300, min_y = 1e300, max_x = -1e300, max_y = -1e300;
+  auto extend = [&](const cv::Point2d& p) {
+    min_x = std::min(min_x, p.x);
+    max_x = std::max(max_x, p.x);
+    min_y = std::min(min_y, p.y);
+    max_y = std::max(max_y, p.y);
+  };
+  for (const cv::Point2d& p : points) extend(p);
+  if (truth) extend(*truth);
+  min_x -= spacing;
+  min_y -= spacing;
+  max_x += spacing;
+  max_y += spacing;
+
+  const int panel = 380, header = 34, footer = 56, gap = 10, top = 30;
+  const double scale = std::min(panel / (max_x - min_x), panel / (max_y - min_y));
+  const int panel_w = static_cast<int>(std::ceil((max_x - min_x) * scale));
+  const int panel_h = static_cast<int>(std::ceil((max_y - min_y) * scale));
+  const int count = static_cast<int>(levels.size());
+  cv::Mat figure(top + header + panel_h + footer, gap + count * (panel_w + gap), CV_8UC3,
+                 cv::Scalar(255, 255, 255));
+  put_text(figure, title, cv::Point(gap, 20), 0.55);
+  const int radius = std::max(3, static_cast<int>(std::lround(0.28 * spacing * scale)));
+  const int shade = std::max(radius + 2, static_cast<int>(std::lround(0.62 * spacing * scale)));
+
+  for (int l = 0; l < count; ++l) {
+    const int x0 = gap + l * (panel_w + gap);
+    const int y0 = top + header;
+    // y grows upwards in the world, downwards in the image.
+    const auto pixel = [&](const cv::Point2d& p) {
+      return cv::Point(x0 + static_cast<int>(std::lround((p.x - min_x) * scale)),
+                       y0 + static_cast<int>(std::lround((max_y - p.y) * scale)));
+    };
+    cv::rectangle(figure, cv::Rect(x0, y0, panel_w, panel_h), cv::Scalar(245, 245, 245),
+                  cv::FILLED);
+    const Eigen::VectorXf dis = localiser.index().dissimilarities(query, static_cast<std::size_t>(l));
+    std::vector<double> values(dis.data(), dis.data() + dis.size());
+    const std::vector<double> similarity = signature::rescale_similarities(values);
+    const signature::LevelResult& level = result.search.levels[static_cast<std::size_t>(l)];
+    for (const signature::Candidate& c : level.candidates) {
+      cv::circle(figure, pixel(points[c.place]), shade, cv::Scalar(190, 190, 190), cv::FILLED,
+                 cv::LINE_AA);
+    }
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      cv::circle(figure, pixel(points[i]), radius, viridis(similarity[i]), cv::FILLED, cv::LINE_AA);
+      cv::circle(figure, pixel(points[i]), radius, cv::Scalar(90, 90, 90), 1, cv::LINE_AA);
+    }
+    if (!level.candidates.empty()) {
+      cv::circle(figure, pixel(points[level.candidates.front().place]), radius + 3,
+                 cv::Scalar(0, 0, 0), 2, cv::LINE_AA);
+    }
+    if (l + 1 == count && result.position) {
+      const cv::Point c = pixel({result.position->interpolated_x, result.position->interpolated_y});
+      const std::vector<cv::Point> diamond{c + cv::Point(0, -7), c + cv::Point(7, 0),
+                                           c + cv::Point(0, 7), c + cv::Point(-7, 0)};
+      cv::polylines(figure, diamond, true, cv::Scalar(0, 0, 0), 2, cv::LINE_AA);
+    }
+    if (truth) {
+      const cv::Point c = pixel(*truth);
+      cv::line(figure, c + cv::Point(-8, -8), c + cv::Point(8, 8), cv::Scalar(0, 0, 220), 2,
+               cv::LINE_AA);
+      cv::line(figure, c + cv::Point(-8, 8), c + cv::Point(8, -8), cv::Scalar(0, 0, 220), 2,
+               cv::LINE_AA);
+    }
+    put_text(figure,
+             "m = " + std::to_string(levels[static_cast<std::size_t>(l)]) + ": " +
+                 std::to_string(level.candidates.size()) + " candidate" +
+                 (level.candidates.size() == 1 ? "" : "s") + " of " +
+                 std::to_string(points.size()),
+             cv::Point(x0 + 4, top + 22));
+  }
+  // Colour bar and legend.
+  const int bar_y = top + header + panel_h + 12;
+  const int bar_w = std::min(300, figure.cols - 2 * gap);
+  for (int x = 0; x < bar_w; ++x) {
+    cv::line(figure, cv::Point(gap + x, bar_y), cv::Point(gap + x, bar_y + 10),
+             viridis(1000.0 * x / (bar_w - 1)));
+  }
+  put_text(figure, "0", cv::Point(gap, bar_y + 26), 0.4);
+  put_text(figure, "similarity (Eq. 3)   1000", cv::Point(gap + bar_w - 190, bar_y + 26), 0.4);
+  put_text(figure,
+           std::string("grey: candidate set; ring: best place; diamond: estimate") +
+               (truth ? "; red x: truth" : "") + "; positions: " + to_string(positions->first),
+           cv::Point(gap + bar_w + 16, bar_y + 10), 0.4);
+  return figure;
+}
+
+namespace {
+
+struct Spectra {
+  int lines = 0;
+  int half = 0;                  // W/2 + 1 components
+  std::vector<cv::Mat> places;   // lines × half magnitudes per place
+};
+
+Spectra read_spectra(const VisualMemory& memory, signature::ColourMode mode) {
+  Spectra spectra;
+  signature::SignatureExtractor extractor({1, mode});
+  for (PlaceIndex i = 0; i < memory.place_count(); ++i) {
+    const std::string& source = memory.place(i).source;
+    const cv::Mat image = io::read_image(source);
+    spectra.places.push_back(extractor.full_spectrum(image, source));
+  }
+  spectra.lines = spectra.places.front().rows;
+  spectra.half = spectra.places.front().cols;
+  for (const cv::Mat& s : spectra.places) {
+    if (s.rows != spectra.lines || s.cols != spectra.half) {
+      throw UsageError("the map's source images differ in size; figures need one size");
+    }
+  }
+  return spectra;
+}
+
+// terms[k] = Σ_lines |a_k − b_k|; Dis at m is the sum of the first m.
+std::vector<double> component_terms(const cv::Mat& a, const cv::Mat& b) {
+  std::vector<double> terms(static_cast<std::size_t>(a.cols), 0.0);
+  for (int line = 0; line < a.rows; ++line) {
+    const float* pa = a.ptr<float>(line);
+    const float* pb = b.ptr<float>(line);
+    for (int k = 0; k < a.cols; ++k) terms[static_cast<std::size_t>(k)] += std::fabs(pa[k] - pb[k]);
+  }
+  return terms;
+}
+
+double prefix(const std::vector<double>& terms, int m) {
+  return std::accumulate(terms.begin(), terms.begin() + std::min<std::size_t>(m, terms.size()),
+                         0.0);
+}
+
+std::string fixed(double value, int digits) {
+  std::ostringstream text;
+  text << std::fixed << std::setprecision(digits) << value;
+  return text.str();
+}
+
+}  // namespace
+
+SignatureFigures write_signature_figures(const VisualMemory& memory,
+                                         const std::filesystem::path& folder) {
+  if (!memory.all_have_truth()) {
+    throw UsageError("figures need a map whose places all have ground-truth poses (explore a "
+                     "rendered grid, e.g. omninav render --trajectory grid:...)");
+  }
+  if (memory.place_count() < 8) throw UsageError("figures need a map of at least 8 places");
+  std::filesystem::create_directories(folder);
+  SignatureFigures out;
+  const auto save_csv = [&](const std::string& name, const std::string& text) {
+    const std::filesystem::path file = folder / name;
+    std::ofstream stream(file, std::ios::binary);
+    stream << text;
+    if (!stream) throw InputError(file.string() + ": cannot write");
+    out.files.push_back(file);
+  };
+  const auto save_plot = [&](const auto& plot, const std::string& name) {
+    const std::filesystem::path file = folder / name;
+    plot.save(file);
+    out.files.push_back(file);
+  };
+
+  std::vector<cv::Point2d> positions;
+  for (PlaceIndex i = 0; i < memory.place_count(); ++i) {
+    positions.emplace_back(memory.place(i).truth->x_m, memory.place(i).truth->y_m);
+  }
+  const double spacing = typical_spacing(positions);
+  cv::Point2d centre(0, 0);
+  for (const cv::Point2d& p : positions) centre += p;
+  centre *= 1.0 / static_cast<double>(positions.size());
+  std::size_t middle = 0;
+  for (std::size_t i = 0; i < positions.size(); ++i) {
+    if (cv::norm(positions[i] - centre) < cv::norm(positions[middle] - centre)) middle = i;
+  }
+  const Spectra luminance = read_spectra(memory, signature::ColourMode::kLuminance);
+  const Spectra colour = read_spectra(memory, signature::ColourMode::kPerChannel);
+  const int half = luminance.half;
+  std::ostringstream summary;
+  summary << memory.place_count() << " places, spacing " << fixed(spacing, 3) << " m, panoramas "
+          << 2 * (half - 1) << " columns x " << luminance.lines << " rows\n";
+
+  // Fig. 5: the spectrum of a row of the middle place, and its mean over rows.
+  {
+    const cv::Mat& s = luminance.places[middle];
+    const int row = s.rows / 2;
+    std::vector<double> k, middle_row, mean_rows;
+    std::ostringstream csv;
+    csv << "k,magnitude_row_" << row << ",magnitude_mean_over_rows\n";
+    for (int c = 0; c < std::min(30, half); ++c) {
+      double mean = 0.0;
+      for (int y = 0; y < s.rows; ++y) mean += s.at<float>(y, c) / s.rows;
+      k.push_back(c);
+      middle_row.push_back(s.at<float>(row, c));
+      mean_rows.push_back(mean);
+      csv << c << ',' << s.at<float>(row, c) << ',' << mean << '\n';
+    }
+    double low = 0.0, all = 0.0;
+    for (int y = 0; y < s.rows; ++y) {
+      for (int c = 1; c < half; ++c) {
+        const double power = double(s.at<float>(y, c)) * s.at<float>(y, c);
+        all += power;
+        if (c < 15) low += power;
+      }
+    }
+    save_csv("fig5_spectrum.csv", csv.str());
+    eval::LinePlot plot("Fig. 5: Fourier magnitudes of place " + std::to_string(middle) +
+                            " (k = 0 is the mean grey level)",
+                        "component k", "|F(k)|, grey levels");
+    plot.add_series("row " + std::to_string(row), k, middle_row, eval::SeriesStyle::kLineAndPoints);
+    plot.add_series("mean over rows", k, mean_rows, eval::SeriesStyle::kLineAndPoints);
+    save_plot(plot, "fig5_spectrum.png");
+    summary << "Fig. 5: components 1..14 hold " << fixed(100.0 * low / all, 1)
+            << "% of the power of components 1.." << half - 1 << " (place " << middle << ")\n";
+  }
+
+  // Pairwise per-component terms (luminance and colour) for Figs. 6 and 7.
+  const std::size_t n = memory.place_count();
+  std::vector<std::vector<double>> terms_lum(n * n), terms_col(n * n);
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t j = i + 1; j < n; ++j) {
+      terms_lum[i * n + j] = component_terms(luminance.places[i], luminance.places[j]);
+      terms_col[i * n + j] = component_terms(colour.places[i], colour.places[j]);
+    }
+  }
+  const auto terms = [&](const std::vector<std::vector<double>>& all, std::size_t i,
+                         std::size_t j) -> const std::vector<double>& {
+    return i < j ? all[i * n + j] : all[j * n + i];
+  };
+
+  // Fig. 6: similarity of the middle place to its neighbours, for m = 2, 5, 15, 50, all.
+  {
+    std::vector<std::size_t> near;
+    for (std::size_t j = 0; j < n; ++j) {
+      if (j != middle && cv::norm(positions[j] - positions[middle]) <= 3.5 * spacing) {
+        near.push_back(j);
+      }
+    }
+    std::sort(near.begin(), near.end(), [&](std::size_t a, std::size_t b) {
+      return cv::norm(positions[a] - positions[middle]) < cv::norm(positions[b] - positions[middle]);
+    });
+    eval::LinePlot plot("Fig. 6: similarity of place " + std::to_string(middle) +
+                            " to its neighbours, by m",
+                        "distance to the input place, m",
+                        "similarity (Eq. 3 over these places), mean");
+    std::ostringstream csv;
+    csv << "place,distance_m";
+    const std::vector<int> ms{2, 5, 15, 50, half};
+    for (int m : ms) csv << ",similarity_m" << m;
+    csv << '\n';
+    std::vector<std::vector<double>> sims;
+    std::vector<double> distance;
+    for (std::size_t j : near) distance.push_back(cv::norm(positions[j] - positions[middle]));
+    for (int m : ms) {
+      std::vector<double> dis;
+      for (std::size_t j : near) dis.push_back(prefix(terms(terms_lum, middle, j), m));
+      sims.push_back(signature::rescale_similarities(dis));
+      // One point per distance: the mean over the neighbours at that distance.
+      std::vector<double> x, y;
+      for (std::size_t a = 0; a < near.size();) {
+        std::size_t b = a;
+        double sum = 0.0;
+        while (b < near.size() && distance[b] - distance[a] < 1e-6) sum += sims.back()[b++];
+        x.push_back(distance[a]);
+        y.push_back(sum / static_cast<double>(b - a));
+        a = b;
+      }
+      plot.add_series(m == half ? "m = " + std::to_string(m) + " (all)" : "m = " + std::to_string(m),
+                      x, y, eval::SeriesStyle::kLineAndPoints);
+    }
+    for (std::size_t r = 0; r < near.size(); ++r) {
+      csv << near[r] << ',' << distance[r];
+      for (const auto& s : sims) csv << ',' << s[r];
+      csv << '\n';
+    }
+    save_csv("fig6_components.csv", csv.str());
+    save_plot(plot, "fig6_components.png");
+  }
+
+  // Fig. 6, measured: leave-one-out localisation against m. Each place in turn is the query;
+  // it is localised when the most similar other place is a grid neighbour (within 1.05
+  // spacings).
+  {
+    std::vector<int> ms{1, 2, 3, 4, 5, 6, 8, 10, 12, 15, 20, 25, 30, 40, 50, 75, 100, 150};
+    ms.erase(std::remove_if(ms.begin(), ms.end(), [&](int m) { return m >= half; }), ms.end());
+    ms.push_back(half);
+    std::vector<double> x, rate_lum, rate_col;
+    std::ostringstream csv;
+    csv << "m,leave_one_out_rate_luminance,leave_one_out_rate_per_channel\n";
+    for (int m : ms) {
+      int ok_lum = 0, ok_col = 0;
+      for (std::size_t i = 0; i < n; ++i) {
+        std::size_t best_lum = i, best_col = i;
+        double lum = 1e300, col = 1e300;
+        for (std::size_t j = 0; j < n; ++j) {
+          if (j == i) continue;
+          const double dl = prefix(terms(terms_lum, i, j), m);
+          const double dc = prefix(terms(terms_col, i, j), m);
+          if (dl < lum) lum = dl, best_lum = j;
+          if (dc < col) col = dc, best_col = j;
+        }
+        ok_lum += cv::norm(positions[best_lum] - positions[i]) <= 1.05 * spacing;
+        ok_col += cv::norm(positions[best_col] - positions[i]) <= 1.05 * spacing;
+      }
+      x.push_back(m);
+      rate_lum.push_back(100.0 * ok_lum / n);
+      rate_col.push_back(100.0 * ok_col / n);
+      csv << m << ',' << rate_lum.back() << ',' << rate_col.back() << '\n';
+    }
+    save_csv("fig6_localisation_rate.csv", csv.str());
+    eval::LinePlot plot("Fig. 6 measured: leave-one-out localisation by number of components",
+                        "components compared, m", "% of places whose best match is a neighbour");
+    plot.add_series("luminance", x, rate_lum, eval::SeriesStyle::kLineAndPoints);
+    plot.add_series("per channel (B, G, R)", x, rate_col, eval::SeriesStyle::kLineAndPoints);
+    save_plot(plot, "fig6_localisation_rate.png");
+    summary << "Fig. 6: leave-one-out rate, luminance / per channel:";
+    for (std::size_t i = 0; i < ms.size(); ++i) {
+      summary << " m=" << ms[i] << ": " << fixed(rate_lum[i], 0) << "/" << fixed(rate_col[i], 0)
+              << "%";
+    }
+    summary << '\n';
+  }
+
+  // Fig. 7: dissimilarity (m = 15) against distance from five reference places, and the
+  // median over all pairs in bins of half a spacing.
+  {
+    const int m = std::min(15, half);
+    std::vector<std::size_t> references{middle};
+    while (references.size() < std::min<std::size_t>(5, n)) {  // farthest-point sampling
+      std::size_t far = 0;
+      double far_d = -1.0;
+      for (std::size_t i = 0; i < n; ++i) {
+        double d = 1e300;
+        for (std::size_t r : references) d = std::min(d, cv::norm(positions[i] - positions[r]));
+        if (d > far_d) far_d = d, far = i;
+      }
+      references.push_back(far);
+    }
+    eval::LinePlot plot("Fig. 7: dissimilarity (Eq. 2, m = 15, luminance) against distance",
+                        "distance between the two places, m", "Dis / (rows x m), grey levels");
+    const double norm = static_cast<double>(luminance.lines) * m;
+    std::ostringstream csv;
+    csv << "reference_place,other_place,distance_m,dissimilarity_per_value\n";
+    for (std::size_t r : references) {
+      std::vector<std::pair<double, double>> curve;
+      for (std::size_t j = 0; j < n; ++j) {
+        if (j == r) continue;
+        const double d = cv::norm(positions[j] - positions[r]);
+        const double dis = prefix(terms(terms_lum, r, j), m) / norm;
+        curve.emplace_back(d, dis);
+        csv << r << ',' << j << ',' << d << ',' << dis << '\n';
+      }
+      std::sort(curve.begin(), curve.end());
+      // One point per distance (the mean of places at the same distance), as a line.
+      std::vector<double> x, y;
+      for (std::size_t a = 0; a < curve.size();) {
+        std::size_t b = a;
+        double sum = 0.0;
+        while (b < curve.size() && curve[b].first - curve[a].first < 1e-6) sum += curve[b++].second;
+        x.push_back(curve[a].first);
+        y.push_back(sum / (b - a));
+        a = b;
+      }
+      plot.add_series("from place " + std::to_string(r), x, y, eval::SeriesStyle::kLine);
+    }
+    // The median over all pairs, in bins.
+    std::map<int, std::vector<double>> bins;
+    for (std::size_t i = 0; i < n; ++i) {
+      for (std::size_t j = i + 1; j < n; ++j) {
+        const double d = cv::norm(positions[j] - positions[i]);
+        bins[static_cast<int>(std::lround(d / (0.5 * spacing)))].push_back(
+            prefix(terms(terms_lum, i, j), m) / norm);
+      }
+    }
+    // A place against itself: Dis = 0 at distance 0.
+    std::vector<double> bx{0.0}, by{0.0};
+    for (auto& [bin, values] : bins) {
+      if (values.size() < 3) continue;
+      std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
+      bx.push_back(bin * 0.5 * spacing);
+      by.push_back(values[values.size() / 2]);
+    }
+    plot.add_series("median of all pairs", bx, by, eval::SeriesStyle::kLineAndPoints);
+    save_csv("fig7_dissimilarity_distance.csv", csv.str());
+    save_plot(plot, "fig7_dissimilarity_distance.png");
+    summary << "Fig. 7: median Dis per value at distance (m):";
+    for (std::size_t i = 1; i < bx.size(); i += 2) {
+      summary << ' ' << fixed(bx[i], 2) << ": " << fixed(by[i], 2);
+    }
+    summary << '\n';
+  }
+  out.summary = summary.str();
+  return out;
+}
+
+}  // namespace omninav::memory

@@ -1,0 +1,547 @@
+#include "omninav/memory/map_file.hpp"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <bit>
+#include <cstring>
+#include <set>
+#include <sstream>
+
+#include "omninav/core/errors.hpp"
+#include "sqlite_db.hpp"
+
+#ifndef OMNINAV_VERSION_STRING
+#define OMNINAV_VERSION_STRING "omninav"
+#endif
+
+namespace omninav::memory {
+
+using detail::Database;
+using detail::Statement;
+
+std::vector<std::uint8_t> floats_to_le_bytes(const std::vector<float>& values) {
+  std::vector<std::uint8_t> bytes(values.size() * 4);
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    const auto bits = std::bit_cast<std::uint32_t>(values[i]);
+    bytes[4 * i] = static_cast<std::uint8_t>(bits);
+    bytes[4 * i + 1] = static_cast<std::uint8_t>(bits >> 8);
+    bytes[4 * i + 2] = static_cast<std::uint8_t>(bits >> 16);
+    bytes[4 * i + 3] = static_cast<std::uint8_t>(bits >> 24);
+  }
+  return bytes;
+}
+
+std::vector<float> floats_from_le_bytes(const void* data, std::size_t bytes) {
+  std::vector<float> values(bytes / 4);
+  const auto* p = static_cast<const std::uint8_t*>(data);
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    const std::uint32_t bits = static_cast<std::uint32_t>(p[4 * i]) |
+                               static_cast<std::uint32_t>(p[4 * i + 1]) << 8 |
+                               static_cast<std::uint32_t>(p[4 * i + 2]) << 16 |
+                               static_cast<std::uint32_t>(p[4 * i + 3]) << 24;
+    values[i] = std::bit_cast<float>(bits);
+  }
+  return values;
+}
+
+namespace {
+
+// Schema version 1. maps/README.md documents every table and column; keep the two in step.
+constexpr const char* kSchema = R"sql(
+CREATE TABLE schema_version (
+  version INTEGER NOT NULL,
+  written_by TEXT NOT NULL
+);
+CREATE TABLE parameters (
+  key TEXT PRIMARY KEY,
+  value TEXT NOT NULL
+);
+CREATE TABLE runs (
+  id INTEGER PRIMARY KEY,
+  input TEXT NOT NULL,
+  started_utc TEXT NOT NULL,
+  frames INTEGER NOT NULL,
+  places INTEGER NOT NULL,
+  heading_source TEXT NOT NULL,
+  description TEXT NOT NULL
+);
+CREATE TABLE places (
+  id INTEGER PRIMARY KEY,
+  run_id INTEGER NOT NULL REFERENCES runs(id),
+  source TEXT NOT NULL,
+  frame_index INTEGER NOT NULL,
+  time_s REAL,
+  heading_rad REAL,
+  heading_source TEXT NOT NULL CHECK (heading_source IN ('none', 'truth', 'compass')),
+  signature_rows INTEGER NOT NULL,
+  signature_channels INTEGER NOT NULL CHECK (signature_channels IN (1, 3)),
+  signature_components INTEGER NOT NULL,
+  panorama_width_px INTEGER NOT NULL,
+  magnitude BLOB NOT NULL,
+  phase_rad BLOB NOT NULL,
+  thumbnail_png BLOB
+);
+CREATE TABLE place_truth (
+  place_id INTEGER PRIMARY KEY REFERENCES places(id),
+  x_m REAL NOT NULL,
+  y_m REAL NOT NULL,
+  z_m REAL NOT NULL,
+  heading_rad REAL NOT NULL,
+  pitch_rad REAL NOT NULL,
+  roll_rad REAL NOT NULL
+);
+CREATE TABLE edges (
+  id INTEGER PRIMARY KEY,
+  from_place INTEGER NOT NULL REFERENCES places(id),
+  to_place INTEGER NOT NULL REFERENCES places(id),
+  kind TEXT NOT NULL,
+  dissimilarity REAL NOT NULL,
+  relative_heading_rad REAL NOT NULL,
+  heading_confidence REAL NOT NULL,
+  motion_bearing_rad REAL,
+  motion_bearing_stddev_rad REAL NOT NULL,
+  parallax_rad REAL NOT NULL
+);
+CREATE TABLE lattice_positions (
+  place_id INTEGER PRIMARY KEY REFERENCES places(id),
+  x REAL NOT NULL,
+  y REAL NOT NULL
+);
+)sql";
+
+std::string corrupt(const std::filesystem::path& file, const std::string& what) {
+  return file.string() + ": corrupt map: " + what;
+}
+
+std::map<std::string, std::string> parameter_rows(const VisualMemory& memory) {
+  const MapParameters& p = memory.parameters();
+  std::map<std::string, std::string> rows = memory.notes();
+  rows["signature.components"] = std::to_string(p.signature.components);
+  rows["signature.colour"] = signature::to_string(p.signature.colour);
+  rows["signature.normalise_brightness"] = p.signature.normalise_brightness ? "true" : "false";
+  rows["signature.weights"] = signature::to_string(p.weights);
+  rows["signature.panorama_rows"] = std::to_string(p.panorama_rows);
+  return rows;
+}
+
+// Opens an existing map and checks that it is one this build can read.
+void check_map(Database& db) {
+  const std::filesystem::path& file = db.file();
+  Statement app = db.prepare("PRAGMA application_id");
+  app.step();
+  const std::int64_t id = app.integer(0);
+  if (id != kMapApplicationId) {
+    throw InputError(file.string() +
+                     ": is an SQLite database but not an omninav map (no omninav "
+                     "application id)");
+  }
+  Statement has_version =
+      db.prepare("SELECT count(*) FROM sqlite_master WHERE type='table' AND name='schema_version'");
+  has_version.step();
+  if (has_version.integer(0) != 1) {
+    throw InputError(corrupt(file, "it has no schema_version table"));
+  }
+  Statement version = db.prepare("SELECT version, written_by FROM schema_version");
+  if (!version.step()) throw InputError(corrupt(file, "its schema_version table is empty"));
+  const std::int64_t v = version.integer(0);
+  if (v > kMapSchemaVersion) {
+    throw InputError(file.string() + ": the map has schema version " + std::to_string(v) +
+                     " (written by " + version.text(1) + "); this omninav reads up to version " +
+                     std::to_string(kMapSchemaVersion) + ": update omninav to read it");
+  }
+  if (v < 1) throw InputError(corrupt(file, "schema version " + std::to_string(v)));
+}
+
+std::int64_t count_rows(Database& db, const std::string& table) {
+  Statement count = db.prepare("SELECT count(*) FROM " + table);
+  count.step();
+  return count.integer(0);
+}
+
+void insert_runs(Database& db, const VisualMemory& memory, std::size_t first) {
+  Statement insert = db.prepare(
+      "INSERT INTO runs (id, input, started_utc, frames, places, heading_source, description) "
+      "VALUES (?, ?, ?, ?, ?, ?, ?)");
+  for (std::size_t i = first; i < memory.runs().size(); ++i) {
+    const Run& run = memory.runs()[i];
+    insert.bind(1, run.id)
+        .bind(2, run.input)
+        .bind(3, run.started_utc)
+        .bind(4, run.frames)
+        .bind(5, run.places)
+        .bind(6, run.heading_source)
+        .bind(7, run.description)
+        .run();
+  }
+}
+
+void insert_places(Database& db, const VisualMemory& memory, std::size_t first,
+                   const SaveOptions& options) {
+  Statement insert = db.prepare(
+      "INSERT INTO places (id, run_id, source, frame_index, time_s, heading_rad, heading_source, "
+      "signature_rows, signature_channels, signature_components, panorama_width_px, magnitude, "
+      "phase_rad, thumbnail_png) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
+  Statement truth = db.prepare(
+      "INSERT INTO place_truth (place_id, x_m, y_m, z_m, heading_rad, pitch_rad, roll_rad) "
+      "VALUES (?, ?, ?, ?, ?, ?, ?)");
+  Statement lattice =
+      db.prepare("INSERT INTO lattice_positions (place_id, x, y) VALUES (?, ?, ?)");
+  for (std::size_t i = first; i < memory.place_count(); ++i) {
+    const Place& p = memory.place(i);
+    const auto magnitude = floats_to_le_bytes(p.signature.magnitude);
+    const auto phase = floats_to_le_bytes(p.signature.phase_rad);
+    const auto id = static_cast<std::int64_t>(i);
+    insert.bind(1, id)
+        .bind(2, p.run)
+        .bind(3, p.source)
+        .bind(4, p.frame_index)
+        .bind(5, p.time_s)
+        .bind(6, p.heading_rad)
+        .bind(7, to_string(p.heading_source))
+        .bind(8, p.signature.rows)
+        .bind(9, p.signature.channels)
+        .bind(10, p.signature.components)
+        .bind(11, p.signature.width_px)
+        .bind(12, magnitude)
+        .bind(13, phase);
+    if (p.thumbnail_png.empty()) {
+      insert.bind_null(14);
+    } else {
+      insert.bind(14, p.thumbnail_png);
+    }
+    insert.run();
+    if (p.truth) {
+      truth.bind(1, id)
+          .bind(2, p.truth->x_m)
+          .bind(3, p.truth->y_m)
+          .bind(4, p.truth->z_m)
+          .bind(5, p.truth->heading_rad)
+          .bind(6, p.truth->pitch_rad)
+          .bind(7, p.truth->roll_rad)
+          .run();
+    }
+    if (p.lattice) lattice.bind(1, id).bind(2, p.lattice->x).bind(3, p.lattice->y).run();
+    if (options.after_place) options.after_place(i + 1 - first);
+  }
+}
+
+void insert_edges(Database& db, const VisualMemory& memory, std::size_t first) {
+  Statement insert = db.prepare(
+      "INSERT INTO edges (id, from_place, to_place, kind, dissimilarity, relative_heading_rad, "
+      "heading_confidence, motion_bearing_rad, motion_bearing_stddev_rad, parallax_rad) "
+      "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
+  std::size_t index = 0;
+  for (const VisualMemory::EdgeRef& ref : memory.edges()) {
+    const auto& [from, to, edge] = ref;
+    if (index++ < first) continue;
+    insert.bind(1, static_cast<std::int64_t>(index - 1))
+        .bind(2, static_cast<std::int64_t>(from))
+        .bind(3, static_cast<std::int64_t>(to))
+        .bind(4, to_string(edge->kind))
+        .bind(5, edge->dissimilarity)
+        .bind(6, edge->relative_heading_rad)
+        .bind(7, edge->heading_confidence)
+        .bind(8, edge->motion_bearing_rad)
+        .bind(9, edge->motion_bearing_stddev_rad)
+        .bind(10, edge->parallax_rad)
+        .run();
+  }
+}
+
+void write_parameters(Database& db, const VisualMemory& memory) {
+  Statement upsert = db.prepare(
+      "INSERT INTO parameters (key, value) VALUES (?, ?) "
+      "ON CONFLICT(key) DO UPDATE SET value = excluded.value");
+  for (const auto& [key, value] : parameter_rows(memory)) upsert.bind(1, key).bind(2, value).run();
+}
+
+void fsync_path(const std::filesystem::path& path, bool directory) {
+  const int fd = ::open(path.c_str(), directory ? O_RDONLY | O_DIRECTORY : O_RDONLY);
+  if (fd < 0) return;  // best effort: the rename is still atomic
+  ::fsync(fd);
+  ::close(fd);
+}
+
+void write_new(VisualMemory& memory, const std::filesystem::path& file,
+               const SaveOptions& options) {
+  std::filesystem::path partial = file;
+  partial += ".partial";
+  std::error_code ignored;
+  std::filesystem::remove(partial, ignored);
+  std::filesystem::remove(std::filesystem::path(partial.string() + "-journal"), ignored);
+  {
+    Database db(partial, Database::Mode::kCreate);
+    // The partial file is thrown away if anything fails, so it needs no journal; it is synced
+    // once, whole, before the rename.
+    db.exec("PRAGMA journal_mode = OFF");
+    db.exec("PRAGMA synchronous = OFF");
+    db.exec("PRAGMA application_id = " + std::to_string(kMapApplicationId));
+    db.exec("BEGIN");
+    db.exec(kSchema);
+    db.prepare("INSERT INTO schema_version (version, written_by) VALUES (?, ?)")
+        .bind(1, kMapSchemaVersion)
+        .bind(2, std::string(OMNINAV_VERSION_STRING))
+        .run();
+    write_parameters(db, memory);
+    insert_runs(db, memory, 0);
+    insert_places(db, memory, 0, options);
+    insert_edges(db, memory, 0);
+    db.exec("COMMIT");
+  }
+  fsync_path(partial, false);
+  std::filesystem::rename(partial, file);
+  fsync_path(file.parent_path().empty() ? std::filesystem::path(".") : file.parent_path(), true);
+}
+
+void append(VisualMemory& memory, const std::filesystem::path& file, const SaveOptions& options) {
+  Database db(file, Database::Mode::kReadWrite);
+  check_map(db);
+  db.exec("PRAGMA journal_mode = DELETE");
+  db.exec("PRAGMA synchronous = FULL");
+  db.exec("PRAGMA foreign_keys = ON");
+  db.exec("BEGIN IMMEDIATE");
+  try {
+    const VisualMemory::Persisted& persisted = memory.persisted();
+    if (count_rows(db, "places") != static_cast<std::int64_t>(persisted.places) ||
+        count_rows(db, "edges") != static_cast<std::int64_t>(persisted.edges) ||
+        count_rows(db, "runs") != static_cast<std::int64_t>(persisted.runs)) {
+      throw UsageError(file.string() +
+                       ": the map on disk is not the one this memory was read from (another "
+                       "program changed it?); not writing");
+    }
+    // The signature parameters must match, or the new places could not be compared.
+    const auto mine = parameter_rows(memory);
+    Statement read = db.prepare("SELECT key, value FROM parameters WHERE key LIKE 'signature.%'");
+    while (read.step()) {
+      const std::string key = read.text(0);
+      const auto found = mine.find(key);
+      if (key != "signature.panorama_rows" && found != mine.end() &&
+          found->second != read.text(1)) {
+        throw UsageError(file.string() + ": the map was made with " + key + " = " + read.text(1) +
+                         ", not " + found->second);
+      }
+    }
+    write_parameters(db, memory);
+    insert_runs(db, memory, persisted.runs);
+    insert_places(db, memory, persisted.places, options);
+    insert_edges(db, memory, persisted.edges);
+    db.exec("COMMIT");
+  } catch (...) {
+    sqlite3_exec(db.handle(), "ROLLBACK", nullptr, nullptr, nullptr);
+    throw;
+  }
+}
+
+Place read_place(const Statement& row, const std::filesystem::path& file, std::size_t expected) {
+  const std::int64_t id = row.integer(0);
+  if (id != static_cast<std::int64_t>(expected)) {
+    throw InputError(corrupt(file, "place ids are not 0, 1, 2, ... (found " + std::to_string(id) +
+                                       " where " + std::to_string(expected) + " belongs)"));
+  }
+  Place p;
+  p.run = static_cast<int>(row.integer(1));
+  p.source = row.text(2);
+  p.frame_index = static_cast<int>(row.integer(3));
+  p.time_s = row.optional_real(4);
+  p.heading_rad = row.optional_real(5);
+  try {
+    p.heading_source = heading_source_from_string(row.text(6));
+  } catch (const InputError& error) {
+    throw InputError(corrupt(file, "place " + std::to_string(id) + ": " + error.what()));
+  }
+  signature::Signature& s = p.signature;
+  s.rows = static_cast<int>(row.integer(7));
+  s.channels = static_cast<int>(row.integer(8));
+  s.components = static_cast<int>(row.integer(9));
+  s.width_px = static_cast<int>(row.integer(10));
+  if (s.rows < 1 || s.rows > 100000 || (s.channels != 1 && s.channels != 3) ||
+      s.components < 1 || s.components > 100000 || s.width_px < 1) {
+    throw InputError(corrupt(file, "place " + std::to_string(id) + " has signature dimensions " +
+                                       std::to_string(s.rows) + " x " +
+                                       std::to_string(s.channels) + " x " +
+                                       std::to_string(s.components)));
+  }
+  const std::size_t expected_bytes = s.size() * 4;
+  const auto [magnitude, magnitude_bytes] = row.blob_view(11);
+  const auto [phase, phase_bytes] = row.blob_view(12);
+  if (magnitude_bytes != expected_bytes || phase_bytes != expected_bytes) {
+    throw InputError(corrupt(file, "place " + std::to_string(id) + ": signature blobs of " +
+                                       std::to_string(magnitude_bytes) + " and " +
+                                       std::to_string(phase_bytes) + " bytes, expected " +
+                                       std::to_string(expected_bytes)));
+  }
+  s.magnitude = floats_from_le_bytes(magnitude, magnitude_bytes);
+  s.phase_rad = floats_from_le_bytes(phase, phase_bytes);
+  p.thumbnail_png = row.blob(13);
+  return p;
+}
+
+}  // namespace
+
+VisualMemory load_map(const std::filesystem::path& file) {
+  std::error_code error;
+  if (!std::filesystem::exists(file, error)) {
+    throw InputError(file.string() + ": no such map file");
+  }
+  if (!std::filesystem::is_regular_file(file, error)) {
+    throw InputError(file.string() + ": is not a map file (not a regular file)");
+  }
+  // Read-write when possible: a map left with a hot journal by a killed writer is rolled back
+  // to its previous state when opened, which a read-only connection cannot do.
+  const bool writable = ::access(file.c_str(), W_OK) == 0;
+  Database db(file, writable ? Database::Mode::kReadWrite : Database::Mode::kReadOnly);
+  check_map(db);
+  db.exec("BEGIN");  // one consistent snapshot
+
+  std::map<std::string, std::string> parameters;
+  {
+    Statement rows = db.prepare("SELECT key, value FROM parameters");
+    while (rows.step()) parameters[rows.text(0)] = rows.text(1);
+  }
+  MapParameters map_parameters;
+  try {
+    const auto get = [&](const std::string& key) {
+      const auto found = parameters.find(key);
+      if (found == parameters.end()) throw InputError("the parameter " + key + " is missing");
+      return found->second;
+    };
+    map_parameters.signature.components = std::stoi(get("signature.components"));
+    map_parameters.signature.colour = signature::colour_mode_from_string(get("signature.colour"));
+    const std::string normalise = get("signature.normalise_brightness");
+    if (normalise != "true" && normalise != "false") {
+      throw InputError("signature.normalise_brightness is '" + normalise + "'");
+    }
+    map_parameters.signature.normalise_brightness = normalise == "true";
+    map_parameters.weights =
+        signature::parse_component_weights(get("signature.weights"), "signature.weights");
+    map_parameters.panorama_rows = std::stoi(get("signature.panorama_rows"));
+  } catch (const std::exception& e) {
+    throw InputError(corrupt(file, e.what()));
+  }
+  VisualMemory memory(map_parameters);
+  for (const auto& [key, value] : parameters) {
+    if (key.rfind("signature.", 0) != 0) memory.set_note(key, value);
+  }
+
+  {
+    Statement rows = db.prepare(
+        "SELECT id, input, started_utc, frames, places, heading_source, description FROM runs "
+        "ORDER BY id");
+    while (rows.step()) {
+      Run run;
+      run.id = static_cast<int>(rows.integer(0));
+      run.input = rows.text(1);
+      run.started_utc = rows.text(2);
+      run.frames = static_cast<int>(rows.integer(3));
+      run.places = static_cast<int>(rows.integer(4));
+      run.heading_source = rows.text(5);
+      run.description = rows.text(6);
+      memory.runs().push_back(run);
+    }
+  }
+  {
+    Statement rows = db.prepare(
+        "SELECT id, run_id, source, frame_index, time_s, heading_rad, heading_source, "
+        "signature_rows, signature_channels, signature_components, panorama_width_px, magnitude, "
+        "phase_rad, thumbnail_png FROM places ORDER BY id");
+    while (rows.step()) {
+      Place place = read_place(rows, file, memory.place_count());
+      try {
+        memory.add_place(std::move(place));
+      } catch (const UsageError& e) {
+        throw InputError(corrupt(file, "place " + std::to_string(memory.place_count()) + ": " +
+                                           e.what()));
+      }
+    }
+  }
+  const auto require_place = [&](std::int64_t id, const std::string& table) {
+    if (id < 0 || id >= static_cast<std::int64_t>(memory.place_count())) {
+      throw InputError(corrupt(file, table + " names place " + std::to_string(id) +
+                                         ", which does not exist"));
+    }
+    return static_cast<PlaceIndex>(id);
+  };
+  {
+    Statement rows = db.prepare(
+        "SELECT place_id, x_m, y_m, z_m, heading_rad, pitch_rad, roll_rad FROM place_truth");
+    while (rows.step()) {
+      CameraPose pose{rows.real(1), rows.real(2), rows.real(3),
+                      rows.real(4), rows.real(5), rows.real(6)};
+      memory.place(require_place(rows.integer(0), "place_truth")).truth = pose;
+    }
+  }
+  {
+    Statement rows = db.prepare("SELECT place_id, x, y FROM lattice_positions");
+    while (rows.step()) {
+      memory.place(require_place(rows.integer(0), "lattice_positions")).lattice =
+          LatticePosition{rows.real(1), rows.real(2)};
+    }
+  }
+  {
+    Statement rows = db.prepare(
+        "SELECT from_place, to_place, kind, dissimilarity, relative_heading_rad, "
+        "heading_confidence, motion_bearing_rad, motion_bearing_stddev_rad, parallax_rad "
+        "FROM edges ORDER BY id");
+    while (rows.step()) {
+      Edge edge;
+      try {
+        edge.kind = edge_kind_from_string(rows.text(2));
+      } catch (const InputError& e) {
+        throw InputError(corrupt(file, e.what()));
+      }
+      edge.dissimilarity = rows.real(3);
+      edge.relative_heading_rad = rows.real(4);
+      edge.heading_confidence = rows.real(5);
+      edge.motion_bearing_rad = rows.optional_real(6);
+      edge.motion_bearing_stddev_rad = rows.real(7);
+      edge.parallax_rad = rows.real(8);
+      memory.add_edge(require_place(rows.integer(0), "edges"),
+                      require_place(rows.integer(1), "edges"), edge);
+    }
+  }
+  db.exec("COMMIT");
+  memory.mark_persisted();
+  return memory;
+}
+
+void save_map(VisualMemory& memory, const std::filesystem::path& file,
+              const SaveOptions& options) {
+  std::error_code error;
+  if (options.overwrite || !std::filesystem::exists(file, error)) {
+    write_new(memory, file, options);
+  } else {
+    append(memory, file, options);
+  }
+  memory.mark_persisted();
+}
+
+void save_lattice_positions(const std::filesystem::path& file,
+                            const std::vector<LatticePosition>& positions) {
+  Database db(file, Database::Mode::kReadWrite);
+  check_map(db);
+  db.exec("PRAGMA journal_mode = DELETE");
+  db.exec("PRAGMA synchronous = FULL");
+  db.exec("BEGIN IMMEDIATE");
+  try {
+    const std::int64_t places = count_rows(db, "places");
+    if (!positions.empty() && static_cast<std::int64_t>(positions.size()) != places) {
+      throw UsageError(file.string() + ": " + std::to_string(positions.size()) +
+                       " lattice positions for a map of " + std::to_string(places) + " places");
+    }
+    db.exec("DELETE FROM lattice_positions");
+    Statement insert = db.prepare("INSERT INTO lattice_positions (place_id, x, y) VALUES (?, ?, ?)");
+    for (std::size_t i = 0; i < positions.size(); ++i) {
+      insert.bind(1, static_cast<std::int64_t>(i))
+          .bind(2, positions[i].x)
+          .bind(3, positions[i].y)
+          .run();
+    }
+    db.exec("COMMIT");
+  } catch (...) {
+    sqlite3_exec(db.handle(), "ROLLBACK", nullptr, nullptr, nullptr);
+    throw;
+  }
+}
+
+}  // namespace omninav::memory

@@ -1,0 +1,154 @@
+// The visual memory's speed and size (issue 4 §4). Targets on one core: ≤ 20 µs per 360×45
+// signature; ≤ 10 ms per query at 100,000 places.
+// Run: build/bin/signature_bench   (one core: taskset -c 0 build/bin/signature_bench)
+#include <benchmark/benchmark.h>
+
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <random>
+#include <unistd.h>
+
+#include "../signature/synthetic_signatures.hpp"
+#include "omninav/memory/exploration.hpp"
+#include "omninav/memory/map_file.hpp"
+#include "omninav/signature/hierarchy.hpp"
+#include "omninav/signature/signature.hpp"
+#include "omninav/sim/renderer.hpp"
+#include "omninav/sim/room.hpp"
+
+namespace {
+
+using namespace omninav;
+using signature::ColourMode;
+
+cv::Mat rendered_panorama(int width, int height) {
+  static const sim::World world = sim::make_room({});
+  sim::RenderParams params;
+  params.geometry.width_px = width;
+  params.geometry.height_px = height;
+  const sim::Renderer renderer(world, params);
+  return renderer.render(CameraPose{2.2, 1.9, 1.0, 0.4, 0.0, 0.0});
+}
+
+// Signature time per panorama: colour conversion, the FFT of every row, magnitudes, phases.
+void signature_time(benchmark::State& state, int width, int height, ColourMode mode) {
+  const cv::Mat panorama = rendered_panorama(width, height);
+  signature::SignatureExtractor extractor({15, mode});
+  for (auto _ : state) benchmark::DoNotOptimize(extractor.compute(panorama));
+  state.counters["rows_per_s"] = benchmark::Counter(
+      static_cast<double>(state.iterations()) * height, benchmark::Counter::kIsRate);
+}
+BENCHMARK_CAPTURE(signature_time, 360x45_luminance, 360, 45, ColourMode::kLuminance)
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(signature_time, 360x45_per_channel, 360, 45, ColourMode::kPerChannel)
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(signature_time, 720x80_luminance, 720, 80, ColourMode::kLuminance)
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(signature_time, 720x80_per_channel, 720, 80, ColourMode::kPerChannel)
+    ->Unit(benchmark::kMicrosecond);
+
+// N synthetic places on a 30 cm grid (synthetic_signatures.hpp), 45 rows, m = 15, built once
+// per (N, channels).
+struct Places {
+  std::unique_ptr<signature::testing::SyntheticPlaces> field;
+  std::unique_ptr<signature::SignatureIndex> index;
+  double side_m = 0.0;
+};
+
+const Places& places(std::size_t n, int channels) {
+  static std::map<std::pair<std::size_t, int>, Places> cache;
+  Places& p = cache[{n, channels}];
+  if (!p.index) {
+    const int per_side = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(n))));
+    p.side_m = 0.3 * per_side;
+    p.field = std::make_unique<signature::testing::SyntheticPlaces>(p.side_m, 45, channels, 15, 7);
+    p.index = std::make_unique<signature::SignatureIndex>(45, channels, std::vector<int>{2, 5, 15});
+    p.index->reserve(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      p.index->add(p.field->at(0.3 * (i % per_side), 0.3 * (i / per_side)));
+    }
+  }
+  return p;
+}
+
+// One query (noisy signature at a random position between places), coarse to fine, with the
+// default threshold (memory.yaml: 800). Counters: candidates kept per level.
+void query_time(benchmark::State& state, bool exhaustive, int channels) {
+  const std::size_t n = static_cast<std::size_t>(state.range(0));
+  const Places& p = places(n, channels);
+  std::mt19937 random(3);
+  std::uniform_real_distribution<double> coordinate(0.0, p.side_m - 0.3);
+  std::vector<signature::Signature> queries;
+  for (int i = 0; i < 64; ++i) {
+    queries.push_back(p.field->at(coordinate(random), coordinate(random), &random, 1.0));
+  }
+  std::size_t q = 0;
+  double level0 = 0, level1 = 0, level2 = 0;
+  for (auto _ : state) {
+    const signature::SearchResult r =
+        exhaustive ? p.index->search_exhaustive(queries[q % queries.size()], 800.0, 5)
+                   : p.index->search(queries[q % queries.size()], 800.0, 5);
+    level0 += r.levels[0].candidates.size();
+    level1 += r.levels[1].candidates.size();
+    level2 += r.levels[2].candidates.size();
+    benchmark::DoNotOptimize(r);
+    ++q;
+  }
+  const double iterations = static_cast<double>(state.iterations());
+  state.counters["candidates_m2"] = level0 / iterations;
+  state.counters["candidates_m5"] = level1 / iterations;
+  state.counters["candidates_m15"] = level2 / iterations;
+  state.counters["index_bytes_per_place"] = static_cast<double>(p.index->bytes()) / n;
+}
+BENCHMARK_CAPTURE(query_time, pruned_luminance, false, 1)
+    ->Arg(1000)->Arg(10000)->Arg(100000)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(query_time, exhaustive_luminance, true, 1)
+    ->Arg(1000)->Arg(10000)->Arg(100000)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(query_time, pruned_per_channel, false, 3)
+    ->Arg(1000)->Arg(10000)->Arg(100000)->Unit(benchmark::kMillisecond);
+
+// Bytes per place in memory (VisualMemory: signature, thumbnail, graph; plus the search index)
+// and on disk (the .vmem file), for a map of rendered places.
+void bytes_per_place(benchmark::State& state, ColourMode mode) {
+  static const sim::World world = sim::make_room({});
+  sim::RenderParams params;
+  const sim::Renderer renderer(world, params);
+  memory::MapParameters parameters;
+  parameters.signature.colour = mode;
+  memory::VisualMemory map(parameters);
+  memory::Explorer explorer(map, {}, "bench", "signature_bench");
+  const int n = 400;
+  for (int i = 0; i < n; ++i) {
+    io::Frame frame;
+    frame.index = i;
+    frame.image = renderer.render(CameraPose{1.0 + 0.01 * i, 2.0, 1.0, 0.02 * i, 0, 0});
+    frame.truth = CameraPose{1.0 + 0.01 * i, 2.0, 1.0, 0.02 * i, 0, 0};
+    frame.source = "/some/folder/image_" + std::to_string(i) + ".png";
+    explorer.add_place(frame);
+  }
+  const std::filesystem::path file = std::filesystem::temp_directory_path() /
+                                     ("signature_bench_" + std::to_string(::getpid()) + ".vmem");
+  for (auto _ : state) {
+    std::filesystem::remove(file);
+    memory::save_map(map, file, {.overwrite = true, .after_place = {}});
+  }
+  signature::SignatureIndex index(45, mode == ColourMode::kLuminance ? 1 : 3, {2, 5, 15});
+  for (int i = 0; i < n; ++i) index.add(map.place(static_cast<std::size_t>(i)).signature);
+  std::size_t thumbnails = 0;
+  for (int i = 0; i < n; ++i) thumbnails += map.place(static_cast<std::size_t>(i)).thumbnail_png.size();
+  state.counters["memory_bytes_per_place"] = static_cast<double>(map.bytes()) / n;
+  state.counters["index_bytes_per_place"] = static_cast<double>(index.bytes()) / n;
+  state.counters["thumbnail_bytes_per_place"] = static_cast<double>(thumbnails) / n;
+  state.counters["disk_bytes_per_place"] =
+      static_cast<double>(std::filesystem::file_size(file)) / n;
+  std::filesystem::remove(file);
+}
+BENCHMARK_CAPTURE(bytes_per_place, luminance, ColourMode::kLuminance)
+    ->Unit(benchmark::kMillisecond)->Iterations(3);
+BENCHMARK_CAPTURE(bytes_per_place, per_channel, ColourMode::kPerChannel)
+    ->Unit(benchmark::kMillisecond)->Iterations(3);
+
+}  // namespace
+
+BENCHMARK_MAIN();

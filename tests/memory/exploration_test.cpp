@@ -1,0 +1,193 @@
+#include "omninav/memory/exploration.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <iostream>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "grid_fixture.hpp"
+#include "omninav/core/angles.hpp"
+#include "omninav/core/errors.hpp"
+
+namespace omninav::memory {
+namespace {
+
+// Frames every 5 cm along a straight line, the camera facing along it, then turning.
+std::vector<io::Frame> route_frames() {
+  static const std::vector<io::Frame> frames = [] {
+    std::vector<io::Frame> out;
+    const double heading = deg_to_rad(10.0);
+    for (int i = 0; i < 60; ++i) {
+      const double along = 0.05 * i;
+      CameraPose pose{1.2 + along * std::cos(heading), 2.3 + along * std::sin(heading), 1.0,
+                      heading + deg_to_rad(i >= 40 ? 2.0 * (i - 40) : 0.0), 0.0, 0.0};
+      out.push_back(testing::render_frame(pose, i, "route#" + std::to_string(i)));
+    }
+    return out;
+  }();
+  return frames;
+}
+
+ExplorationParams only(double dissimilarity, int every_n, double every_m) {
+  ExplorationParams params;
+  params.new_place_dissimilarity = dissimilarity;
+  params.every_n_frames = every_n;
+  params.every_m = every_m;
+  return params;
+}
+
+std::vector<int> place_frames(const VisualMemory& memory) {
+  std::vector<int> frames;
+  for (PlaceIndex i = 0; i < memory.place_count(); ++i) {
+    frames.push_back(memory.place(i).frame_index);
+  }
+  return frames;
+}
+
+TEST(Exploration, EveryNFramesAndEveryMetres) {
+  {
+    VisualMemory memory;
+    Explorer explorer(memory, only(0.0, 4, 0.0), "route", "test");
+    for (const io::Frame& f : route_frames()) explorer.add(f);
+    EXPECT_EQ(place_frames(memory), (std::vector<int>{0, 4, 8, 12, 16, 20, 24, 28, 32, 36, 40, 44,
+                                                      48, 52, 56}));
+    EXPECT_EQ(explorer.run().frames, 60);
+    EXPECT_EQ(explorer.run().places, 15);
+  }
+  {
+    VisualMemory memory;
+    Explorer explorer(memory, only(0.0, 0, 0.3), "route", "test");
+    for (const io::Frame& f : route_frames()) explorer.add(f);
+    EXPECT_EQ(place_frames(memory), (std::vector<int>{0, 6, 12, 18, 24, 30, 36, 42, 48, 54}));
+  }
+}
+
+TEST(Exploration, DissimilarityThresholdSpacesPlacesByChangeOfView) {
+  VisualMemory memory;
+  Explorer explorer(memory, only(ExplorationParams{}.new_place_dissimilarity, 0, 0.0), "route",
+                    "test");
+  for (const io::Frame& f : route_frames()) explorer.add(f);
+  const std::vector<int> frames = place_frames(memory);
+  std::cout << "places at frames:";
+  for (int f : frames) std::cout << ' ' << f;
+  std::cout << "\n";
+  // The default threshold asks for the change of a 30 cm step (6 frames) in an average part
+  // of the room, less near furniture, where views change faster.
+  EXPECT_GE(frames.size(), 5u);
+  EXPECT_LE(frames.size(), 20u);
+  for (std::size_t i = 1; i < frames.size(); ++i) {
+    EXPECT_GE(frames[i] - frames[i - 1], 1);
+    EXPECT_LE(frames[i] - frames[i - 1], 12) << "places too far apart";
+  }
+}
+
+TEST(Exploration, EdgesCarryRelativeHeadingAndDirectionOfMotion) {
+  VisualMemory memory;
+  Explorer explorer(memory, only(0.0, 6, 0.0), "route", "test");
+  for (const io::Frame& f : route_frames()) explorer.add(f);
+  ASSERT_EQ(memory.edge_count(), memory.place_count() - 1);
+  std::vector<double> bearing_errors;
+  for (const VisualMemory::EdgeRef& e : memory.edges()) {
+    const CameraPose& a = *memory.place(e.from).truth;
+    const CameraPose& b = *memory.place(e.to).truth;
+    EXPECT_EQ(e.to, e.from + 1);
+    EXPECT_GT(e.edge->dissimilarity, 0.0);
+    EXPECT_LT(std::fabs(rad_to_deg(signed_difference(e.edge->relative_heading_rad,
+                                                     signed_difference(b.heading_rad,
+                                                                       a.heading_rad)))),
+              3.0)
+        << "edge " << e.from << "->" << e.to;
+    ASSERT_TRUE(e.edge->motion_bearing_rad.has_value()) << "edge " << e.from;
+    const double bearing = signed_difference(std::atan2(b.y_m - a.y_m, b.x_m - a.x_m), a.heading_rad);
+    bearing_errors.push_back(
+        std::fabs(rad_to_deg(signed_difference(*e.edge->motion_bearing_rad, bearing))));
+  }
+  std::sort(bearing_errors.begin(), bearing_errors.end());
+  std::cout << "direction of motion errors, deg:";
+  for (double e : bearing_errors) std::cout << ' ' << e;
+  std::cout << "\n";
+  // signature/motion_test.cpp measures the estimator; here: it reaches the edges.
+  EXPECT_LT(bearing_errors[bearing_errors.size() / 2], 20.0);
+  EXPECT_LT(bearing_errors.back(), 60.0);
+}
+
+TEST(Exploration, HeadingsFromTruthOrNoneAndSaidSo) {
+  {
+    VisualMemory memory;
+    Explorer explorer(memory, only(0.0, 10, 0.0), "route", "test");
+    for (const io::Frame& f : route_frames()) explorer.add(f);
+    EXPECT_EQ(explorer.run().heading_source, "truth");
+    EXPECT_EQ(memory.place(2).heading_source, HeadingSource::kTruth);
+    EXPECT_EQ(*memory.place(2).heading_rad, route_frames()[20].truth->heading_rad);
+    EXPECT_TRUE(memory.place(2).truth.has_value());
+  }
+  {
+    VisualMemory memory;
+    ExplorationParams params = only(0.0, 10, 0.0);
+    params.heading_source = "none";
+    Explorer explorer(memory, params, "route", "test");
+    for (const io::Frame& f : route_frames()) explorer.add(f);
+    EXPECT_EQ(explorer.run().heading_source, "none");
+    EXPECT_EQ(memory.place(2).heading_source, HeadingSource::kNone);
+    EXPECT_FALSE(memory.place(2).heading_rad.has_value());
+    EXPECT_TRUE(memory.place(2).truth.has_value()) << "truth is kept apart, for evaluation";
+  }
+  {
+    VisualMemory memory;
+    ExplorationParams params = only(0.0, 1, 0.0);
+    params.heading_source = "truth";
+    Explorer explorer(memory, params, "no poses", "test");
+    io::Frame frame = route_frames()[0];
+    frame.truth.reset();
+    EXPECT_THROW(explorer.add(frame), UsageError);
+  }
+}
+
+TEST(Exploration, ExploringAgainExtendsTheMemoryWithANewRun) {
+  VisualMemory memory;
+  {
+    Explorer first(memory, only(0.0, 10, 0.0), "route", "first");
+    for (const io::Frame& f : route_frames()) first.add(f);
+  }
+  const std::size_t before = memory.place_count();
+  const std::size_t edges_before = memory.edge_count();
+  Explorer second(memory, only(0.0, 20, 0.0), "route again", "second");
+  for (const io::Frame& f : route_frames()) second.add(f);
+  EXPECT_EQ(memory.runs().size(), 2u);
+  EXPECT_EQ(memory.runs()[1].id, 1);
+  EXPECT_EQ(memory.place_count(), before + 3);
+  EXPECT_EQ(memory.place(before).run, 1);
+  // The new run's first place is not chained to the old run's last.
+  EXPECT_EQ(memory.edge_count(), edges_before + 2);
+}
+
+TEST(Exploration, ThumbnailsAreSmallPngCopies) {
+  const std::vector<std::uint8_t> png = make_thumbnail(route_frames()[0].image, 180);
+  const cv::Mat decoded = cv::imdecode(png, cv::IMREAD_UNCHANGED);
+  EXPECT_EQ(decoded.cols, 180);
+  EXPECT_EQ(decoded.rows, 23);  // 45 · 180/360 rounded
+  EXPECT_EQ(decoded.channels(), 3);
+}
+
+TEST(Exploration, BadFramesNameTheirSource) {
+  VisualMemory memory;
+  Explorer explorer(memory, {}, "bad", "test");
+  io::Frame frame;
+  frame.source = "broken.png";
+  try {
+    explorer.add(frame);
+    FAIL();
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what()).find("broken.png"), std::string::npos);
+  }
+  // A frame of another height than the map's panoramas.
+  explorer.add(route_frames()[0]);
+  io::Frame taller = route_frames()[1];
+  cv::resize(taller.image, taller.image, cv::Size(360, 60));
+  EXPECT_THROW(explorer.add_place(taller), UsageError);
+}
+
+}  // namespace
+}  // namespace omninav::memory

@@ -1,0 +1,101 @@
+#include "omninav/memory/localisation.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+
+#include "grid_fixture.hpp"
+#include "omninav/core/angles.hpp"
+#include "omninav/core/errors.hpp"
+#include "omninav/signature/signature.hpp"
+
+namespace omninav::memory {
+namespace {
+
+using testing::kSpacing_m;
+
+double distance_m(const CameraPose& a, const CameraPose& b) {
+  return std::hypot(a.x_m - b.x_m, a.y_m - b.y_m);
+}
+
+struct GridScores {
+  int queries = 0;
+  int within_spacing = 0;                  // finest best place within one spacing of the truth
+  std::vector<int> level_contains_nearest;  // per level
+  std::vector<double> level_mean_size;
+  int pruned_equals_exhaustive = 0;
+  std::vector<double> heading_errors_deg;  // query heading from the best place's, vs truth
+};
+
+GridScores score(signature::ColourMode colour, std::size_t query_count) {
+  const VisualMemory memory = testing::grid_memory(colour);
+  const Localiser localiser(memory, {});
+  const std::vector<testing::Query> queries = testing::random_queries(query_count);
+  signature::SignatureExtractor extractor(memory.parameters().signature);
+  GridScores s;
+  s.level_contains_nearest.assign(localiser.params().hierarchy.levels.size(), 0);
+  s.level_mean_size.assign(localiser.params().hierarchy.levels.size(), 0.0);
+  for (const testing::Query& q : queries) {
+    const signature::Signature signature = extractor.compute(q.frame.image);
+    const Localisation pruned = localiser.localise(signature);
+    const Localisation exhaustive = localiser.localise_exhaustive(signature);
+    ++s.queries;
+    const PlaceMatch& best = pruned.best.front();
+    if (distance_m(*memory.place(best.place).truth, *q.frame.truth) <= kSpacing_m) {
+      ++s.within_spacing;
+    }
+    if (best.place == exhaustive.best.front().place) ++s.pruned_equals_exhaustive;
+    for (std::size_t l = 0; l < pruned.search.levels.size(); ++l) {
+      const auto& candidates = pruned.search.levels[l].candidates;
+      s.level_mean_size[l] += static_cast<double>(candidates.size()) / queries.size();
+      if (std::any_of(candidates.begin(), candidates.end(),
+                      [&](const signature::Candidate& c) { return c.place == q.nearest_place; })) {
+        ++s.level_contains_nearest[l];
+      }
+    }
+    EXPECT_TRUE(best.heading_rad.has_value());
+    if (!best.heading_rad) continue;
+    s.heading_errors_deg.push_back(
+        std::fabs(signed_difference_deg(rad_to_deg(*best.heading_rad),
+                                        rad_to_deg(q.frame.truth->heading_rad))));
+  }
+  std::sort(s.heading_errors_deg.begin(), s.heading_errors_deg.end());
+  std::cout << signature::to_string(colour) << ": " << s.within_spacing << "/" << s.queries
+            << " within one spacing; pruned = exhaustive " << s.pruned_equals_exhaustive
+            << "; median heading error " << s.heading_errors_deg[s.queries / 2] << " deg\n";
+  for (std::size_t l = 0; l < s.level_mean_size.size(); ++l) {
+    std::cout << "  level m=" << localiser.params().hierarchy.levels[l] << ": contains nearest "
+              << s.level_contains_nearest[l] << "/" << s.queries << ", mean size "
+              << s.level_mean_size[l] << " of " << memory.place_count() << "\n";
+  }
+  return s;
+}
+
+TEST(GridLocalisation, RandomPosesBetweenGridPointsLocaliseWithinOneSpacing) {
+  const GridScores s = score(signature::ColourMode::kLuminance, 120);
+  // Issue §5: ≥ 95% of queries at the finest level.
+  EXPECT_GE(s.within_spacing, 0.95 * s.queries);
+  // The best place of the pruned search is the exhaustive search's in ≥ 99% of queries.
+  EXPECT_GE(s.pruned_equals_exhaustive, 0.99 * s.queries);
+  // Coarse levels' candidate sets hold the true nearest place.
+  for (std::size_t l = 0; l + 1 < s.level_contains_nearest.size(); ++l) {
+    EXPECT_GE(s.level_contains_nearest[l], 0.95 * s.queries) << "level " << l;
+  }
+  // Coarse sets are wider than fine ones (Fig. 9).
+  for (std::size_t l = 1; l < s.level_mean_size.size(); ++l) {
+    EXPECT_LE(s.level_mean_size[l], s.level_mean_size[l - 1]);
+  }
+  // The query's heading, from the best place's (ground-truth) heading and the phases.
+  EXPECT_LT(s.heading_errors_deg[s.queries / 2], 3.0);
+}
+
+TEST(GridLocalisation, ColourPerChannel) {
+  const GridScores s = score(signature::ColourMode::kPerChannel, 120);
+  EXPECT_GE(s.within_spacing, 0.95 * s.queries);
+  EXPECT_GE(s.pruned_equals_exhaustive, 0.99 * s.queries);
+}
+
+}  // namespace
+}  // namespace omninav::memory

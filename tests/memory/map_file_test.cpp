@@ -1,0 +1,373 @@
+#include "omninav/memory/map_file.hpp"
+
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sqlite3.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <fstream>
+#include <random>
+
+#include "omninav/core/errors.hpp"
+
+namespace omninav::memory {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A scratch folder per test, removed afterwards.
+class MapFileTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = fs::temp_directory_path() /
+           ("omninav_map_test_" + std::to_string(::getpid()) + "_" + info->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  fs::path dir_;
+};
+
+// A memory of `places` places with random signatures (45 rows, 15 components, luminance),
+// thumbnails of `thumbnail_bytes` random bytes, truth for even places, and a chain of edges.
+// Seeded by `seed`.
+VisualMemory synthetic_memory(std::size_t places, std::size_t thumbnail_bytes = 100,
+                              unsigned seed = 1, VisualMemory memory = VisualMemory{}) {
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<float> magnitude(0.f, 100.f), phase(-3.1f, 3.1f);
+  Run run;
+  run.id = static_cast<int>(memory.runs().size());
+  run.input = "synthetic " + std::to_string(seed);
+  run.started_utc = "2024-01-01T00:00:00Z";
+  run.heading_source = "truth";
+  run.description = "map_file_test";
+  memory.runs().push_back(run);
+  const std::size_t first = memory.place_count();
+  for (std::size_t i = 0; i < places; ++i) {
+    Place p;
+    p.signature.rows = 45;
+    p.signature.channels = 1;
+    p.signature.components = 15;
+    p.signature.width_px = 360;
+    for (std::size_t j = 0; j < p.signature.size(); ++j) {
+      p.signature.magnitude.push_back(magnitude(random));
+      p.signature.phase_rad.push_back(phase(random));
+    }
+    p.source = "image_" + std::to_string(i) + ".png, with a comma";
+    p.frame_index = static_cast<int>(i);
+    p.run = run.id;
+    if (i % 3 != 0) p.time_s = 0.1 * i;
+    if (i % 2 == 0) {
+      p.truth = CameraPose{0.3 * i, -0.1 * i, 1.0, 0.01 * i, 0.001, -0.002};
+      p.heading_rad = p.truth->heading_rad;
+      p.heading_source = HeadingSource::kTruth;
+    }
+    p.thumbnail_png.resize(thumbnail_bytes);
+    for (auto& byte : p.thumbnail_png) byte = static_cast<std::uint8_t>(random());
+    const PlaceIndex index = memory.add_place(std::move(p));
+    if (index > first) {
+      Edge e;
+      e.dissimilarity = 10.0 + i;
+      e.relative_heading_rad = 0.01 * i - 0.5;
+      e.heading_confidence = 0.9;
+      if (i % 4 != 0) e.motion_bearing_rad = 0.1 * i - 1.0;
+      e.motion_bearing_stddev_rad = 0.05;
+      e.parallax_rad = 0.07;
+      memory.add_edge(index - 1, index, e);
+    }
+  }
+  memory.runs().back().places = static_cast<int>(places);
+  memory.runs().back().frames = static_cast<int>(places);
+  return memory;
+}
+
+void expect_same(const VisualMemory& a, const VisualMemory& b) {
+  ASSERT_EQ(a.place_count(), b.place_count());
+  ASSERT_EQ(a.edge_count(), b.edge_count());
+  ASSERT_EQ(a.runs().size(), b.runs().size());
+  EXPECT_EQ(a.parameters().signature.components, b.parameters().signature.components);
+  EXPECT_EQ(a.parameters().signature.colour, b.parameters().signature.colour);
+  EXPECT_EQ(a.parameters().weights.alpha, b.parameters().weights.alpha);
+  EXPECT_EQ(a.parameters().panorama_rows, b.parameters().panorama_rows);
+  EXPECT_EQ(a.notes(), b.notes());
+  for (PlaceIndex i = 0; i < a.place_count(); ++i) {
+    const Place& p = a.place(i);
+    const Place& q = b.place(i);
+    EXPECT_EQ(p.signature.magnitude, q.signature.magnitude) << "place " << i;  // bit-identical
+    EXPECT_EQ(p.signature.phase_rad, q.signature.phase_rad) << "place " << i;
+    EXPECT_EQ(p.signature.rows, q.signature.rows);
+    EXPECT_EQ(p.signature.width_px, q.signature.width_px);
+    EXPECT_EQ(p.heading_rad, q.heading_rad);
+    EXPECT_EQ(p.heading_source, q.heading_source);
+    EXPECT_EQ(p.thumbnail_png, q.thumbnail_png);
+    EXPECT_EQ(p.source, q.source);
+    EXPECT_EQ(p.frame_index, q.frame_index);
+    EXPECT_EQ(p.run, q.run);
+    EXPECT_EQ(p.time_s, q.time_s);
+    ASSERT_EQ(p.truth.has_value(), q.truth.has_value());
+    if (p.truth) {
+      EXPECT_EQ(p.truth->x_m, q.truth->x_m);
+      EXPECT_EQ(p.truth->y_m, q.truth->y_m);
+      EXPECT_EQ(p.truth->heading_rad, q.truth->heading_rad);
+      EXPECT_EQ(p.truth->roll_rad, q.truth->roll_rad);
+    }
+    EXPECT_EQ(p.lattice.has_value(), q.lattice.has_value());
+  }
+  const auto ea = a.edges();
+  const auto eb = b.edges();
+  for (std::size_t i = 0; i < ea.size(); ++i) {
+    EXPECT_EQ(ea[i].from, eb[i].from);
+    EXPECT_EQ(ea[i].to, eb[i].to);
+    EXPECT_EQ(ea[i].edge->dissimilarity, eb[i].edge->dissimilarity);
+    EXPECT_EQ(ea[i].edge->relative_heading_rad, eb[i].edge->relative_heading_rad);
+    EXPECT_EQ(ea[i].edge->motion_bearing_rad, eb[i].edge->motion_bearing_rad);
+    EXPECT_EQ(ea[i].edge->parallax_rad, eb[i].edge->parallax_rad);
+  }
+  for (std::size_t i = 0; i < a.runs().size(); ++i) {
+    EXPECT_EQ(a.runs()[i].id, b.runs()[i].id);
+    EXPECT_EQ(a.runs()[i].input, b.runs()[i].input);
+    EXPECT_EQ(a.runs()[i].places, b.runs()[i].places);
+  }
+}
+
+void sql(const fs::path& file, const std::string& statement) {
+  sqlite3* db = nullptr;
+  ASSERT_EQ(sqlite3_open(file.c_str(), &db), SQLITE_OK);
+  char* error = nullptr;
+  const int code = sqlite3_exec(db, statement.c_str(), nullptr, nullptr, &error);
+  EXPECT_EQ(code, SQLITE_OK) << (error ? error : "");
+  sqlite3_free(error);
+  sqlite3_close(db);
+}
+
+// The InputError message load_map throws, or "" if it throws nothing.
+std::string load_error(const fs::path& file) {
+  try {
+    load_map(file);
+  } catch (const InputError& error) {
+    return error.what();
+  }
+  return "";
+}
+
+TEST(LittleEndianFloats, ExplicitByteOrder) {
+  const std::vector<float> values{1.0f, -2.5f, 0.0f, 3.0e-20f};
+  const std::vector<std::uint8_t> bytes = floats_to_le_bytes(values);
+  ASSERT_EQ(bytes.size(), 16u);
+  // 1.0f is 0x3F800000: least significant byte first.
+  EXPECT_EQ(bytes[0], 0x00);
+  EXPECT_EQ(bytes[1], 0x00);
+  EXPECT_EQ(bytes[2], 0x80);
+  EXPECT_EQ(bytes[3], 0x3F);
+  EXPECT_EQ(floats_from_le_bytes(bytes.data(), bytes.size()), values);
+}
+
+TEST_F(MapFileTest, RoundTripKeepsSignaturesAndGraphIdentical) {
+  VisualMemory memory = synthetic_memory(30);
+  memory.set_note("exploration.every_m", "0.3");
+  memory.place(4).lattice = LatticePosition{1.5, -2.0};
+  const fs::path file = dir_ / "round.vmem";
+  save_map(memory, file);
+  EXPECT_FALSE(fs::exists(dir_ / "round.vmem.partial"));
+  const VisualMemory loaded = load_map(file);
+  expect_same(memory, loaded);
+  EXPECT_EQ(loaded.place(4).lattice->x, 1.5);
+  EXPECT_EQ(loaded.persisted().places, 30u);
+}
+
+TEST_F(MapFileTest, ExploringAgainAppendsToTheMap) {
+  const fs::path file = dir_ / "grow.vmem";
+  VisualMemory memory = synthetic_memory(10);
+  save_map(memory, file);
+  VisualMemory loaded = load_map(file);
+  VisualMemory grown = synthetic_memory(7, 50, 2, std::move(loaded));
+  save_map(grown, file);
+  const VisualMemory again = load_map(file);
+  EXPECT_EQ(again.place_count(), 17u);
+  EXPECT_EQ(again.runs().size(), 2u);
+  EXPECT_EQ(again.edge_count(), 9u + 6u);  // each run's chain; runs are not joined
+  expect_same(grown, again);
+}
+
+TEST_F(MapFileTest, AppendingRefusesAMapChangedOnDiskOrMadeDifferently) {
+  const fs::path file = dir_ / "changed.vmem";
+  VisualMemory memory = synthetic_memory(5);
+  save_map(memory, file);
+  VisualMemory stale = load_map(file);
+  VisualMemory other = synthetic_memory(3, 10, 3, load_map(file));
+  save_map(other, file);
+  VisualMemory more = synthetic_memory(2, 10, 4, std::move(stale));
+  EXPECT_THROW(save_map(more, file), UsageError);
+  EXPECT_EQ(load_map(file).place_count(), 8u);
+
+  MapParameters colour;
+  colour.signature.colour = signature::ColourMode::kPerChannel;
+  colour.signature.components = 15;
+  VisualMemory different(colour);
+  different.mark_persisted();  // pretend: as if it had been read from an empty map
+  const fs::path empty_map = dir_ / "empty.vmem";
+  VisualMemory empty;
+  save_map(empty, empty_map);
+  EXPECT_THROW(save_map(different, empty_map), UsageError);
+}
+
+TEST_F(MapFileTest, OverwriteReplacesTheMap) {
+  const fs::path file = dir_ / "over.vmem";
+  VisualMemory first = synthetic_memory(5);
+  save_map(first, file);
+  VisualMemory second = synthetic_memory(3, 10, 9);
+  save_map(second, file, {.overwrite = true, .after_place = {}});
+  expect_same(second, load_map(file));
+}
+
+TEST_F(MapFileTest, LatticePositionsAreReplacedInOneTransaction) {
+  const fs::path file = dir_ / "lattice.vmem";
+  VisualMemory memory = synthetic_memory(4);
+  save_map(memory, file);
+  save_lattice_positions(file, {{0, 0}, {1, 0}, {1, 1}, {0, 1}});
+  VisualMemory loaded = load_map(file);
+  EXPECT_TRUE(loaded.all_have_lattice());
+  EXPECT_EQ(loaded.place(2).lattice->y, 1.0);
+  EXPECT_THROW(save_lattice_positions(file, {{0, 0}}), UsageError);
+  EXPECT_TRUE(load_map(file).all_have_lattice());  // the failed write changed nothing
+  save_lattice_positions(file, {});
+  EXPECT_FALSE(load_map(file).place(0).lattice.has_value());
+}
+
+// Forks a child that writes `memory` to `file` and blocks after `places_before_kill` places,
+// then kills it with SIGKILL: a writer killed in the middle of its transaction.
+void kill_writer_midway(VisualMemory memory, const fs::path& file, std::size_t places_before_kill,
+                        bool overwrite) {
+  int pipe_fds[2];
+  ASSERT_EQ(::pipe(pipe_fds), 0);
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    ::close(pipe_fds[0]);
+    SaveOptions options;
+    options.overwrite = overwrite;
+    options.after_place = [&](std::size_t written) {
+      if (written == places_before_kill) {
+        const char byte = 'k';
+        (void)!::write(pipe_fds[1], &byte, 1);
+        for (;;) ::pause();  // wait here, mid-transaction, for SIGKILL
+      }
+    };
+    try {
+      save_map(memory, file, options);
+    } catch (...) {
+    }
+    ::_exit(3);  // never reached when the kill lands
+  }
+  ::close(pipe_fds[1]);
+  char byte = 0;
+  ASSERT_EQ(::read(pipe_fds[0], &byte, 1), 1) << "the writer died before its signal";
+  ::close(pipe_fds[0]);
+  ASSERT_EQ(::kill(child, SIGKILL), 0);
+  int status = 0;
+  ASSERT_EQ(::waitpid(child, &status, 0), child);
+  ASSERT_TRUE(WIFSIGNALED(status));
+  EXPECT_EQ(WTERMSIG(status), SIGKILL);
+}
+
+TEST_F(MapFileTest, AWriterKilledWhileAppendingLeavesThePreviousMap) {
+  const fs::path file = dir_ / "killed.vmem";
+  VisualMemory before = synthetic_memory(20, 100);
+  save_map(before, file);
+  // 1500 places with 8 KB thumbnails: ~20 MB, far more than SQLite's page cache, so pages of
+  // the unfinished transaction reach the file and only the journal can undo them.
+  VisualMemory bigger = synthetic_memory(1500, 8000, 2, load_map(file));
+  kill_writer_midway(std::move(bigger), file, 1000, false);
+  fs::path journal = file;
+  journal += "-journal";
+  EXPECT_TRUE(fs::exists(journal)) << "the kill should leave a hot journal";
+  const VisualMemory after = load_map(file);
+  expect_same(before, after);
+  EXPECT_FALSE(fs::exists(journal)) << "opening rolls the journal back";
+}
+
+TEST_F(MapFileTest, AWriterKilledWhileCreatingLeavesNoMapOrTheOldOne) {
+  const fs::path file = dir_ / "new.vmem";
+  kill_writer_midway(synthetic_memory(600, 8000), file, 300, false);
+  EXPECT_FALSE(fs::exists(file));
+  EXPECT_NE(load_error(file).find("no such map file"), std::string::npos);
+
+  VisualMemory old = synthetic_memory(5);
+  save_map(old, file);
+  kill_writer_midway(synthetic_memory(600, 8000, 4), file, 300, true);
+  expect_same(old, load_map(file));
+  // The next write cleans up the killed writer's leftovers.
+  VisualMemory next = synthetic_memory(2, 10, 5);
+  save_map(next, file, {.overwrite = true, .after_place = {}});
+  EXPECT_FALSE(fs::exists(dir_ / "new.vmem.partial"));
+  expect_same(next, load_map(file));
+}
+
+TEST_F(MapFileTest, EachBadFileGivesItsError) {
+  EXPECT_NE(load_error(dir_ / "missing.vmem").find("no such map file"), std::string::npos);
+
+  const fs::path text = dir_ / "text.vmem";
+  std::ofstream(text, std::ios::binary) << "these are not the droids you are looking for\n"
+                                        << std::string(5000, 'x');
+  EXPECT_NE(load_error(text).find("not an SQLite database"), std::string::npos)
+      << load_error(text);
+
+  const fs::path other = dir_ / "other.sqlite";
+  sql(other, "CREATE TABLE things (a INTEGER); INSERT INTO things VALUES (1);");
+  EXPECT_NE(load_error(other).find("not an omninav map"), std::string::npos) << load_error(other);
+
+  const fs::path empty = dir_ / "empty.vmem";
+  std::ofstream(empty, std::ios::binary).flush();
+  EXPECT_NE(load_error(empty).find("not an omninav map"), std::string::npos) << load_error(empty);
+
+  const fs::path newer = dir_ / "newer.vmem";
+  VisualMemory memory = synthetic_memory(5);
+  save_map(memory, newer);
+  sql(newer, "UPDATE schema_version SET version = 7, written_by = 'omninav 9.0'");
+  const std::string newer_error = load_error(newer);
+  EXPECT_NE(newer_error.find("schema version 7"), std::string::npos) << newer_error;
+  EXPECT_NE(newer_error.find("reads up to version 1"), std::string::npos) << newer_error;
+
+  const fs::path short_blob = dir_ / "blob.vmem";
+  VisualMemory memory2 = synthetic_memory(5);
+  save_map(memory2, short_blob);
+  sql(short_blob, "UPDATE places SET magnitude = x'0000803F' WHERE id = 3");
+  EXPECT_NE(load_error(short_blob).find("corrupt map: place 3: signature blobs"),
+            std::string::npos)
+      << load_error(short_blob);
+
+  const fs::path dangling = dir_ / "dangling.vmem";
+  VisualMemory memory3 = synthetic_memory(5);
+  save_map(memory3, dangling);
+  sql(dangling,
+      "INSERT INTO edges VALUES (99, 1, 42, 'sequence', 1.0, 0.0, 1.0, NULL, 0.0, 0.0)");
+  EXPECT_NE(load_error(dangling).find("names place 42"), std::string::npos)
+      << load_error(dangling);
+
+  const fs::path truncated = dir_ / "truncated.vmem";
+  VisualMemory big = synthetic_memory(300, 2000);
+  save_map(big, truncated);
+  fs::resize_file(truncated, fs::file_size(truncated) / 2);
+  const std::string truncated_error = load_error(truncated);
+  EXPECT_NE(truncated_error.find("corrupt"), std::string::npos) << truncated_error;
+
+  const fs::path scribbled = dir_ / "scribbled.vmem";
+  save_map(big, scribbled);
+  {
+    std::fstream file(scribbled, std::ios::binary | std::ios::in | std::ios::out);
+    file.seekp(4096 * 3);
+    file << std::string(4096 * 20, '\xA5');
+  }
+  const std::string scribbled_error = load_error(scribbled);
+  EXPECT_NE(scribbled_error.find("corrupt"), std::string::npos) << scribbled_error;
+
+  const fs::path folder = dir_ / "folder.vmem";
+  fs::create_directories(folder);
+  EXPECT_NE(load_error(folder).find("not a regular file"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace omninav::memory

@@ -1,0 +1,101 @@
+#include "omninav/signature/phase_heading.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "omninav/core/angles.hpp"
+#include "omninav/core/errors.hpp"
+#include "omninav/core/panorama.hpp"
+#include "rendered_room.hpp"
+
+namespace omninav::signature {
+namespace {
+
+using testing::render;
+
+// The tolerance: the roll recovered within half a column.
+double column_error(double turn_rad, double expected_columns, int width) {
+  const double expected_rad = rotation_of_shift_px(expected_columns, width);
+  return std::fabs(signed_difference(turn_rad, expected_rad)) * width / kTwoPi;
+}
+
+TEST(PhaseHeading, RecoversEveryWholeRollWithinHalfAColumn) {
+  for (const auto& [width, height] : {std::pair{360, 45}, std::pair{720, 80}}) {
+    const cv::Mat panorama = render(2.4, 1.9, 25.0, width, height);
+    for (ColourMode mode : {ColourMode::kLuminance, ColourMode::kPerChannel}) {
+      SignatureExtractor extractor({15, mode});
+      const Signature reference = extractor.compute(panorama);
+      double worst = 0.0;
+      for (int shift = -width / 2 + 1; shift <= width / 2; shift += (width == 360 ? 1 : 7)) {
+        const Signature rolled = extractor.compute(roll_columns(panorama, shift));
+        const PhaseHeading heading = relative_heading(reference, rolled);
+        worst = std::max(worst, column_error(heading.turn_rad, shift, width));
+        EXPECT_GT(heading.confidence, 0.999) << "roll " << shift;
+      }
+      // A pure roll is exact up to float rounding: far inside the half column asked for.
+      EXPECT_LT(worst, 0.01) << width << "x" << height << " " << to_string(mode);
+    }
+  }
+}
+
+TEST(PhaseHeading, RecoversFractionalRollsWithinHalfAColumn) {
+  const cv::Mat panorama = render(3.7, 2.2, -60.0);
+  SignatureExtractor extractor({15, ColourMode::kLuminance});
+  const Signature reference = extractor.compute(panorama);
+  for (double shift : {0.25, 0.5, 10.75, -33.5, 179.5, -179.25}) {
+    const Signature rolled = extractor.compute(roll_columns_fractional(panorama, shift));
+    EXPECT_LT(column_error(relative_heading(reference, rolled).turn_rad, shift, 360), 0.5)
+        << "roll " << shift;
+  }
+}
+
+TEST(PhaseHeading, RenderedTurnsOnTheSpotInDesignSignConvention) {
+  // Turning counter-clockwise (heading grows, REP 103) must give a positive turn: the
+  // heading of `to` minus the heading of `from`, as DESIGN.md defines headings.
+  SignatureExtractor extractor({15, ColourMode::kLuminance});
+  for (const auto& [x, y, start_deg] : {std::tuple{2.0, 2.0, 0.0}, std::tuple{4.3, 1.2, 130.0},
+                                        std::tuple{1.1, 3.8, -75.0}}) {
+    const Signature from = extractor.compute(render(x, y, start_deg));
+    for (double turn_deg : {0.3, 5.25, 17.5, 44.4, 90.0, -100.2, 150.6, 179.0, -179.6}) {
+      const Signature to = extractor.compute(render(x, y, start_deg + turn_deg));
+      const PhaseHeading heading = relative_heading(from, to);
+      EXPECT_LT(std::fabs(signed_difference_deg(rad_to_deg(heading.turn_rad), turn_deg)), 0.5)
+          << "at (" << x << ", " << y << ") turning " << turn_deg << " deg from " << start_deg;
+    }
+  }
+}
+
+TEST(PhaseHeading, SurvivesShortTranslations) {
+  // Between neighbouring places the views differ by parallax as well as the turn; the heading
+  // must still come out near the true change (the spring lattice and the navigator use it).
+  SignatureExtractor extractor({15, ColourMode::kLuminance});
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> x(1.0, 5.0), y(1.0, 4.0), angle(-180.0, 180.0);
+  const sim::World& world = testing::room();
+  std::vector<double> errors;
+  while (errors.size() < 40) {
+    const double x0 = x(random), y0 = y(random), direction = deg_to_rad(angle(random));
+    const double x1 = x0 + 0.3 * std::cos(direction), y1 = y0 + 0.3 * std::sin(direction);
+    if (!world.is_free(x0, y0, 0.2) || !world.is_free(x1, y1, 0.2)) continue;
+    const double h0 = angle(random), h1 = angle(random);
+    const PhaseHeading heading = relative_heading(extractor.compute(render(x0, y0, h0)),
+                                                  extractor.compute(render(x1, y1, h1)));
+    errors.push_back(std::fabs(signed_difference_deg(rad_to_deg(heading.turn_rad), h1 - h0)));
+  }
+  std::sort(errors.begin(), errors.end());
+  EXPECT_LT(errors[errors.size() / 2], 3.0) << "median error over 30 cm steps, degrees";
+  EXPECT_LT(errors[errors.size() * 9 / 10], 10.0) << "90th percentile, degrees";
+}
+
+TEST(PhaseHeading, RefusesMismatchedSignatures) {
+  const Signature a = compute_signature(render(2.0, 2.0, 0.0), {15, ColourMode::kLuminance});
+  const Signature b = compute_signature(render(2.0, 2.0, 0.0), {15, ColourMode::kPerChannel});
+  EXPECT_THROW(relative_heading(a, b), UsageError);
+  EXPECT_THROW(relative_heading(a, a, 1), UsageError);
+  EXPECT_THROW(relative_heading(a, a, 16), UsageError);
+}
+
+}  // namespace
+}  // namespace omninav::signature
