@@ -24,4 +24,34 @@ sim::WorldsConfig load_worlds_config(const std::filesystem::path& config_dir,
   return worlds;
 }
 
+compass::CompassConfig load_compass_config(const std::filesystem::path& config_dir) {
+  const ConfigReader config = ConfigReader::from_file(config_dir / "compass.yaml");
+  compass::CompassConfig compass;
+  compass::load_compass_config(config, compass);
+  config.require_all_known();
+  return compass;
+}
+
+memory::MemoryConfig load_memory_config(const std::filesystem::path& config_dir) {
+  return memory::load_memory_config(ConfigReader::from_file(config_dir / "memory.yaml"));
+}
+
+lattice::OrganiseParams load_lattice_config(const std::filesystem::path& config_dir) {
+  const ConfigReader config = ConfigReader::from_file(config_dir / "lattice.yaml");
+  lattice::OrganiseParams params;
+  lattice::load_organise_params(config.section("organise"), params);
+  config.require_all_known();
+  return params;
+}
+
+NavigationConfig load_navigation_config(const std::filesystem::path& config_dir) {
+  const ConfigReader config = ConfigReader::from_file(config_dir / "navigation.yaml");
+  NavigationConfig navigation;
+  config.section("route").read("neighbour_spacings", navigation.neighbour_spacings, 1.0, 10.0);
+  navigation::load_navigator_params(config.section("navigator"), navigation.navigator);
+  sim::load_robot_params(config.section("robot"), navigation.robot);
+  config.require_all_known();
+  return navigation;
+}
+
 }  // namespace omninav::cli

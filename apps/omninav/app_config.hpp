@@ -4,8 +4,13 @@
 
 #include <filesystem>
 
+#include "omninav/compass/compass_config.hpp"
 #include "omninav/core/panorama.hpp"
+#include "omninav/lattice/organise.hpp"
+#include "omninav/memory/memory_config.hpp"
+#include "omninav/navigation/navigator.hpp"
 #include "omninav/omni/unwrap.hpp"
+#include "omninav/sim/virtual_robot.hpp"
 #include "omninav/sim/world_loader.hpp"
 
 namespace omninav::cli {
@@ -21,5 +26,25 @@ CameraConfig load_camera_config(const std::filesystem::path& config_dir);
 // <config_dir>/worlds.yaml: sections room, obj and render; the render geometry is `panorama`.
 sim::WorldsConfig load_worlds_config(const std::filesystem::path& config_dir,
                                      const PanoramaGeometry& panorama);
+
+// <config_dir>/compass.yaml: sections distance, minimiser, phase, subpixel, sampling,
+// confidence and input (libs/compass/.../compass_config.hpp).
+compass::CompassConfig load_compass_config(const std::filesystem::path& config_dir);
+
+// <config_dir>/memory.yaml: sections signature, exploration and localisation
+// (libs/memory/.../memory_config.hpp).
+memory::MemoryConfig load_memory_config(const std::filesystem::path& config_dir);
+
+// <config_dir>/lattice.yaml: section organise (libs/lattice/.../organise.hpp).
+lattice::OrganiseParams load_lattice_config(const std::filesystem::path& config_dir);
+
+struct NavigationConfig {
+  double neighbour_spacings = 1.6;  // route: lattice neighbours within this many spacings
+  navigation::NavigatorParams navigator;
+  sim::RobotParams robot;
+};
+
+// <config_dir>/navigation.yaml: sections route, navigator and robot.
+NavigationConfig load_navigation_config(const std::filesystem::path& config_dir);
 
 }  // namespace omninav::cli

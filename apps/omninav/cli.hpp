@@ -28,6 +28,8 @@ void add_compass_command(CLI::App& app, const GlobalOptions& global);
 void add_explore_command(CLI::App& app, const GlobalOptions& global);
 void add_localise_command(CLI::App& app, const GlobalOptions& global);
 void add_export_command(CLI::App& app, const GlobalOptions& global);
+void add_organise_command(CLI::App& app, const GlobalOptions& global);
+void add_navigate_command(CLI::App& app, const GlobalOptions& global);
 void add_demo_command(CLI::App& app, const GlobalOptions& global);
 
 }  // namespace omninav::cli

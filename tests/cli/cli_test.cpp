@@ -164,6 +164,56 @@ TEST_F(CommandLine, UnwrapRecoversRenderedPanoramasFromSyntheticMirrorImages) {
       2);
 }
 
+TEST_F(CommandLine, OrganiseThenNavigateNeedTheirPrerequisites) {
+  const std::filesystem::path grid = folder_ / "grid";
+  ASSERT_EQ(run_omninav({"render", "--trajectory", "grid:x0=1.2,y0=1.0,nx=5,ny=4,spacing_m=0.3",
+                         "--out", grid.string(), "--width", "180", "--height", "24"}),
+            0)
+      << errors_;
+  const std::filesystem::path map = folder_ / "grid.vmem";
+  ASSERT_EQ(run_omninav({"explore", "--input", grid.string(), "--out", map.string()}), 0)
+      << errors_;
+  const std::string goal = io::read_all(*io::open_sequence(grid)).back().source;
+  // Navigating a map that has no lattice yet: a usage error saying what to do.
+  EXPECT_EQ(run_omninav({"navigate", map.string(), "--start", "1.5,1.6,0", "--goal", goal, "--out",
+                         (folder_ / "nav").string()}),
+            2);
+  EXPECT_NE(errors_.find("organise"), std::string::npos) << errors_;
+  // A grid database has no spacing policy: the scale must be given.
+  EXPECT_EQ(run_omninav({"organise", map.string()}), 2);
+  EXPECT_NE(errors_.find("--step-m"), std::string::npos) << errors_;
+  ASSERT_EQ(run_omninav({"organise", map.string(), "--step-m", "0.3"}), 0) << errors_;
+  EXPECT_TRUE(std::filesystem::exists(folder_ / "grid.lattice.png"));
+  EXPECT_EQ(run_omninav({"navigate", map.string(), "--start", "1.5,1.6,0", "--goal", goal, "--out",
+                         (folder_ / "nav").string(), "--max-steps", "5"}),
+            0)
+      << errors_;
+  EXPECT_TRUE(std::filesystem::exists(folder_ / "nav" / "steps.csv"));
+}
+
+TEST_F(CommandLine, CompassFollowsARenderedTurnAndWritesItsCsv) {
+  const std::filesystem::path run = folder_ / "rotate";
+  ASSERT_EQ(
+      run_omninav({"render", "--trajectory", "rotate:x=2.4,y=1.2,turns=0.25,rate_deg_s=-30,fps=5",
+                   "--out", run.string()}),
+      0)
+      << errors_;
+  const std::filesystem::path csv = folder_ / "compass.csv";
+  ASSERT_EQ(run_omninav({"compass", "--input", run.string(), "--truth", "--out", csv.string()}), 0)
+      << errors_;
+  std::ifstream file(csv);
+  std::string header, line, last;
+  std::getline(file, header);
+  int rows = 0;
+  while (std::getline(file, line)) {
+    last = line;
+    ++rows;
+  }
+  EXPECT_EQ(rows, 16);  // a quarter turn at 30°/s is 3 s: 15 intervals at 5 Hz, 16 frames
+  EXPECT_NE(header.find("heading_deg"), std::string::npos) << header;
+  EXPECT_EQ(run_omninav({"compass", "--input", (folder_ / "nowhere").string()}), 2);
+}
+
 TEST_F(CommandLine, UnwrapOfAFolderWithACorruptImageNamesIt) {
   const std::filesystem::path raw = folder_ / "raw";
   std::filesystem::create_directories(raw);

@@ -20,8 +20,10 @@ std::vector<Eigen::Vector2d> lattice_points(const memory::VisualMemory& memory) 
 
 }  // namespace
 
-std::optional<LatticeEvaluation> evaluate_against_truth(const memory::VisualMemory& memory, bool allow_reflection) {
-  if (!memory.all_have_truth() || !memory.all_have_lattice() || memory.place_count() < 3) return std::nullopt;
+std::optional<LatticeEvaluation> evaluate_against_truth(const memory::VisualMemory& memory,
+                                                        bool allow_reflection) {
+  if (!memory.all_have_truth() || !memory.all_have_lattice() || memory.place_count() < 3)
+    return std::nullopt;
   std::vector<Eigen::Vector2d> truth;
   for (std::size_t i = 0; i < memory.place_count(); ++i) {
     truth.emplace_back(memory.place(i).truth->x_m, memory.place(i).truth->y_m);
@@ -46,9 +48,11 @@ std::optional<LatticeEvaluation> evaluate_against_truth(const memory::VisualMemo
   }
   eval::ProcrustesParams params;
   params.allow_reflection = allow_reflection;
-  const eval::ProcrustesResult aligned = eval::align_similarity(lattice_points(memory), truth, params);
+  const eval::ProcrustesResult aligned =
+      eval::align_similarity(lattice_points(memory), truth, params);
   evaluation.aligned = aligned.aligned;
-  evaluation.rmse = eval::split_rmse_in_spacing(aligned.aligned, truth, evaluation.boundary, evaluation.spacing_m);
+  evaluation.rmse = eval::split_rmse_in_spacing(aligned.aligned, truth, evaluation.boundary,
+                                                evaluation.spacing_m);
   return evaluation;
 }
 
@@ -59,12 +63,16 @@ cv::Mat lattice_picture(const memory::VisualMemory& memory, const OrganiseResult
   // Weak springs first, so that the stiff ones are drawn on top.
   std::vector<SpringMeasurement> springs = organised.springs;
   std::sort(springs.begin(), springs.end(),
-            [](const SpringMeasurement& a, const SpringMeasurement& b) { return a.length_m > b.length_m; });
+            [](const SpringMeasurement& a, const SpringMeasurement& b) {
+              return a.length_m > b.length_m;
+            });
   for (const SpringMeasurement& spring : springs) {
-    const double stiffness = spring_stiffness(spring.length_m, organised.calibration.correlation_range_m);
+    const double stiffness =
+        spring_stiffness(spring.length_m, organised.calibration.correlation_range_m);
     if (stiffness < 1e-3) continue;  // too weak to see, and to matter
     lattice.add_segment({cv::Point2d(points[spring.a].x(), points[spring.a].y()),
-                         cv::Point2d(points[spring.b].x(), points[spring.b].y()), 0.85 - 0.75 * stiffness, 0.6});
+                         cv::Point2d(points[spring.b].x(), points[spring.b].y()),
+                         0.85 - 0.75 * stiffness, 0.6});
   }
   std::vector<cv::Point2d> places;
   for (const Eigen::Vector2d& p : points) places.emplace_back(p.x(), p.y());

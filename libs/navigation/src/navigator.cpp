@@ -37,6 +37,11 @@ NavigationResult navigate(sim::VirtualRobot& robot, const sim::Renderer& rendere
     step.truth = robot.pose();
     step.match = localise(renderer.render(robot.pose(), robot.elapsed_s(), index));
     const int place = step.match.place;
+    if (place < 0) {  // nothing recognised (an empty candidate set): go on straight ahead
+      result.path_length_m += robot.move(0.0, params.step_m);
+      result.steps.push_back(step);
+      continue;
+    }
     step.heading_estimate_rad =
         wrap_angle(places[place].heading_rad + step.match.heading_in_place_rad);
     // A jump: neither where we were, nor where we were heading, nor next to either.

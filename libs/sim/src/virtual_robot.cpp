@@ -28,11 +28,15 @@ double VirtualRobot::move(double turn_rad, double distance_m) {
   // Drive in small increments so that the robot stops at the first obstacle it would touch.
   constexpr double kIncrement_m = 0.01;
   double driven = 0.0;
+  // A robot placed closer to an obstacle than its clearance may still drive away: then only
+  // entering the obstacle itself stops it.
+  const double clearance =
+      world_.is_free(pose_.x_m, pose_.y_m, params_.radius_m) ? params_.radius_m : 0.0;
   while (driven < wanted) {
     const double increment = std::min(kIncrement_m, wanted - driven);
     const double x = pose_.x_m + increment * std::cos(pose_.heading_rad);
     const double y = pose_.y_m + increment * std::sin(pose_.heading_rad);
-    if (!world_.is_free(x, y, params_.radius_m)) break;
+    if (!world_.is_free(x, y, clearance)) break;
     pose_.x_m = x;
     pose_.y_m = y;
     driven += increment;

@@ -12,9 +12,10 @@
 namespace omninav::lattice {
 
 struct LatticeEvaluation {
-  double spacing_m = 0.0;         // the truth's typical spacing (median nearest-neighbour distance)
-  eval::SplitRmse rmse;           // in spacings
-  std::vector<std::size_t> boundary;  // places with fewer than 8 true neighbours within 1.5 spacings
+  double spacing_m = 0.0;  // the truth's typical spacing (median nearest-neighbour distance)
+  eval::SplitRmse rmse;    // in spacings
+  std::vector<std::size_t>
+      boundary;  // places with fewer than 8 true neighbours within 1.5 spacings
   std::vector<Eigen::Vector2d> aligned;  // the lattice aligned onto the truth
 };
 

@@ -1,0 +1,82 @@
+// omninav organise: the spring-model lattice of a visual memory (Ceres), stored in the map.
+#include <iomanip>
+#include <iostream>
+
+#include "app_config.hpp"
+#include "cli.hpp"
+#include "omninav/core/errors.hpp"
+#include "omninav/eval/png.hpp"
+#include "omninav/lattice/lattice_report.hpp"
+#include "omninav/memory/map_file.hpp"
+
+namespace omninav::cli {
+namespace {
+
+struct OrganiseOptions {
+  std::filesystem::path map;
+  double step_m = 0.0;
+  bool no_motion = false;
+  std::filesystem::path picture;
+};
+
+void run_organise(const GlobalOptions& global, const OrganiseOptions& options) {
+  lattice::OrganiseParams params = load_lattice_config(global.config_dir);
+  if (options.step_m > 0.0) params.step_m = options.step_m;
+  if (options.no_motion) params.motion_constraints = false;
+  memory::VisualMemory memory = memory::load_map(options.map);
+  const lattice::OrganiseResult organised = lattice::organise(memory, params);
+  std::vector<memory::LatticePosition> positions;
+  for (std::size_t i = 0; i < memory.place_count(); ++i)
+    positions.push_back(*memory.place(i).lattice);
+  memory::save_lattice_positions(options.map, positions);
+
+  const lattice::DistanceCalibration& calibration = organised.calibration;
+  std::cout << std::fixed << std::setprecision(3) << "organised " << memory.place_count()
+            << " places of " << options.map.string() << "\n"
+            << "  scale:    " << calibration.step_m << " m between consecutive places ("
+            << calibration.step_source << "), dissimilarity " << calibration.step_dissimilarity
+            << " per step, plateau " << calibration.plateau_dissimilarity << "\n"
+            << "  springs:  " << organised.lattice.springs_kept << " kept of "
+            << organised.lattice.springs_given << " (x1 = " << calibration.correlation_range_m
+            << " m; weaker than K = " << params.lattice.min_stiffness << " dropped), "
+            << organised.lattice.motion_constraints << " motion constraints\n"
+            << "  solver:   " << organised.lattice.summary << "\n";
+  const std::optional<lattice::LatticeEvaluation> evaluation =
+      lattice::evaluate_against_truth(memory, organised.motions.empty());
+  if (evaluation) {
+    std::cout << "  vs truth: RMSE after Procrustes " << evaluation->rmse.all << " spacings ("
+              << evaluation->rmse.interior << " interior, " << evaluation->rmse.boundary
+              << " boundary; spacing " << evaluation->spacing_m << " m)\n";
+  }
+  const std::filesystem::path picture =
+      options.picture.empty() ? std::filesystem::path(options.map).replace_extension(".lattice.png")
+                              : options.picture;
+  eval::save_png(lattice::lattice_picture(memory, organised, evaluation), picture);
+  std::cout << "  picture:  " << picture.string() << "\n";
+}
+
+}  // namespace
+
+void add_organise_command(CLI::App& app, const GlobalOptions& global) {
+  auto options = std::make_shared<OrganiseOptions>();
+  CLI::App* command = app.add_subcommand(
+      "organise",
+      "Arrange the places of a visual memory into a 2-D lattice with the spring model "
+      "(001_5bb151a4e28490b4.txt §3; Ceres): distances from similarity, stiff short springs, "
+      "directions of motion from the phases. Stores the positions in the map, prints the "
+      "calibration and the solver's report, and draws <map>.lattice.png (with the truth beside "
+      "it and the Procrustes RMSE when the map has ground truth).");
+  command->add_option("map", options->map, "The map (.vmem)")->required()->check(CLI::ExistingFile);
+  command
+      ->add_option("--step-m", options->step_m,
+                   "Metres between consecutive places of the exploration (default: lattice.yaml, "
+                   "else the map's spacing policy)")
+      ->check(CLI::Range(0.0, 100.0));
+  command->add_flag("--no-motion", options->no_motion,
+                    "Springs only: no motion-direction constraints");
+  command->add_option("--picture", options->picture,
+                      "Where to draw the lattice (default: <map>.lattice.png)");
+  command->callback([&global, options] { run_organise(global, *options); });
+}
+
+}  // namespace omninav::cli
