@@ -2,12 +2,12 @@
 // signature; ≤ 10 ms per query at 100,000 places.
 // Run: build/bin/signature_bench   (one core: taskset -c 0 build/bin/signature_bench)
 #include <benchmark/benchmark.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <map>
 #include <memory>
 #include <random>
-#include <unistd.h>
 
 #include "../signature/synthetic_signatures.hpp"
 #include "omninav/memory/exploration.hpp"
@@ -102,11 +102,20 @@ void query_time(benchmark::State& state, bool exhaustive, int channels) {
   state.counters["index_bytes_per_place"] = static_cast<double>(p.index->bytes()) / n;
 }
 BENCHMARK_CAPTURE(query_time, pruned_luminance, false, 1)
-    ->Arg(1000)->Arg(10000)->Arg(100000)->Unit(benchmark::kMillisecond);
+    ->Arg(1000)
+    ->Arg(10000)
+    ->Arg(100000)
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(query_time, exhaustive_luminance, true, 1)
-    ->Arg(1000)->Arg(10000)->Arg(100000)->Unit(benchmark::kMillisecond);
+    ->Arg(1000)
+    ->Arg(10000)
+    ->Arg(100000)
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(query_time, pruned_per_channel, false, 3)
-    ->Arg(1000)->Arg(10000)->Arg(100000)->Unit(benchmark::kMillisecond);
+    ->Arg(1000)
+    ->Arg(10000)
+    ->Arg(100000)
+    ->Unit(benchmark::kMillisecond);
 
 // Bytes per place in memory (VisualMemory: signature, thumbnail, graph; plus the search index)
 // and on disk (the .vmem file), for a map of rendered places.
@@ -136,7 +145,8 @@ void bytes_per_place(benchmark::State& state, ColourMode mode) {
   signature::SignatureIndex index(45, mode == ColourMode::kLuminance ? 1 : 3, {2, 5, 15});
   for (int i = 0; i < n; ++i) index.add(map.place(static_cast<std::size_t>(i)).signature);
   std::size_t thumbnails = 0;
-  for (int i = 0; i < n; ++i) thumbnails += map.place(static_cast<std::size_t>(i)).thumbnail_png.size();
+  for (int i = 0; i < n; ++i)
+    thumbnails += map.place(static_cast<std::size_t>(i)).thumbnail_png.size();
   state.counters["memory_bytes_per_place"] = static_cast<double>(map.bytes()) / n;
   state.counters["index_bytes_per_place"] = static_cast<double>(index.bytes()) / n;
   state.counters["thumbnail_bytes_per_place"] = static_cast<double>(thumbnails) / n;
@@ -145,9 +155,11 @@ void bytes_per_place(benchmark::State& state, ColourMode mode) {
   std::filesystem::remove(file);
 }
 BENCHMARK_CAPTURE(bytes_per_place, luminance, ColourMode::kLuminance)
-    ->Unit(benchmark::kMillisecond)->Iterations(3);
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3);
 BENCHMARK_CAPTURE(bytes_per_place, per_channel, ColourMode::kPerChannel)
-    ->Unit(benchmark::kMillisecond)->Iterations(3);
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3);
 
 }  // namespace
 

@@ -21,8 +21,12 @@ std::vector<io::Frame> route_frames() {
     const double heading = deg_to_rad(10.0);
     for (int i = 0; i < 60; ++i) {
       const double along = 0.05 * i;
-      CameraPose pose{1.2 + along * std::cos(heading), 2.3 + along * std::sin(heading), 1.0,
-                      heading + deg_to_rad(i >= 40 ? 2.0 * (i - 40) : 0.0), 0.0, 0.0};
+      CameraPose pose{1.2 + along * std::cos(heading),
+                      2.3 + along * std::sin(heading),
+                      1.0,
+                      heading + deg_to_rad(i >= 40 ? 2.0 * (i - 40) : 0.0),
+                      0.0,
+                      0.0};
       out.push_back(testing::render_frame(pose, i, "route#" + std::to_string(i)));
     }
     return out;
@@ -51,8 +55,8 @@ TEST(Exploration, EveryNFramesAndEveryMetres) {
     VisualMemory memory;
     Explorer explorer(memory, only(0.0, 4, 0.0), "route", "test");
     for (const io::Frame& f : route_frames()) explorer.add(f);
-    EXPECT_EQ(place_frames(memory), (std::vector<int>{0, 4, 8, 12, 16, 20, 24, 28, 32, 36, 40, 44,
-                                                      48, 52, 56}));
+    EXPECT_EQ(place_frames(memory),
+              (std::vector<int>{0, 4, 8, 12, 16, 20, 24, 28, 32, 36, 40, 44, 48, 52, 56}));
     EXPECT_EQ(explorer.run().frames, 60);
     EXPECT_EQ(explorer.run().places, 15);
   }
@@ -94,13 +98,13 @@ TEST(Exploration, EdgesCarryRelativeHeadingAndDirectionOfMotion) {
     const CameraPose& b = *memory.place(e.to).truth;
     EXPECT_EQ(e.to, e.from + 1);
     EXPECT_GT(e.edge->dissimilarity, 0.0);
-    EXPECT_LT(std::fabs(rad_to_deg(signed_difference(e.edge->relative_heading_rad,
-                                                     signed_difference(b.heading_rad,
-                                                                       a.heading_rad)))),
+    EXPECT_LT(std::fabs(rad_to_deg(signed_difference(
+                  e.edge->relative_heading_rad, signed_difference(b.heading_rad, a.heading_rad)))),
               3.0)
         << "edge " << e.from << "->" << e.to;
     ASSERT_TRUE(e.edge->motion_bearing_rad.has_value()) << "edge " << e.from;
-    const double bearing = signed_difference(std::atan2(b.y_m - a.y_m, b.x_m - a.x_m), a.heading_rad);
+    const double bearing =
+        signed_difference(std::atan2(b.y_m - a.y_m, b.x_m - a.x_m), a.heading_rad);
     bearing_errors.push_back(
         std::fabs(rad_to_deg(signed_difference(*e.edge->motion_bearing_rad, bearing))));
   }

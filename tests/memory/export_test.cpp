@@ -92,8 +92,9 @@ TEST(MemoryConfig, TheShippedFileLoadsAndUnknownKeysAreErrors) {
   EXPECT_EQ(config.map.signature.components, 15);
   EXPECT_EQ(config.localisation.hierarchy.levels, (std::vector<int>{2, 5, 15}));
   EXPECT_EQ(config.map.weights.alpha, (std::vector<double>{1.0}));
-  EXPECT_THROW(load_memory_config(ConfigReader::from_string("signature: {component: 15}", "m.yaml")),
-               ConfigError);
+  EXPECT_THROW(
+      load_memory_config(ConfigReader::from_string("signature: {component: 15}", "m.yaml")),
+      ConfigError);
   EXPECT_THROW(
       load_memory_config(ConfigReader::from_string("exploration: {every_m: -1}", "m.yaml")),
       ConfigError);

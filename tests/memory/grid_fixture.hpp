@@ -50,8 +50,8 @@ inline const std::vector<io::Frame>& grid_frames() {
     const sim::Trajectory grid = sim::make_trajectory(kGridSpec, room());
     std::vector<io::Frame> out;
     for (std::size_t i = 0; i < grid.poses.size(); ++i) {
-      out.push_back(render_frame(grid.poses[i].pose, static_cast<int>(i),
-                                 "grid#" + std::to_string(i)));
+      out.push_back(
+          render_frame(grid.poses[i].pose, static_cast<int>(i), "grid#" + std::to_string(i)));
     }
     return out;
   }();

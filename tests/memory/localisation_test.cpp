@@ -22,7 +22,7 @@ double distance_m(const CameraPose& a, const CameraPose& b) {
 
 struct GridScores {
   int queries = 0;
-  int within_spacing = 0;                  // finest best place within one spacing of the truth
+  int within_spacing = 0;                   // finest best place within one spacing of the truth
   std::vector<int> level_contains_nearest;  // per level
   std::vector<double> level_mean_size;
   int pruned_equals_exhaustive = 0;
@@ -57,9 +57,8 @@ GridScores score(signature::ColourMode colour, std::size_t query_count) {
     }
     EXPECT_TRUE(best.heading_rad.has_value());
     if (!best.heading_rad) continue;
-    s.heading_errors_deg.push_back(
-        std::fabs(signed_difference_deg(rad_to_deg(*best.heading_rad),
-                                        rad_to_deg(q.frame.truth->heading_rad))));
+    s.heading_errors_deg.push_back(std::fabs(signed_difference_deg(
+        rad_to_deg(*best.heading_rad), rad_to_deg(q.frame.truth->heading_rad))));
   }
   std::sort(s.heading_errors_deg.begin(), s.heading_errors_deg.end());
   std::cout << signature::to_string(colour) << ": " << s.within_spacing << "/" << s.queries

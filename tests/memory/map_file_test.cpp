@@ -312,8 +312,7 @@ TEST_F(MapFileTest, EachBadFileGivesItsError) {
   const fs::path text = dir_ / "text.vmem";
   std::ofstream(text, std::ios::binary) << "these are not the droids you are looking for\n"
                                         << std::string(5000, 'x');
-  EXPECT_NE(load_error(text).find("not an SQLite database"), std::string::npos)
-      << load_error(text);
+  EXPECT_NE(load_error(text).find("not an SQLite database"), std::string::npos) << load_error(text);
 
   const fs::path other = dir_ / "other.sqlite";
   sql(other, "CREATE TABLE things (a INTEGER); INSERT INTO things VALUES (1);");
@@ -335,17 +334,14 @@ TEST_F(MapFileTest, EachBadFileGivesItsError) {
   VisualMemory memory2 = synthetic_memory(5);
   save_map(memory2, short_blob);
   sql(short_blob, "UPDATE places SET magnitude = x'0000803F' WHERE id = 3");
-  EXPECT_NE(load_error(short_blob).find("corrupt map: place 3: signature blobs"),
-            std::string::npos)
+  EXPECT_NE(load_error(short_blob).find("corrupt map: place 3: signature blobs"), std::string::npos)
       << load_error(short_blob);
 
   const fs::path dangling = dir_ / "dangling.vmem";
   VisualMemory memory3 = synthetic_memory(5);
   save_map(memory3, dangling);
-  sql(dangling,
-      "INSERT INTO edges VALUES (99, 1, 42, 'sequence', 1.0, 0.0, 1.0, NULL, 0.0, 0.0)");
-  EXPECT_NE(load_error(dangling).find("names place 42"), std::string::npos)
-      << load_error(dangling);
+  sql(dangling, "INSERT INTO edges VALUES (99, 1, 42, 'sequence', 1.0, 0.0, 1.0, NULL, 0.0, 0.0)");
+  EXPECT_NE(load_error(dangling).find("names place 42"), std::string::npos) << load_error(dangling);
 
   const fs::path truncated = dir_ / "truncated.vmem";
   VisualMemory big = synthetic_memory(300, 2000);

@@ -25,7 +25,7 @@ TEST(Dissimilarity, EquationTwoByHand) {
   const Signature a = tiny({10, 4, 1, 20, 2, 0}, 2, 3);
   const Signature b = tiny({12, 1, 1, 15, 2, 3}, 2, 3);
   EXPECT_DOUBLE_EQ(dissimilarity(a, b), 2 + 3 + 0 + 5 + 0 + 3);
-  EXPECT_DOUBLE_EQ(dissimilarity(a, b, 1), 2 + 5);      // the first component only
+  EXPECT_DOUBLE_EQ(dissimilarity(a, b, 1), 2 + 5);  // the first component only
   EXPECT_DOUBLE_EQ(dissimilarity(a, b, 2), 2 + 3 + 5 + 0);
   EXPECT_DOUBLE_EQ(dissimilarity(a, b), dissimilarity(b, a));
   EXPECT_DOUBLE_EQ(dissimilarity(a, a), 0.0);
@@ -53,7 +53,7 @@ TEST(Similarity, EquationThreeRescalesToZeroToAThousand) {
   EXPECT_DOUBLE_EQ(sim[1], 500.0);
   EXPECT_DOUBLE_EQ(sim[2], 750.0);
   EXPECT_DOUBLE_EQ(similarity_0_1000(60.0, 10.0, 50.0), 0.0);  // clamped
-  EXPECT_DOUBLE_EQ(similarity_0_1000(5.0, 5.0, 5.0), 1000.0);   // degenerate range
+  EXPECT_DOUBLE_EQ(similarity_0_1000(5.0, 5.0, 5.0), 1000.0);  // degenerate range
   EXPECT_TRUE(rescale_similarities({}).empty());
 }
 

@@ -18,7 +18,8 @@ namespace {
 TEST(Hierarchy, LevelDissimilaritiesAreEquationTwoAndSix) {
   SignatureExtractor extractor({15, ColourMode::kPerChannel});
   std::vector<Signature> places;
-  for (double x : {1.0, 1.6, 2.2, 3.4}) places.push_back(extractor.compute(testing::render(x, 2.0, 0)));
+  for (double x : {1.0, 1.6, 2.2, 3.4})
+    places.push_back(extractor.compute(testing::render(x, 2.0, 0)));
   const Signature query = extractor.compute(testing::render(1.9, 2.2, 70.0));
   for (const ComponentWeights& weights :
        {ComponentWeights{}, parse_component_weights("0, 1, 2, 0.5", "test")}) {
@@ -70,9 +71,9 @@ TEST(Hierarchy, PrunedSearchFindsTheExhaustiveBestAndNestsItsCandidates) {
     const auto& finest = pruned.levels.back().candidates;
     ASSERT_FALSE(finest.empty());
     EXPECT_FLOAT_EQ(finest.front().similarity, 1000.0f);
-    EXPECT_TRUE(std::is_sorted(finest.begin(), finest.end(), [](const Candidate& a, const Candidate& b) {
-      return a.dissimilarity < b.dissimilarity;
-    }));
+    EXPECT_TRUE(std::is_sorted(
+        finest.begin(), finest.end(),
+        [](const Candidate& a, const Candidate& b) { return a.dissimilarity < b.dissimilarity; }));
   }
   // Issue §3: the pruned best equals the exhaustive finest-level best in ≥ 99% of queries.
   EXPECT_GE(same, 0.99 * queries);
@@ -98,7 +99,8 @@ TEST(Hierarchy, EmptyIndexAndBadInput) {
   const SearchResult empty = index.search(query, 800.0, 3);
   EXPECT_TRUE(empty.best.empty());
   EXPECT_EQ(empty.levels.size(), 3u);
-  const Signature colour = compute_signature(testing::render(2, 2, 0), {15, ColourMode::kPerChannel});
+  const Signature colour =
+      compute_signature(testing::render(2, 2, 0), {15, ColourMode::kPerChannel});
   EXPECT_THROW(index.add(colour), UsageError);
   EXPECT_THROW(index.search(colour, 800.0, 3), UsageError);
   EXPECT_THROW(index.add(query.truncated(5)), UsageError);
@@ -118,7 +120,8 @@ TEST(Hierarchy, LevelsParseAndLoadFromConfig) {
   EXPECT_EQ(params.levels, (std::vector<int>{3, 9}));
   EXPECT_EQ(params.candidate_similarity, 700.0);
   EXPECT_EQ(params.max_probes, 4);
-  const ConfigReader bad = ConfigReader::from_string("localisation: {levels: '9,3'}", "memory.yaml");
+  const ConfigReader bad =
+      ConfigReader::from_string("localisation: {levels: '9,3'}", "memory.yaml");
   try {
     load_hierarchy_params(bad.section("localisation"), params);
     FAIL();

@@ -34,12 +34,15 @@ TEST(Motion, ForwardSidewaysAndBackwardSteps) {
   for (double relative_deg : {0.0, 90.0, 180.0, -90.0, 45.0}) {
     const double heading_deg = 20.0;
     const double direction = deg_to_rad(heading_deg + relative_deg);
-    const Pair pair{2.6, 2.4, heading_deg, 2.6 + 0.3 * std::cos(direction),
-                    2.4 + 0.3 * std::sin(direction), heading_deg};
+    const Pair pair{2.6,
+                    2.4,
+                    heading_deg,
+                    2.6 + 0.3 * std::cos(direction),
+                    2.4 + 0.3 * std::sin(direction),
+                    heading_deg};
     const MotionEstimate m = estimate(pair);
     EXPECT_TRUE(m.valid) << relative_deg;
-    EXPECT_LT(std::fabs(signed_difference_deg(rad_to_deg(m.bearing_rad), pair.bearing_deg())),
-              30.0)
+    EXPECT_LT(std::fabs(signed_difference_deg(rad_to_deg(m.bearing_rad), pair.bearing_deg())), 30.0)
         << "moving " << relative_deg << " deg from the front";
     EXPECT_LT(std::fabs(rad_to_deg(m.turn_rad)), 3.0);
   }
@@ -55,8 +58,8 @@ TEST(Motion, RandomShortStepsWithTurns) {
   while (errors.size() < 40) {
     const double x0 = x(random), y0 = y(random), direction = deg_to_rad(angle(random));
     const double d = step(random);
-    const Pair pair{x0, y0, angle(random), x0 + d * std::cos(direction), y0 + d * std::sin(direction),
-                    0.0};
+    const Pair pair{
+        x0, y0, angle(random), x0 + d * std::cos(direction), y0 + d * std::sin(direction), 0.0};
     Pair turned = pair;
     turned.h1_deg = pair.h0_deg + turn(random);
     if (!world.is_free(pair.x0, pair.y0, 0.2) || !world.is_free(pair.x1, pair.y1, 0.2)) continue;

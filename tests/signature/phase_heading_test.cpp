@@ -55,8 +55,8 @@ TEST(PhaseHeading, RenderedTurnsOnTheSpotInDesignSignConvention) {
   // Turning counter-clockwise (heading grows, REP 103) must give a positive turn: the
   // heading of `to` minus the heading of `from`, as DESIGN.md defines headings.
   SignatureExtractor extractor({15, ColourMode::kLuminance});
-  for (const auto& [x, y, start_deg] : {std::tuple{2.0, 2.0, 0.0}, std::tuple{4.3, 1.2, 130.0},
-                                        std::tuple{1.1, 3.8, -75.0}}) {
+  for (const auto& [x, y, start_deg] :
+       {std::tuple{2.0, 2.0, 0.0}, std::tuple{4.3, 1.2, 130.0}, std::tuple{1.1, 3.8, -75.0}}) {
     const Signature from = extractor.compute(render(x, y, start_deg));
     for (double turn_deg : {0.3, 5.25, 17.5, 44.4, 90.0, -100.2, 150.6, 179.0, -179.6}) {
       const Signature to = extractor.compute(render(x, y, start_deg + turn_deg));

@@ -60,8 +60,8 @@ TEST(RealImages, PhaseHeadingRecoversRollsOfRealFrames) {
       const Signature rolled = extractor.compute(roll_columns_fractional(image, shift));
       const double turn = relative_heading(reference, rolled).turn_rad;
       const double error_columns =
-          std::fabs(signed_difference(turn, rotation_of_shift_px(shift, image.cols))) *
-          image.cols / kTwoPi;
+          std::fabs(signed_difference(turn, rotation_of_shift_px(shift, image.cols))) * image.cols /
+          kTwoPi;
       EXPECT_LT(error_columns, 0.5) << "frame " << frame << ", roll " << shift;
     }
   }

@@ -81,10 +81,9 @@ void write_graphml(const VisualMemory& memory, std::ostream& out) {
   const Graph& graph = memory.graph();
   boost::dynamic_properties properties;
   const auto vertex_number = [&](const std::string& name, auto get) {
-    properties.property(name, boost::make_function_property_map<Vertex, double>(
-                                  [&graph, get](Vertex v) -> double {
-                                    return get(graph[v]).value_or(kNaN);
-                                  }));
+    properties.property(
+        name, boost::make_function_property_map<Vertex, double>(
+                  [&graph, get](Vertex v) -> double { return get(graph[v]).value_or(kNaN); }));
   };
   const auto vertex_text = [&](const std::string& name, auto get) {
     properties.property(name, boost::make_function_property_map<Vertex, std::string>(

@@ -20,8 +20,7 @@ namespace omninav::memory {
 namespace {
 
 cv::Scalar viridis(double similarity) {
-  cv::Mat level(1, 1, CV_8UC1,
-                cv::Scalar(std::clamp(similarity / 1000.0 * 255.0, 0.0, 255.0)));
+  cv::Mat level(1, 1, CV_8UC1, cv::Scalar(std::clamp(similarity / 1000.0 * 255.0, 0.0, 255.0)));
   cv::Mat colour;
   cv::applyColorMap(level, colour, cv::COLORMAP_VIRIDIS);
   const cv::Vec3b c = colour.at<cv::Vec3b>(0, 0);
@@ -82,7 +81,8 @@ cv::Mat localisation_figure(const Localiser& localiser, const signature::Signatu
     };
     cv::rectangle(figure, cv::Rect(x0, y0, panel_w, panel_h), cv::Scalar(245, 245, 245),
                   cv::FILLED);
-    const Eigen::VectorXf dis = localiser.index().dissimilarities(query, static_cast<std::size_t>(l));
+    const Eigen::VectorXf dis =
+        localiser.index().dissimilarities(query, static_cast<std::size_t>(l));
     std::vector<double> values(dis.data(), dis.data() + dis.size());
     const std::vector<double> similarity = signature::rescale_similarities(values);
     const signature::LevelResult& level = result.search.levels[static_cast<std::size_t>(l)];
@@ -98,12 +98,6 @@ cv::Mat localisation_figure(const Localiser& localiser, const signature::Signatu
       cv::circle(figure, pixel(points[level.candidates.front().place]), radius + 3,
                  cv::Scalar(0, 0, 0), 2, cv::LINE_AA);
     }
-    if (l + 1 == count && result.position) {
-      const cv::Point c = pixel({result.position->interpolated_x, result.position->interpolated_y});
-      const std::vector<cv::Point> diamond{c + cv::Point(0, -7), c + cv::Point(7, 0),
-                                           c + cv::Point(0, 7), c + cv::Point(-7, 0)};
-      cv::polylines(figure, diamond, true, cv::Scalar(0, 0, 0), 2, cv::LINE_AA);
-    }
     if (truth) {
       const cv::Point c = pixel(*truth);
       cv::line(figure, c + cv::Point(-8, -8), c + cv::Point(8, 8), cv::Scalar(0, 0, 220), 2,
@@ -111,11 +105,17 @@ cv::Mat localisation_figure(const Localiser& localiser, const signature::Signatu
       cv::line(figure, c + cv::Point(-8, 8), c + cv::Point(8, -8), cv::Scalar(0, 0, 220), 2,
                cv::LINE_AA);
     }
+    if (l + 1 == count && result.position) {
+      const cv::Point c = pixel({result.position->interpolated_x, result.position->interpolated_y});
+      const std::vector<cv::Point> diamond{c + cv::Point(0, -9), c + cv::Point(9, 0),
+                                           c + cv::Point(0, 9), c + cv::Point(-9, 0)};
+      cv::fillConvexPoly(figure, diamond, cv::Scalar(255, 255, 255), cv::LINE_AA);
+      cv::polylines(figure, diamond, true, cv::Scalar(0, 0, 0), 2, cv::LINE_AA);
+    }
     put_text(figure,
              "m = " + std::to_string(levels[static_cast<std::size_t>(l)]) + ": " +
                  std::to_string(level.candidates.size()) + " candidate" +
-                 (level.candidates.size() == 1 ? "" : "s") + " of " +
-                 std::to_string(points.size()),
+                 (level.candidates.size() == 1 ? "" : "s") + " of " + std::to_string(points.size()),
              cv::Point(x0 + 4, top + 22));
   }
   // Colour bar and legend.
@@ -138,8 +138,8 @@ namespace {
 
 struct Spectra {
   int lines = 0;
-  int half = 0;                  // W/2 + 1 components
-  std::vector<cv::Mat> places;   // lines × half magnitudes per place
+  int half = 0;                 // W/2 + 1 components
+  std::vector<cv::Mat> places;  // lines × half magnitudes per place
 };
 
 Spectra read_spectra(const VisualMemory& memory, signature::ColourMode mode) {
@@ -187,8 +187,9 @@ std::string fixed(double value, int digits) {
 SignatureFigures write_signature_figures(const VisualMemory& memory,
                                          const std::filesystem::path& folder) {
   if (!memory.all_have_truth()) {
-    throw UsageError("figures need a map whose places all have ground-truth poses (explore a "
-                     "rendered grid, e.g. omninav render --trajectory grid:...)");
+    throw UsageError(
+        "figures need a map whose places all have ground-truth poses (explore a "
+        "rendered grid, e.g. omninav render --trajectory grid:...)");
   }
   if (memory.place_count() < 8) throw UsageError("figures need a map of at least 8 places");
   std::filesystem::create_directories(folder);
@@ -282,12 +283,12 @@ SignatureFigures write_signature_figures(const VisualMemory& memory,
       }
     }
     std::sort(near.begin(), near.end(), [&](std::size_t a, std::size_t b) {
-      return cv::norm(positions[a] - positions[middle]) < cv::norm(positions[b] - positions[middle]);
+      return cv::norm(positions[a] - positions[middle]) <
+             cv::norm(positions[b] - positions[middle]);
     });
-    eval::LinePlot plot("Fig. 6: similarity of place " + std::to_string(middle) +
-                            " to its neighbours, by m",
-                        "distance to the input place, m",
-                        "similarity (Eq. 3 over these places), mean");
+    eval::LinePlot plot(
+        "Fig. 6: similarity of place " + std::to_string(middle) + " to its neighbours, by m",
+        "distance to the input place, m", "similarity (Eq. 3 over these places), mean");
     std::ostringstream csv;
     csv << "place,distance_m";
     const std::vector<int> ms{2, 5, 15, 50, half};
@@ -310,8 +311,9 @@ SignatureFigures write_signature_figures(const VisualMemory& memory,
         y.push_back(sum / static_cast<double>(b - a));
         a = b;
       }
-      plot.add_series(m == half ? "m = " + std::to_string(m) + " (all)" : "m = " + std::to_string(m),
-                      x, y, eval::SeriesStyle::kLineAndPoints);
+      plot.add_series(
+          m == half ? "m = " + std::to_string(m) + " (all)" : "m = " + std::to_string(m), x, y,
+          eval::SeriesStyle::kLineAndPoints);
     }
     for (std::size_t r = 0; r < near.size(); ++r) {
       csv << near[r] << ',' << distance[r];

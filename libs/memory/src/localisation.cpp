@@ -73,9 +73,9 @@ Localiser::Localiser(const VisualMemory& memory, LocalisationParams params)
 }
 
 Localisation Localiser::localise(const signature::Signature& query) const {
-  return finish(query, index_.search(query, params_.hierarchy.candidate_similarity,
-                                     static_cast<std::size_t>(params_.top_k),
-                                     params_.hierarchy.max_probes));
+  return finish(
+      query, index_.search(query, params_.hierarchy.candidate_similarity,
+                           static_cast<std::size_t>(params_.top_k), params_.hierarchy.max_probes));
 }
 
 Localisation Localiser::localise_exhaustive(const signature::Signature& query) const {
@@ -225,10 +225,10 @@ std::string LocalisationScore::summary(const std::vector<int>& levels) const {
   text.setf(std::ios::fixed);
   text.precision(1);
   text << "localised " << queries_ << (queries_ == 1 ? " query" : " queries") << ": "
-       << 100.0 * within_spacing_share() << "% within one grid spacing ("
-       << std::setprecision(2) << spacing_m_ << " m) of the truth, " << std::setprecision(1)
-       << 100.0 * nearest_share() << "% at the nearest place, mean error " << std::setprecision(3)
-       << mean_error_m() << " m" << std::setprecision(1);
+       << 100.0 * within_spacing_share() << "% within one grid spacing (" << std::setprecision(2)
+       << spacing_m_ << " m) of the truth, " << std::setprecision(1) << 100.0 * nearest_share()
+       << "% at the nearest place, mean error " << std::setprecision(3) << mean_error_m() << " m"
+       << std::setprecision(1);
   if (const auto heading = median_heading_error_rad()) {
     text << ", median heading error " << rad_to_deg(*heading) << " deg";
   }

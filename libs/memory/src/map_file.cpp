@@ -185,8 +185,7 @@ void insert_places(Database& db, const VisualMemory& memory, std::size_t first,
   Statement truth = db.prepare(
       "INSERT INTO place_truth (place_id, x_m, y_m, z_m, heading_rad, pitch_rad, roll_rad) "
       "VALUES (?, ?, ?, ?, ?, ?, ?)");
-  Statement lattice =
-      db.prepare("INSERT INTO lattice_positions (place_id, x, y) VALUES (?, ?, ?)");
+  Statement lattice = db.prepare("INSERT INTO lattice_positions (place_id, x, y) VALUES (?, ?, ?)");
   for (std::size_t i = first; i < memory.place_count(); ++i) {
     const Place& p = memory.place(i);
     const auto magnitude = floats_to_le_bytes(p.signature.magnitude);
@@ -268,6 +267,7 @@ void write_new(VisualMemory& memory, const std::filesystem::path& file,
   std::filesystem::path partial = file;
   partial += ".partial";
   std::error_code ignored;
+  if (file.has_parent_path()) std::filesystem::create_directories(file.parent_path(), ignored);
   std::filesystem::remove(partial, ignored);
   std::filesystem::remove(std::filesystem::path(partial.string() + "-journal"), ignored);
   {
@@ -355,12 +355,11 @@ Place read_place(const Statement& row, const std::filesystem::path& file, std::s
   s.channels = static_cast<int>(row.integer(8));
   s.components = static_cast<int>(row.integer(9));
   s.width_px = static_cast<int>(row.integer(10));
-  if (s.rows < 1 || s.rows > 100000 || (s.channels != 1 && s.channels != 3) ||
-      s.components < 1 || s.components > 100000 || s.width_px < 1) {
+  if (s.rows < 1 || s.rows > 100000 || (s.channels != 1 && s.channels != 3) || s.components < 1 ||
+      s.components > 100000 || s.width_px < 1) {
     throw InputError(corrupt(file, "place " + std::to_string(id) + " has signature dimensions " +
-                                       std::to_string(s.rows) + " x " +
-                                       std::to_string(s.channels) + " x " +
-                                       std::to_string(s.components)));
+                                       std::to_string(s.rows) + " x " + std::to_string(s.channels) +
+                                       " x " + std::to_string(s.components)));
   }
   const std::size_t expected_bytes = s.size() * 4;
   const auto [magnitude, magnitude_bytes] = row.blob_view(11);
@@ -450,15 +449,15 @@ VisualMemory load_map(const std::filesystem::path& file) {
       try {
         memory.add_place(std::move(place));
       } catch (const UsageError& e) {
-        throw InputError(corrupt(file, "place " + std::to_string(memory.place_count()) + ": " +
-                                           e.what()));
+        throw InputError(
+            corrupt(file, "place " + std::to_string(memory.place_count()) + ": " + e.what()));
       }
     }
   }
   const auto require_place = [&](std::int64_t id, const std::string& table) {
     if (id < 0 || id >= static_cast<std::int64_t>(memory.place_count())) {
-      throw InputError(corrupt(file, table + " names place " + std::to_string(id) +
-                                         ", which does not exist"));
+      throw InputError(
+          corrupt(file, table + " names place " + std::to_string(id) + ", which does not exist"));
     }
     return static_cast<PlaceIndex>(id);
   };
@@ -505,8 +504,7 @@ VisualMemory load_map(const std::filesystem::path& file) {
   return memory;
 }
 
-void save_map(VisualMemory& memory, const std::filesystem::path& file,
-              const SaveOptions& options) {
+void save_map(VisualMemory& memory, const std::filesystem::path& file, const SaveOptions& options) {
   std::error_code error;
   if (options.overwrite || !std::filesystem::exists(file, error)) {
     write_new(memory, file, options);
@@ -530,7 +528,8 @@ void save_lattice_positions(const std::filesystem::path& file,
                        " lattice positions for a map of " + std::to_string(places) + " places");
     }
     db.exec("DELETE FROM lattice_positions");
-    Statement insert = db.prepare("INSERT INTO lattice_positions (place_id, x, y) VALUES (?, ?, ?)");
+    Statement insert =
+        db.prepare("INSERT INTO lattice_positions (place_id, x, y) VALUES (?, ?, ?)");
     for (std::size_t i = 0; i < positions.size(); ++i) {
       insert.bind(1, static_cast<std::int64_t>(i))
           .bind(2, positions[i].x)

@@ -86,7 +86,8 @@ std::vector<VisualMemory::EdgeRef> VisualMemory::edges() const {
   out.reserve(edge_order_.size());
   for (const EdgeSlot& slot : edge_order_) {
     const auto first = boost::out_edges(slot.from, graph_).first;
-    const Graph::edge_descriptor e = *std::next(first, static_cast<std::ptrdiff_t>(slot.out_position));
+    const Graph::edge_descriptor e =
+        *std::next(first, static_cast<std::ptrdiff_t>(slot.out_position));
     out.push_back({slot.from, boost::target(e, graph_), &graph_[e]});
   }
   return out;

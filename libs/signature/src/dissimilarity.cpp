@@ -73,8 +73,7 @@ double dissimilarity(const Signature& a, const Signature& b, int components,
   return total;
 }
 
-double similarity_0_1000(double dissimilarity, double min_dissimilarity,
-                         double max_dissimilarity) {
+double similarity_0_1000(double dissimilarity, double min_dissimilarity, double max_dissimilarity) {
   if (!(max_dissimilarity > min_dissimilarity)) return 1000.0;
   const double sim = 1000.0 - 1000.0 * (dissimilarity - min_dissimilarity) /
                                   (max_dissimilarity - min_dissimilarity);

@@ -26,9 +26,8 @@ class PlanCache {
     int n[] = {width};
     // FFTW_ESTIMATE: the plan depends on the sizes only, never on timing, so the same input
     // gives bit-identical signatures in every run (DESIGN.md, Determinism).
-    fftwf_plan plan = fftwf_plan_many_dft_r2c(1, n, lines, in.data(), nullptr, 1, width,
-                                              out.data(), nullptr, 1, width / 2 + 1,
-                                              FFTW_ESTIMATE);
+    fftwf_plan plan = fftwf_plan_many_dft_r2c(1, n, lines, in.data(), nullptr, 1, width, out.data(),
+                                              nullptr, 1, width / 2 + 1, FFTW_ESTIMATE);
     if (plan == nullptr) {
       throw Error("FFTW could not plan " + std::to_string(lines) + " transforms of length " +
                   std::to_string(width));

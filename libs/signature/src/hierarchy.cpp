@@ -144,8 +144,8 @@ std::vector<Candidate> top_k(const std::vector<std::uint32_t>& places,
     return dis[a] < dis[b] || (dis[a] == dis[b] && places[a] < places[b]);
   };
   const std::size_t count = std::min(k, order.size());
-  std::partial_sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(count),
-                    order.end(), better);
+  std::partial_sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(count), order.end(),
+                    better);
   std::vector<Candidate> out;
   for (std::size_t i = 0; i < count; ++i) {
     const std::size_t j = order[i];
@@ -169,8 +169,7 @@ Eigen::VectorXf SignatureIndex::dissimilarities(const Signature& query, std::siz
   return total;
 }
 
-SearchResult SignatureIndex::search_exhaustive(const Signature& query,
-                                               double candidate_similarity,
+SearchResult SignatureIndex::search_exhaustive(const Signature& query, double candidate_similarity,
                                                std::size_t top_k_count) const {
   check(query, "the query's signature");
   SearchResult result;
@@ -187,11 +186,10 @@ SearchResult SignatureIndex::search_exhaustive(const Signature& query,
       level.min_dissimilarity = *lo;
       level.max_dissimilarity = *hi;
     }
-    level.candidates = select(all, dis, level.min_dissimilarity, level.max_dissimilarity,
-                              candidate_similarity);
+    level.candidates =
+        select(all, dis, level.min_dissimilarity, level.max_dissimilarity, candidate_similarity);
     if (l + 1 == levels_.size()) {
-      result.best =
-          top_k(all, dis, level.min_dissimilarity, level.max_dissimilarity, top_k_count);
+      result.best = top_k(all, dis, level.min_dissimilarity, level.max_dissimilarity, top_k_count);
     }
     result.levels.push_back(std::move(level));
   }
@@ -256,8 +254,8 @@ SearchResult SignatureIndex::search(const Signature& query, double candidate_sim
     level.candidates = select(evaluated, dis, level.min_dissimilarity, level.max_dissimilarity,
                               candidate_similarity);
     if (l + 1 == levels_.size()) {
-      result.best = top_k(evaluated, dis, level.min_dissimilarity, level.max_dissimilarity,
-                          top_k_count);
+      result.best =
+          top_k(evaluated, dis, level.min_dissimilarity, level.max_dissimilarity, top_k_count);
     }
     result.levels.push_back(std::move(level));
   }

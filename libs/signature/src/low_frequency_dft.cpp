@@ -65,8 +65,7 @@ void kernel_one_group(const float* f, int width, int m, const float* table, floa
 }
 
 OMNINAV_KERNEL_CLONES
-void kernel_two_groups(const float* f, int width, int m, const float* table, float* re,
-                       float* im) {
+void kernel_two_groups(const float* f, int width, int m, const float* table, float* re, float* im) {
   kernel<2>(f, width, m, table, re, im);
 }
 

@@ -54,7 +54,7 @@ class WarpFit {
 
   struct Evaluation {
     double cost = 0.0;
-    Eigen::Matrix3d normal = Eigen::Matrix3d::Zero();  // JᵀJ
+    Eigen::Matrix3d normal = Eigen::Matrix3d::Zero();    // JᵀJ
     Eigen::Vector3d gradient = Eigen::Vector3d::Zero();  // Jᵀr
   };
 

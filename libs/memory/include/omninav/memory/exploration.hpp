@@ -28,8 +28,8 @@ struct ExplorationParams {
   // neighbours 30 cm apart differ by 1.85 (median; 10th percentile 1.42, luminance, m = 15;
   // docs/memory.md, Fig. 7): 1.5 makes places about 30 cm apart or closer.
   double new_place_dissimilarity = 1.5;
-  int every_n_frames = 0;  // a place at least every n frames; 0: off
-  double every_m = 0.0;    // a place every d metres travelled (poses needed); 0: off
+  int every_n_frames = 0;        // a place at least every n frames; 0: off
+  double every_m = 0.0;          // a place every d metres travelled (poses needed); 0: off
   int thumbnail_width_px = 180;  // thumbnails keep the panorama's aspect ratio
   // Where headings come from: "auto" (the ground truth when a frame has it, else none),
   // "truth" (required) or "none". The visual compass will add "compass".

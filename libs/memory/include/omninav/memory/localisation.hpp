@@ -108,7 +108,7 @@ class LocalisationScore {
   struct Query {
     PlaceIndex nearest_place = 0;  // the place nearest the truth
     double nearest_m = 0.0;
-    double error_m = 0.0;          // from the best place to the truth
+    double error_m = 0.0;  // from the best place to the truth
     bool within_spacing = false;
     std::vector<bool> level_contains_nearest;
     std::optional<double> heading_error_rad;

@@ -33,16 +33,16 @@ struct LatticePosition {
 };
 
 struct Place {
-  signature::Signature signature;        // magnitudes and phases (§2.1)
-  std::optional<double> heading_rad;     // the robot's heading at this place, REP 103
+  signature::Signature signature;     // magnitudes and phases (§2.1)
+  std::optional<double> heading_rad;  // the robot's heading at this place, REP 103
   HeadingSource heading_source = HeadingSource::kNone;
   std::vector<std::uint8_t> thumbnail_png;  // a small copy of the panorama, PNG-encoded
-  std::string source;                    // the image file (or "video#frame n") it came from
-  int frame_index = 0;                   // its index in that input sequence
-  int run = 0;                           // the exploration run that added it (Run::id)
-  std::optional<double> time_s;          // capture time, when the input knows it
-  std::optional<CameraPose> truth;       // ground truth: for evaluation only, never used to map
-  std::optional<LatticePosition> lattice;  // filled by the lattice (issue 5)
+  std::string source;                       // the image file (or "video#frame n") it came from
+  int frame_index = 0;                      // its index in that input sequence
+  int run = 0;                              // the exploration run that added it (Run::id)
+  std::optional<double> time_s;             // capture time, when the input knows it
+  std::optional<CameraPose> truth;          // ground truth: for evaluation only, never used to map
+  std::optional<LatticePosition> lattice;   // filled by the lattice (issue 5)
 };
 
 enum class EdgeKind {
@@ -53,9 +53,9 @@ EdgeKind edge_kind_from_string(const std::string& text);
 
 struct Edge {
   EdgeKind kind = EdgeKind::kSequence;
-  double dissimilarity = 0.0;          // Eq. 2/6 between the two places' signatures
-  double relative_heading_rad = 0.0;   // heading(to) − heading(from) from the phases (Eq. 1)
-  double heading_confidence = 0.0;     // signature::PhaseHeading::confidence
+  double dissimilarity = 0.0;         // Eq. 2/6 between the two places' signatures
+  double relative_heading_rad = 0.0;  // heading(to) − heading(from) from the phases (Eq. 1)
+  double heading_confidence = 0.0;    // signature::PhaseHeading::confidence
   // Direction of travel from `from` to `to` seen from `from`, counter-clockwise from its front
   // (§3.4, signature/motion.hpp); none when the translation was too small to measure.
   std::optional<double> motion_bearing_rad;
@@ -66,10 +66,10 @@ struct Edge {
 // One `omninav explore` into the map.
 struct Run {
   int id = 0;
-  std::string input;        // what was explored (a folder, database, video)
-  std::string started_utc;  // ISO 8601
-  int frames = 0;           // frames read
-  int places = 0;           // places added
+  std::string input;           // what was explored (a folder, database, video)
+  std::string started_utc;     // ISO 8601
+  int frames = 0;              // frames read
+  int places = 0;              // places added
   std::string heading_source;  // what the run's places used: none, truth or compass
   std::string description;     // the command line or the caller's note
 };

@@ -52,15 +52,15 @@ void load_hierarchy_params(const ConfigReader& section, HierarchyParams& params)
 std::vector<int> parse_levels(const std::string& text, const std::string& where);
 
 struct Candidate {
-  std::uint32_t place = 0;   // index in the order places were added
-  float dissimilarity = 0;   // Eq. 2/6 at this level
-  float similarity = 0;      // Eq. 3, 0..1000
+  std::uint32_t place = 0;  // index in the order places were added
+  float dissimilarity = 0;  // Eq. 2/6 at this level
+  float similarity = 0;     // Eq. 3, 0..1000
 };
 
 struct LevelResult {
   int components = 0;
-  std::size_t evaluated = 0;      // places compared at this level
-  double min_dissimilarity = 0;   // the Eq. 3 range used
+  std::size_t evaluated = 0;     // places compared at this level
+  double min_dissimilarity = 0;  // the Eq. 3 range used
   double max_dissimilarity = 0;
   std::vector<Candidate> candidates;  // similarity ≥ threshold, best (lowest Dis) first
 };

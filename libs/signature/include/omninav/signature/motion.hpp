@@ -32,8 +32,8 @@ struct MotionEstimate {
   double turn_rad = 0.0;      // τ, the heading change the fit found (cf. relative_heading)
   double parallax_rad = 0.0;  // ρ = d/r: how far things abeam moved, radians
   double bearing_stddev_rad = kNoBearing;  // from the fit's covariance; large: don't trust it
-  double residual = 1.0;  // rms residual / rms signal after the fit, 0..~1.4
-  bool valid = false;     // ρ is at least 3 standard deviations from 0
+  double residual = 1.0;                   // rms residual / rms signal after the fit, 0..~1.4
+  bool valid = false;                      // ρ is at least 3 standard deviations from 0
 
   static constexpr double kNoBearing = 3.141592653589793;
 };

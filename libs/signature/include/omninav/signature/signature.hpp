@@ -59,10 +59,10 @@ void load_signature_params(const ConfigReader& section, SignatureParams& params)
 // A panorama's signature: magnitudes and phases of the first `components` Fourier components
 // of each of its `lines`, stored line by line: value (line, k) is at [line·components + k].
 struct Signature {
-  int rows = 0;        // panorama rows H
-  int channels = 1;    // 1 (luminance) or 3 (B, G, R)
-  int components = 0;  // m
-  int width_px = 0;    // W of the panorama it came from
+  int rows = 0;                  // panorama rows H
+  int channels = 1;              // 1 (luminance) or 3 (B, G, R)
+  int components = 0;            // m
+  int width_px = 0;              // W of the panorama it came from
   std::vector<float> magnitude;  // |F_y(k)|, grey levels
   std::vector<float> phase_rad;  // arg F_y(k), radians in (−π, π]
 
