@@ -275,9 +275,11 @@ void run_localise(const GlobalOptions& global, const LocaliseOptions& options) {
         if (q.truth && memory::place_positions(map)->first == memory::PositionFrame::kTruth) {
           truth = cv::Point2d(q.truth->x_m, q.truth->y_m);
         }
-        eval::save_png(memory::localisation_figure(localiser, signature, q.result, truth,
-                                                   "hierarchical localisation of " + q.source),
-                       file);
+        eval::save_png(
+            memory::localisation_figure(localiser, signature, q.result, truth,
+                                        "hierarchical localisation of " +
+                                            std::filesystem::path(q.source).filename().string()),
+            file);
       }
       results.push_back(std::move(q));
     }

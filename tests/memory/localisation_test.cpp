@@ -91,7 +91,7 @@ TEST(GridLocalisation, RandomPosesBetweenGridPointsLocaliseWithinOneSpacing) {
 }
 
 TEST(GridLocalisation, ColourPerChannel) {
-  const GridScores s = score(signature::ColourMode::kPerChannel, 120);
+  const GridScores s = score(signature::ColourMode::kPerChannel, 60);
   EXPECT_GE(s.within_spacing, 0.95 * s.queries);
   EXPECT_GE(s.pruned_equals_exhaustive, 0.99 * s.queries);
 }

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iostream>
 #include <random>
 #include <set>
 
@@ -38,29 +39,32 @@ TEST(Hierarchy, LevelDissimilaritiesAreEquationTwoAndSix) {
 }
 
 TEST(Hierarchy, PrunedSearchFindsTheExhaustiveBestAndNestsItsCandidates) {
-  // 3,000 synthetic places on a 30 m floor every 0.55 m, 300 noisy queries between them.
+  // 2,000 synthetic places on a 30 m floor every 0.55 m, 300 noisy queries between them.
   const testing::SyntheticPlaces field(30.0, 45, 1, 15, 3);
   SignatureIndex index(45, 1, {2, 5, 15});
   std::vector<std::pair<double, double>> positions;
   for (double x = 0.0; x < 30.0; x += 0.55) {
-    for (double y = 0.0; y < 30.0 && positions.size() < 3000; y += 0.55) {
+    for (double y = 0.0; y < 30.0 && positions.size() < 2000; y += 0.55) {
       positions.emplace_back(x, y);
       index.add(field.at(x, y));
     }
   }
   std::mt19937 random(4);
-  std::uniform_real_distribution<double> coordinate(0.0, 29.0);
+  std::uniform_real_distribution<double> coordinate(0.0, 0.55 * (2000 / 55) - 0.55);
   int same = 0, queries = 300;
   for (int q = 0; q < queries; ++q) {
     const Signature query = field.at(coordinate(random), coordinate(random), &random, 1.0);
     const SearchResult pruned = index.search(query, 800.0, 5);
     const SearchResult exhaustive = index.search_exhaustive(query, 800.0, 5);
-    ASSERT_FALSE(pruned.best.empty());
+    ASSERT_EQ(pruned.best.size(), 5u);  // top_k places, however few candidates
     same += pruned.best.front().place == exhaustive.best.front().place;
     // The first level compares every place, later ones only the previous candidates.
     EXPECT_EQ(pruned.levels[0].evaluated, index.size());
     for (std::size_t l = 1; l < pruned.levels.size(); ++l) {
-      EXPECT_EQ(pruned.levels[l].evaluated, pruned.levels[l - 1].candidates.size());
+      // The previous candidates, and the previous best 5 when the candidates are fewer.
+      EXPECT_GE(pruned.levels[l].evaluated, pruned.levels[l - 1].candidates.size());
+      EXPECT_LE(pruned.levels[l].evaluated, pruned.levels[l - 1].candidates.size() + 5);
+      EXPECT_GE(pruned.levels[l].evaluated, 5u);
       std::set<std::uint32_t> previous;
       for (const Candidate& c : pruned.levels[l - 1].candidates) previous.insert(c.place);
       for (const Candidate& c : pruned.levels[l].candidates) {
@@ -76,6 +80,7 @@ TEST(Hierarchy, PrunedSearchFindsTheExhaustiveBestAndNestsItsCandidates) {
         [](const Candidate& a, const Candidate& b) { return a.dissimilarity < b.dissimilarity; }));
   }
   // Issue §3: the pruned best equals the exhaustive finest-level best in ≥ 99% of queries.
+  std::cout << "pruned best = exhaustive best in " << same << " of " << queries << " queries\n";
   EXPECT_GE(same, 0.99 * queries);
 }
 

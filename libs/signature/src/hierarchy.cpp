@@ -117,12 +117,14 @@ std::size_t SignatureIndex::bytes() const {
 
 namespace {
 
-// Places whose similarity reaches the threshold, best first.
+// Places whose similarity reaches the threshold (among those `eligible`, when given), best
+// first.
 std::vector<Candidate> select(const std::vector<std::uint32_t>& places,
-                              const std::vector<float>& dis, double min_dis, double max_dis,
-                              double threshold) {
+                              const std::vector<float>& dis, const std::vector<char>* eligible,
+                              double min_dis, double max_dis, double threshold) {
   std::vector<Candidate> out;
   for (std::size_t i = 0; i < places.size(); ++i) {
+    if (eligible != nullptr && !(*eligible)[i]) continue;
     const double sim = similarity_0_1000(dis[i], min_dis, max_dis);
     if (sim >= threshold) {
       out.push_back({places[i], dis[i], static_cast<float>(sim)});
@@ -186,8 +188,8 @@ SearchResult SignatureIndex::search_exhaustive(const Signature& query, double ca
       level.min_dissimilarity = *lo;
       level.max_dissimilarity = *hi;
     }
-    level.candidates =
-        select(all, dis, level.min_dissimilarity, level.max_dissimilarity, candidate_similarity);
+    level.candidates = select(all, dis, nullptr, level.min_dissimilarity, level.max_dissimilarity,
+                              candidate_similarity);
     if (l + 1 == levels_.size()) {
       result.best = top_k(all, dis, level.min_dissimilarity, level.max_dissimilarity, top_k_count);
     }
@@ -217,27 +219,62 @@ SearchResult SignatureIndex::search(const Signature& query, double candidate_sim
   std::vector<std::uint32_t> probes;
   std::vector<float> probe_dis;
   {
+    // One pass keeping the `count` largest in a heap whose top is the smallest kept: O(N).
     const std::size_t count = std::min<std::size_t>(static_cast<std::size_t>(max_probes), size_);
-    std::vector<std::uint32_t> order = evaluated;
-    std::partial_sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(count),
-                      order.end(), [&](std::uint32_t a, std::uint32_t b) {
-                        return dis[a] > dis[b] || (dis[a] == dis[b] && a < b);
-                      });
-    probes.assign(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(count));
+    const auto smaller_first = [&](std::uint32_t a, std::uint32_t b) {
+      return dis[a] > dis[b] || (dis[a] == dis[b] && a < b);
+    };
+    std::vector<std::uint32_t> heap;
+    heap.reserve(count + 1);
+    for (std::uint32_t i = 0; i < size_ && count > 0; ++i) {
+      if (heap.size() < count) {
+        heap.push_back(i);
+        std::push_heap(heap.begin(), heap.end(), smaller_first);
+      } else if (smaller_first(i, heap.front())) {
+        std::pop_heap(heap.begin(), heap.end(), smaller_first);
+        heap.back() = i;
+        std::push_heap(heap.begin(), heap.end(), smaller_first);
+      }
+    }
+    std::sort_heap(heap.begin(), heap.end(), smaller_first);
+    probes = heap;
     for (std::uint32_t p : probes) probe_dis.push_back(dis[p]);
   }
 
+  // Places compared at the current level, with their running Dis, and whether each may be a
+  // candidate (was one at the previous level). Besides the candidates, the best top_k places of
+  // the previous level are carried, so that the finest level can always report top_k places;
+  // they rank but never become candidates.
+  std::vector<char> eligible;  // all eligible at the first level
   for (std::size_t l = 0; l < levels_.size(); ++l) {
     if (l > 0) {
-      // Only the previous level's candidates (and the probes) get the next band's terms.
       const Eigen::RowVectorXf q = query_band(query, l);
       const std::vector<Candidate>& previous = result.levels.back().candidates;
-      evaluated.clear();
-      dis.clear();
+      std::vector<std::uint32_t> carried;
+      std::vector<float> carried_dis;
+      std::vector<char> carried_eligible;
       for (const Candidate& c : previous) {
-        evaluated.push_back(c.place);
-        dis.push_back(c.dissimilarity + band_distance(l, q, c.place));
+        carried.push_back(c.place);
+        carried_dis.push_back(c.dissimilarity);
+        carried_eligible.push_back(1);
       }
+      if (previous.size() < top_k_count) {
+        for (const Candidate& c :
+             top_k(evaluated, dis, 0.0, 0.0, std::min(top_k_count, evaluated.size()))) {
+          if (std::none_of(previous.begin(), previous.end(),
+                           [&](const Candidate& p) { return p.place == c.place; })) {
+            carried.push_back(c.place);
+            carried_dis.push_back(c.dissimilarity);
+            carried_eligible.push_back(0);
+          }
+        }
+      }
+      for (std::size_t i = 0; i < carried.size(); ++i) {
+        carried_dis[i] += band_distance(l, q, carried[i]);
+      }
+      evaluated = std::move(carried);
+      dis = std::move(carried_dis);
+      eligible = std::move(carried_eligible);
       for (std::size_t i = 0; i < probes.size(); ++i) {
         probe_dis[i] += band_distance(l, q, probes[i]);
       }
@@ -251,8 +288,8 @@ SearchResult SignatureIndex::search(const Signature& query, double candidate_sim
     for (float p : probe_dis) {
       level.max_dissimilarity = std::max<double>(level.max_dissimilarity, p);
     }
-    level.candidates = select(evaluated, dis, level.min_dissimilarity, level.max_dissimilarity,
-                              candidate_similarity);
+    level.candidates = select(evaluated, dis, l == 0 ? nullptr : &eligible, level.min_dissimilarity,
+                              level.max_dissimilarity, candidate_similarity);
     if (l + 1 == levels_.size()) {
       result.best =
           top_k(evaluated, dis, level.min_dissimilarity, level.max_dissimilarity, top_k_count);

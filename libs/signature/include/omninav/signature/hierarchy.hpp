@@ -67,7 +67,7 @@ struct LevelResult {
 
 struct SearchResult {
   std::vector<LevelResult> levels;
-  // The best places at the finest level among those compared there, best first.
+  // The best top_k places at the finest level among those compared there, best first.
   std::vector<Candidate> best;
 };
 
