@@ -35,11 +35,12 @@ void run_organise(const GlobalOptions& global, const OrganiseOptions& options) {
             << " places of " << options.map.string() << "\n"
             << "  scale:    " << calibration.step_m << " m between consecutive places ("
             << calibration.step_source << "), dissimilarity " << calibration.step_dissimilarity
-            << " per step, plateau " << calibration.plateau_dissimilarity << "\n"
+            << " per step (median of the places' own), plateau "
+            << calibration.plateau_dissimilarity << "\n"
             << "  springs:  " << organised.lattice.springs_kept << " kept of "
             << organised.lattice.springs_given << " (x1 = " << calibration.correlation_range_m
             << " m; weaker than K = " << params.lattice.min_stiffness << " dropped), "
-            << organised.lattice.motion_constraints << " motion constraints\n"
+            << organised.lattice.motion_constraints << " motions (directions from the phases)\n"
             << "  solver:   " << organised.lattice.summary << "\n";
   const std::optional<lattice::LatticeEvaluation> evaluation =
       lattice::evaluate_against_truth(memory, organised.motions.empty());
@@ -73,7 +74,7 @@ void add_organise_command(CLI::App& app, const GlobalOptions& global) {
                    "else the map's spacing policy)")
       ->check(CLI::Range(0.0, 100.0));
   command->add_flag("--no-motion", options->no_motion,
-                    "Springs only: no motion-direction constraints");
+                    "Springs only: no motions measured from the phases");
   command->add_option("--picture", options->picture,
                       "Where to draw the lattice (default: <map>.lattice.png)");
   command->callback([&global, options] { run_organise(global, *options); });

@@ -37,7 +37,8 @@ void organise_grid(benchmark::State& state) {
   std::vector<MotionMeasurement> motions;
   for (int i = 0; i + 1 < static_cast<int>(truth.size()); ++i) {
     const Eigen::Vector2d step = truth[i + 1] - truth[i];
-    motions.push_back({i, i + 1, std::atan2(step.y(), step.x()) + noise(random), 0.15});
+    motions.push_back(
+        {i, i + 1, std::atan2(step.y(), step.x()) + noise(random), step.norm(), 0.15, 0.03});
   }
   omninav::lattice::LatticeParams params;
   params.correlation_range_m = range;

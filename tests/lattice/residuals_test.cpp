@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 
 #include "omninav/lattice/stiffness.hpp"
@@ -25,22 +26,31 @@ TEST(SpringResidual, ZeroAtRestLengthAndSignedOffIt) {
   EXPECT_NEAR(spring_residual(4.0, 0.25, a, b), 0.5 * spring_residual(4.0, 1.0, a, b), 1e-12);
 }
 
-double motion_residual(double direction, const double* from, const double* to) {
-  double residual = 0.0;
-  MotionDirectionResidual(direction, 1.0)(from, to, &residual);
+std::array<double, 2> motion_residual(double direction, double length, const double* from,
+                                      const double* to) {
+  std::array<double, 2> residual{};
+  // σ_direction = 0.1 rad, σ_length = 0.5 m: residuals in standard deviations.
+  MotionResidual(direction, length, 0.1, 0.5)(from, to, residual.data());
   return residual;
 }
 
-TEST(MotionDirectionResidual, ZeroAlongTheDirectionSignedAcrossAndWrapped) {
-  const double from[2] = {0.0, 0.0};
-  const double to[2] = {-1.0, 0.0};  // a step along −x
-  EXPECT_NEAR(motion_residual(M_PI, from, to), 0.0, 1e-12);
-  EXPECT_NEAR(motion_residual(-M_PI + 1e-9, from, to), 0.0, 1e-8);  // across the seam
-  const double ccw[2] = {-1.0, -0.1};  // at −174.3°: 5.7° counter-clockwise of −x
-  EXPECT_NEAR(motion_residual(M_PI, from, ccw), std::atan(0.1), 1e-12);
-  const double cw[2] = {-1.0, 0.1};  // at 174.3°: clockwise of −x
-  EXPECT_NEAR(motion_residual(M_PI, from, cw), -std::atan(0.1), 1e-12);
-  EXPECT_NEAR(motion_residual(M_PI / 2, from, to), M_PI / 2, 1e-12);
+TEST(MotionResidual, ZeroAtTheMeasuredStepSignedAlongAndAcrossIt) {
+  const double from[2] = {1.0, 1.0};
+  const double to[2] = {-1.0, 1.0};  // 2 m along −x
+  EXPECT_NEAR(motion_residual(M_PI, 2.0, from, to)[0], 0.0, 1e-12);
+  EXPECT_NEAR(motion_residual(M_PI, 2.0, from, to)[1], 0.0, 1e-12);
+  EXPECT_NEAR(motion_residual(-M_PI, 2.0, from, to)[1], 0.0, 1e-12);  // across the seam
+  // 1 m further than measured: +1 m / σ_length along, nothing across.
+  EXPECT_NEAR(motion_residual(M_PI, 1.0, from, to)[0], 2.0, 1e-12);
+  EXPECT_NEAR(motion_residual(M_PI, 1.0, from, to)[1], 0.0, 1e-12);
+  // 0.2 m to the left of the measured direction (−x): 0.2 / (σ_direction · length) across.
+  const double left[2] = {-1.0, 0.8};
+  EXPECT_NEAR(motion_residual(M_PI, 2.0, from, left)[1], 1.0, 1e-12);
+  const double right[2] = {-1.0, 1.2};
+  EXPECT_NEAR(motion_residual(M_PI, 2.0, from, right)[1], -1.0, 1e-12);
+  // Unlike an angle, the residual grows when the places fly apart along the direction.
+  const double far[2] = {-99.0, 1.0};
+  EXPECT_NEAR(motion_residual(M_PI, 2.0, from, far)[0], 196.0, 1e-9);
 }
 
 TEST(Stiffness, Equation5) {

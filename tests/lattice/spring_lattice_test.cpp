@@ -48,8 +48,8 @@ std::vector<MotionMeasurement> motions_from(const std::vector<Eigen::Vector2d>& 
   std::vector<MotionMeasurement> motions;
   for (int i = 0; i + 1 < static_cast<int>(truth.size()); ++i) {
     const Eigen::Vector2d step = truth[i + 1] - truth[i];
-    motions.push_back(
-        {i, i + 1, std::atan2(step.y(), step.x()) + noise(random), std::max(stddev, 0.02)});
+    motions.push_back({i, i + 1, std::atan2(step.y(), step.x()) + noise(random), step.norm(),
+                       std::max(stddev, 0.02), 0.3 * step.norm()});
   }
   return motions;
 }

@@ -1,47 +1,44 @@
+#include <ceres/ceres.h>
+
 #include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <boost/graph/adjacency_list.hpp>
+#include <boost/graph/dijkstra_shortest_paths.hpp>
 #include <cmath>
 #include <limits>
-#include <map>
 #include <queue>
 
 #include "omninav/core/errors.hpp"
+#include "omninav/lattice/residuals.hpp"
 #include "omninav/lattice/spring_lattice.hpp"
 
 namespace omninav::lattice {
 namespace {
 
-// Dead reckoning: walk the motion chain from place 0, each step as long as the spring between
-// its ends (the median spring length when there is none). Empty when a place is not reached.
+// Dead reckoning: a breadth-first walk from place 0 along the motions (either way round),
+// each place placed by the first motion that reaches it. Empty when a place is not reached.
 std::vector<Eigen::Vector2d> dead_reckoning(int place_count,
-                                            const std::vector<SpringMeasurement>& springs,
                                             const std::vector<MotionMeasurement>& motions) {
-  std::map<std::pair<int, int>, double> length_of;
-  std::vector<double> lengths;
-  for (const SpringMeasurement& spring : springs) {
-    length_of[{std::min(spring.a, spring.b), std::max(spring.a, spring.b)}] = spring.length_m;
-    lengths.push_back(spring.length_m);
-  }
-  double median_length = 1.0;
-  if (!lengths.empty()) {
-    std::nth_element(lengths.begin(), lengths.begin() + lengths.size() / 2, lengths.end());
-    median_length = lengths[lengths.size() / 2];
+  std::vector<std::vector<std::pair<int, Eigen::Vector2d>>> steps(place_count);
+  for (const MotionMeasurement& motion : motions) {
+    const Eigen::Vector2d step = motion.length_m * Eigen::Vector2d(std::cos(motion.direction_rad),
+                                                                   std::sin(motion.direction_rad));
+    steps[motion.from].emplace_back(motion.to, step);
+    steps[motion.to].emplace_back(motion.from, -step);
   }
   std::vector<Eigen::Vector2d> positions(place_count, Eigen::Vector2d::Zero());
   std::vector<bool> placed(place_count, false);
+  std::queue<int> queue;
   placed[0] = true;
-  // Motions may come in any order: sweep until nothing new is placed.
-  for (bool progress = true; progress;) {
-    progress = false;
-    for (const MotionMeasurement& motion : motions) {
-      if (!placed[motion.from] || placed[motion.to]) continue;
-      const auto found =
-          length_of.find({std::min(motion.from, motion.to), std::max(motion.from, motion.to)});
-      const double step = found != length_of.end() ? found->second : median_length;
-      positions[motion.to] =
-          positions[motion.from] +
-          step * Eigen::Vector2d(std::cos(motion.direction_rad), std::sin(motion.direction_rad));
-      placed[motion.to] = progress = true;
+  queue.push(0);
+  while (!queue.empty()) {
+    const int place = queue.front();
+    queue.pop();
+    for (const auto& [next, step] : steps[place]) {
+      if (placed[next]) continue;
+      positions[next] = positions[place] + step;
+      placed[next] = true;
+      queue.push(next);
     }
   }
   if (std::find(placed.begin(), placed.end(), false) != placed.end()) return {};
@@ -59,30 +56,20 @@ std::vector<Eigen::Vector2d> classical_mds(int place_count,
         " places without a motion chain: too many for a multidimensional-scaling start (at most " +
         std::to_string(kMaxPlaces) + ")");
   }
-  std::vector<std::vector<std::pair<int, double>>> neighbours(place_count);
-  for (const SpringMeasurement& spring : springs) {
-    neighbours[spring.a].emplace_back(spring.b, spring.length_m);
-    neighbours[spring.b].emplace_back(spring.a, spring.length_m);
-  }
+  // Boost.Graph's Dijkstra from every place over the springs.
+  using Graph =
+      boost::adjacency_list<boost::vecS, boost::vecS, boost::undirectedS, boost::no_property,
+                            boost::property<boost::edge_weight_t, double>>;
+  Graph graph(place_count);
+  for (const SpringMeasurement& spring : springs)
+    boost::add_edge(spring.a, spring.b, spring.length_m, graph);
   const double infinity = std::numeric_limits<double>::infinity();
   Eigen::MatrixXd squared(place_count, place_count);
-  for (int source = 0; source < place_count; ++source) {  // Dijkstra from every place
-    std::vector<double> distance(place_count, infinity);
-    using Item = std::pair<double, int>;
-    std::priority_queue<Item, std::vector<Item>, std::greater<>> queue;
-    distance[source] = 0.0;
-    queue.emplace(0.0, source);
-    while (!queue.empty()) {
-      const auto [d, place] = queue.top();
-      queue.pop();
-      if (d > distance[place]) continue;
-      for (const auto& [next, length] : neighbours[place]) {
-        if (d + length < distance[next]) {
-          distance[next] = d + length;
-          queue.emplace(distance[next], next);
-        }
-      }
-    }
+  std::vector<double> distance(place_count);
+  for (int source = 0; source < place_count; ++source) {
+    boost::dijkstra_shortest_paths(
+        graph, source,
+        boost::distance_map(distance.data()).distance_inf(infinity).distance_zero(0.0));
     for (int target = 0; target < place_count; ++target) {
       if (distance[target] == infinity) {
         throw UsageError("lattice: place " + std::to_string(target) +
@@ -116,8 +103,26 @@ std::vector<Eigen::Vector2d> initial_positions(int place_count,
                                                const std::vector<SpringMeasurement>& springs,
                                                const std::vector<MotionMeasurement>& motions) {
   if (place_count == 1) return {Eigen::Vector2d::Zero()};
-  std::vector<Eigen::Vector2d> positions = dead_reckoning(place_count, springs, motions);
-  return positions.empty() ? classical_mds(place_count, springs) : positions;
+  std::vector<Eigen::Vector2d> positions = dead_reckoning(place_count, motions);
+  if (positions.empty()) return classical_mds(place_count, springs);
+  // Dead reckoning follows one tree of motions and carries each one's error to every place
+  // beyond it. All motions together, without a robust loss, are a linear least-squares problem
+  // (MotionResidual is linear in the positions): its one minimum averages the errors out, and
+  // is a start from which the robust problem does not fall into a fold.
+  ceres::Problem problem;
+  for (const MotionMeasurement& motion : motions) {
+    problem.AddResidualBlock(
+        MotionResidual::Create(motion.direction_rad, motion.length_m, motion.direction_stddev_rad,
+                               motion.length_stddev_m),
+        nullptr, positions[motion.from].data(), positions[motion.to].data());
+  }
+  problem.SetParameterBlockConstant(positions[0].data());
+  ceres::Solver::Options options;
+  options.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
+  options.logging_type = ceres::SILENT;
+  ceres::Solver::Summary summary;
+  ceres::Solve(options, &problem, &summary);
+  return positions;
 }
 
 }  // namespace omninav::lattice

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
 #include <tuple>
 
 #include "omninav/core/angles.hpp"
@@ -9,6 +10,8 @@
 #include "omninav/core/errors.hpp"
 #include "omninav/core/log.hpp"
 #include "omninav/core/parse.hpp"
+#include "omninav/signature/dissimilarity.hpp"
+#include "omninav/signature/motion.hpp"
 
 namespace omninav::lattice {
 namespace {
@@ -67,17 +70,125 @@ void load_organise_params(const ConfigReader& section, OrganiseParams& params) {
   section.read("neighbours", params.neighbours, 1, 1000);
   section.read("range_fraction", params.range_fraction, 0.1, 0.99);
   section.read("motion_constraints", params.motion_constraints);
-  section.read("min_motion_confidence", params.min_motion_confidence, 0.0, 1.0);
+  section.read("motion_neighbours", params.motion_neighbours, 0, 100);
+  section.read("step_likeness", params.step_likeness, 1.0, 10.0);
+  section.read("motion_direction_stddev_deg", params.motion_direction_stddev_deg, 0.1, 90.0);
+  section.read("motion_length_stddev", params.motion_length_stddev, 0.01, 10.0);
   section.read("min_stiffness", params.lattice.min_stiffness, 1e-9, 0.5);
   section.read("loss_scale_m", params.lattice.loss_scale_m, 1e-4, 100.0);
+  section.read("motion_loss_scale", params.lattice.motion_loss_scale, 0.01, 100.0);
   section.read("max_iterations", params.lattice.max_iterations, 1, 100000);
 }
 
-double DistanceCalibration::distance_m(double dissimilarity) const {
-  // Clamp below the plateau: beyond it, images no longer tell distance (x → ∞).
-  const double share = std::min(dissimilarity / plateau_dissimilarity, 0.99);
-  return -length_scale_m * std::log1p(-share);
+double DistanceCalibration::distance_m(int a, int b, double dissimilarity) const {
+  return step_m * dissimilarity /
+         std::sqrt(local_step_dissimilarity[a] * local_step_dissimilarity[b]);
 }
+
+namespace {
+
+// Every pair's dissimilarity (the map's own components and weights), as a dense matrix.
+Eigen::MatrixXd pair_dissimilarities(const memory::VisualMemory& memory) {
+  const int count = static_cast<int>(memory.place_count());
+  const signature::ComponentWeights& weights = memory.parameters().weights;
+  Eigen::MatrixXd dissimilarity = Eigen::MatrixXd::Zero(count, count);
+  for (int a = 0; a < count; ++a) {
+    for (int b = a + 1; b < count; ++b) {
+      dissimilarity(a, b) = dissimilarity(b, a) = signature::dissimilarity(
+          memory.place(a).signature, memory.place(b).signature, -1, weights);
+    }
+  }
+  return dissimilarity;
+}
+
+// The `count` places most similar to `place`, most similar first.
+std::vector<int> most_similar(const Eigen::MatrixXd& dissimilarity, int place, int count) {
+  std::vector<int> others;
+  for (int other = 0; other < dissimilarity.rows(); ++other) {
+    if (other != place) others.push_back(other);
+  }
+  const auto keep = std::min<std::size_t>(std::max(count, 0), others.size());
+  std::partial_sort(
+      others.begin(), others.begin() + static_cast<std::ptrdiff_t>(keep), others.end(),
+      [&](int x, int y) { return dissimilarity(place, x) < dissimilarity(place, y); });
+  others.resize(keep);
+  return others;
+}
+
+void calibrate(const memory::VisualMemory& memory, const Eigen::MatrixXd& dissimilarity,
+               const OrganiseParams& params, DistanceCalibration& calibration) {
+  std::tie(calibration.step_m, calibration.step_source) = scale_of(memory, params);
+  const int count = static_cast<int>(dissimilarity.rows());
+  std::vector<double> all;
+  for (int a = 0; a < count; ++a) {
+    for (int b = a + 1; b < count; ++b) all.push_back(dissimilarity(a, b));
+    calibration.local_step_dissimilarity.push_back(
+        dissimilarity(a, most_similar(dissimilarity, a, 1).front()));
+  }
+  calibration.step_dissimilarity = median(calibration.local_step_dissimilarity);
+  calibration.plateau_dissimilarity = quantile(all, 0.9);
+  const double smallest = *std::min_element(calibration.local_step_dissimilarity.begin(),
+                                            calibration.local_step_dissimilarity.end());
+  if (!(smallest > 0.0) || calibration.plateau_dissimilarity <= calibration.step_dissimilarity) {
+    throw UsageError("organise: " +
+                     std::string(!(smallest > 0.0)
+                                     ? "two places have identical signatures"
+                                     : "neighbouring places look as different as any two") +
+                     "; the map cannot be calibrated");
+  }
+  calibration.correlation_range_m = params.range_fraction * calibration.step_m *
+                                    calibration.plateau_dissimilarity /
+                                    calibration.step_dissimilarity;
+}
+
+// The motion from a to b measured both ways (from a's view, and from b's view reversed), in the
+// lattice frame; nothing when either fit fails or a place has no heading.
+std::optional<double> motion_direction(const memory::VisualMemory& memory,
+                                       const std::vector<std::optional<double>>& headings, int a,
+                                       int b) {
+  if (!headings[a] || !headings[b]) return std::nullopt;
+  const signature::MotionEstimate forward =
+      signature::estimate_motion(memory.place(a).signature, memory.place(b).signature);
+  const signature::MotionEstimate backward =
+      signature::estimate_motion(memory.place(b).signature, memory.place(a).signature);
+  if (!forward.valid || !backward.valid) return std::nullopt;
+  const double there = wrap_angle(*headings[a] + forward.bearing_rad);
+  const double back = wrap_angle(*headings[b] + backward.bearing_rad + kPi);
+  return wrap_angle(there + 0.5 * signed_difference(back, there));
+}
+
+std::vector<MotionMeasurement> measure_motions(const memory::VisualMemory& memory,
+                                               const Eigen::MatrixXd& dissimilarity,
+                                               const DistanceCalibration& calibration,
+                                               const OrganiseParams& params) {
+  const std::vector<std::optional<double>> headings = lattice_headings(memory);
+  std::vector<MotionMeasurement> motions;
+  std::set<std::pair<int, int>> measured;
+  const auto add = [&](int a, int b, double length_m) {
+    if (!measured.insert({std::min(a, b), std::max(a, b)}).second) return;
+    const std::optional<double> direction = motion_direction(memory, headings, a, b);
+    if (!direction) return;
+    motions.push_back({a, b, *direction, length_m, deg_to_rad(params.motion_direction_stddev_deg),
+                       params.motion_length_stddev * length_m});
+  };
+  // Consecutive places first: the exploration's step is their length, when they look one step
+  // apart (a grid database's row ends, or a gap in a run, are not steps).
+  for (const memory::VisualMemory::EdgeRef& edge : memory.edges()) {
+    const int a = static_cast<int>(edge.from), b = static_cast<int>(edge.to);
+    if (calibration.distance_m(a, b, dissimilarity(a, b)) <=
+        params.step_likeness * calibration.step_m) {
+      add(a, b, calibration.step_m);
+    }
+  }
+  for (int a = 0; a < dissimilarity.rows(); ++a) {
+    for (int b : most_similar(dissimilarity, a, params.motion_neighbours)) {
+      add(a, b, calibration.distance_m(a, b, dissimilarity(a, b)));
+    }
+  }
+  return motions;
+}
+
+}  // namespace
 
 OrganiseResult organise(memory::VisualMemory& memory, const OrganiseParams& params) {
   const int count = static_cast<int>(memory.place_count());
@@ -85,82 +196,33 @@ OrganiseResult organise(memory::VisualMemory& memory, const OrganiseParams& para
     throw UsageError("organise: the map has " + std::to_string(count) +
                      " place(s); a lattice needs two");
   OrganiseResult result;
+  const Eigen::MatrixXd dissimilarity = pair_dissimilarities(memory);
   DistanceCalibration& calibration = result.calibration;
-  std::tie(calibration.step_m, calibration.step_source) = scale_of(memory, params);
+  calibrate(memory, dissimilarity, params, calibration);
 
-  // Every pair's dissimilarity (the map's own components and weights), and each place's most
-  // similar others as its springs.
-  const signature::ComponentWeights& weights = memory.parameters().weights;
-  std::vector<double> all;
-  std::vector<std::vector<std::pair<double, int>>> nearest(count);
+  // Springs (Eq. 4): each place to its most similar places, once per pair.
+  std::set<std::pair<int, int>> sprung;
   for (int a = 0; a < count; ++a) {
-    for (int b = a + 1; b < count; ++b) {
-      const double d = signature::dissimilarity(memory.place(a).signature,
-                                                memory.place(b).signature, -1, weights);
-      all.push_back(d);
-      nearest[a].emplace_back(d, b);
-      nearest[b].emplace_back(d, a);
-    }
-  }
-  std::vector<double> consecutive;
-  for (const memory::VisualMemory::EdgeRef& edge : memory.edges())
-    consecutive.push_back(edge.edge->dissimilarity);
-  if (consecutive.empty())
-    throw UsageError("organise: the map has no edges between consecutive places");
-  calibration.step_dissimilarity = median(consecutive);
-  calibration.plateau_dissimilarity = quantile(all, 0.9);
-  if (!(calibration.step_dissimilarity > 0.0) ||
-      calibration.plateau_dissimilarity <= calibration.step_dissimilarity) {
-    throw UsageError(
-        "organise: consecutive places look as different as any two places; the map cannot be "
-        "calibrated");
-  }
-  // Slope at 0 of D(x) = D_sat(1 − e^(−x/λ)) through (step, D_step): λ from the exact inverse.
-  calibration.length_scale_m = calibration.step_m / -std::log1p(-calibration.step_dissimilarity /
-                                                                calibration.plateau_dissimilarity);
-  calibration.correlation_range_m =
-      -calibration.length_scale_m * std::log1p(-params.range_fraction);
-
-  std::vector<SpringMeasurement>& springs = result.springs;
-  for (int a = 0; a < count; ++a) {
-    std::vector<std::pair<double, int>>& candidates = nearest[a];
-    const std::size_t keep = std::min<std::size_t>(params.neighbours, candidates.size());
-    std::partial_sort(candidates.begin(), candidates.begin() + keep, candidates.end());
-    for (std::size_t i = 0; i < keep; ++i) {
-      const int b = candidates[i].second;
-      if (a < b || std::none_of(nearest[b].begin(),
-                                nearest[b].begin() +
-                                    std::min<std::size_t>(params.neighbours, nearest[b].size()),
-                                [a](const auto& item) { return item.second == a; })) {
-        springs.push_back({a, b, calibration.distance_m(candidates[i].first)});
+    for (int b : most_similar(dissimilarity, a, params.neighbours)) {
+      if (sprung.insert({std::min(a, b), std::max(a, b)}).second) {
+        result.springs.push_back({a, b, calibration.distance_m(a, b, dissimilarity(a, b))});
       }
     }
   }
-
-  std::vector<MotionMeasurement>& motions = result.motions;
   if (params.motion_constraints) {
-    const std::vector<std::optional<double>> headings = lattice_headings(memory);
-    for (const memory::VisualMemory::EdgeRef& edge : memory.edges()) {
-      const memory::Edge& e = *edge.edge;
-      if (!e.motion_bearing_rad || !headings[edge.from] ||
-          e.heading_confidence < params.min_motion_confidence)
-        continue;
-      motions.push_back({static_cast<int>(edge.from), static_cast<int>(edge.to),
-                         wrap_angle(*headings[edge.from] + *e.motion_bearing_rad),
-                         std::max(e.motion_bearing_stddev_rad, deg_to_rad(5.0))});
-    }
+    result.motions = measure_motions(memory, dissimilarity, calibration, params);
   }
 
   LatticeParams lattice = params.lattice;
   lattice.correlation_range_m = calibration.correlation_range_m;
-  result.lattice = solve_lattice(count, springs, motions, lattice);
+  result.lattice = solve_lattice(count, result.springs, result.motions, lattice);
   for (int i = 0; i < count; ++i) {
     memory.place(i).lattice =
         memory::LatticePosition{result.lattice.positions[i].x(), result.lattice.positions[i].y()};
   }
   log_info("organise: " + std::to_string(result.lattice.springs_kept) + " of " +
            std::to_string(result.lattice.springs_given) + " springs kept, " +
-           std::to_string(motions.size()) + " motion constraints; " + result.lattice.summary);
+           std::to_string(result.motions.size()) + " motions; " + result.lattice.summary);
   return result;
 }
 

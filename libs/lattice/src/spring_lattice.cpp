@@ -52,10 +52,17 @@ LatticeResult solve_lattice(int place_count, const std::vector<SpringMeasurement
                              result.positions[spring.a].data(), result.positions[spring.b].data());
     ++result.springs_kept;
   }
+  // Motions measured between places that only look alike (a wrong neighbour) are outliers too.
+  ceres::LossFunction* motion_loss = new ceres::CauchyLoss(params.motion_loss_scale);
   for (const MotionMeasurement& motion : motions) {
+    if (motion.from == motion.to || !(motion.length_m > 0.0)) {
+      throw UsageError("lattice: a motion from place " + std::to_string(motion.from) + " to " +
+                       std::to_string(motion.to) + " needs two places and a length > 0");
+    }
     problem.AddResidualBlock(
-        MotionDirectionResidual::Create(motion.direction_rad, 1.0 / motion.stddev_rad), nullptr,
-        result.positions[motion.from].data(), result.positions[motion.to].data());
+        MotionResidual::Create(motion.direction_rad, motion.length_m, motion.direction_stddev_rad,
+                               motion.length_stddev_m),
+        motion_loss, result.positions[motion.from].data(), result.positions[motion.to].data());
   }
   for (int place = 0; place < place_count; ++place) {
     if (!problem.HasParameterBlock(result.positions[place].data())) {

@@ -20,28 +20,40 @@ struct OrganiseParams {
   // from the map (the exploration's spacing policy, note "exploration.every_m"); a value given
   // here (by the user) wins over the map's.
   double step_m = 0.0;
-  int neighbours = 24;                 // springs per place: its most similar places
-  double range_fraction = 0.8;         // x₁ where dissimilarity reaches this share of its plateau
-  bool motion_constraints = true;      // use the phase-derived directions of motion (§3.4)
-  double min_motion_confidence = 0.3;  // skip motion directions measured with less confidence
-  LatticeParams lattice;               // correlation_range_m is set by the calibration
+  int neighbours = 24;             // springs per place: its most similar places
+  double range_fraction = 0.8;     // x₁ where dissimilarity reaches this share of its plateau
+  bool motion_constraints = true;  // motions measured from the phases (§3.4)
+  int motion_neighbours = 3;       // motions to each place's most similar places, besides the
+                                   // consecutive ones
+  double step_likeness = 1.5;      // consecutive places are one step apart when their
+                                   // dissimilarity is at most this many local steps
+  double motion_direction_stddev_deg = 11.5;  // of a motion's measured direction
+  double motion_length_stddev = 0.3;          // of a motion's length, as a share of it
+  LatticeParams lattice;                      // correlation_range_m is set by the calibration
 };
 
 // Reads the `organise:` section of lattice.yaml.
 void load_organise_params(const ConfigReader& section, OrganiseParams& params);
 
-// How dissimilarity maps to distance. Fig. 7: linear at short range, then saturating; we model
-// it as D(x) = D_sat·(1 − exp(−x/λ)), whose slope at 0 is the short-range relation
-// D_sat/λ, so that x(D) = −λ·ln(1 − D/D_sat) (our reading: the paper only shows the curve).
+// How dissimilarity maps to distance, calibrated on the map itself (our reading of Fig. 7 and
+// §3.2, which show the curve but give no formula). Fig. 7 is linear at short range; its slope,
+// though, depends on the place: parallax is inversely proportional to depth, so views change
+// faster near walls and furniture than in the open. Each place's most similar other place is
+// taken to be one exploration step away (true of the spacing policies: a place every step), so
+// that place a's local step dissimilarity is s_a, its dissimilarity to that place, and
+//     x(a, b) = step · D(a, b) / √(s_a · s_b).
+// Beyond a short range D saturates (the plateau: the 90th percentile of all pairs) and says
+// little; x₁ of Eq. 5, where stiffness falls to 0.1, is where the median step's line reaches
+// range_fraction of the plateau.
 struct DistanceCalibration {
   double step_m = 0.0;                 // the scale used
   std::string step_source;             // "user" or "map: exploration.every_m"
-  double step_dissimilarity = 0.0;     // median dissimilarity between consecutive places
-  double plateau_dissimilarity = 0.0;  // D_sat: the 90th percentile of all pairs' dissimilarity
-  double length_scale_m = 0.0;         // λ
+  double step_dissimilarity = 0.0;     // the median of the places' local step dissimilarity
+  double plateau_dissimilarity = 0.0;  // the 90th percentile of all pairs' dissimilarity
   double correlation_range_m = 0.0;    // x₁
+  std::vector<double> local_step_dissimilarity;  // s_a, one per place
 
-  double distance_m(double dissimilarity) const;
+  double distance_m(int a, int b, double dissimilarity) const;
 };
 
 struct OrganiseResult {
@@ -56,7 +68,9 @@ struct OrganiseResult {
 // places (phases), integrated along the exploration; none for places that cannot be reached.
 std::vector<std::optional<double>> lattice_headings(const memory::VisualMemory& memory);
 
-// Calibrates, builds the springs and motion constraints, solves, and stores each place's
+// Calibrates, builds the springs and the motions (directions from the phases, both ways, between
+// consecutive places that look one step apart and between each place and its most similar
+// places), solves, and stores each place's
 // lattice position (metres, lattice frame: place 0 at the origin, its heading along +x).
 // Throws UsageError when the scale is unknown (no step given and none in the map) or the map
 // has fewer than two places.

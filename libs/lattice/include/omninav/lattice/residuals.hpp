@@ -37,35 +37,44 @@ class SpringResidual {
   const double sqrt_stiffness_;
 };
 
-// The direction of motion from one place to the next, measured from the Fourier phase
-// (001_5bb151a4e28490b4.txt §3.4), in the lattice frame. Residual: the angle between the
-// lattice's step p_to − p_from and the measured direction, wrapped to (−π, π] inside the
-// residual, times a weight (1 / the direction's standard deviation).
-class MotionDirectionResidual {
+// A motion between two places measured from the Fourier phases (001_5bb151a4e28490b4.txt
+// §3.4: the direction) together with its length (the exploration's step, or the spring's
+// length): a spring that also knows which way it points. Residuals, in standard deviations:
+// along the measured direction u, (Δ·u − length) / σ_length; across it, (Δ·u⊥) / (σ_direction ·
+// length), the small-angle sideways error. Both are linear in the positions, so that a lattice
+// held by such motions has one minimum and cannot escape to infinity or collapse to a point,
+// which an angle-only residual (atan2 of Δ) allows: it does not care how long Δ is.
+class MotionResidual {
  public:
-  MotionDirectionResidual(double direction_rad, double weight)
-      : direction_rad_(direction_rad), weight_(weight) {}
+  MotionResidual(double direction_rad, double length_m, double direction_stddev_rad,
+                 double length_stddev_m)
+      : cos_(std::cos(direction_rad)),
+        sin_(std::sin(direction_rad)),
+        length_m_(length_m),
+        along_weight_(1.0 / length_stddev_m),
+        across_weight_(1.0 / (direction_stddev_rad * length_m)) {}
 
   template <typename T>
   bool operator()(const T* const from, const T* const to, T* residual) const {
     const T dx = to[0] - from[0];
     const T dy = to[1] - from[1];
-    // Rotate the step by −direction: its angle is then the error, taken by atan2 in (−π, π].
-    const T c = T(std::cos(direction_rad_)), s = T(std::sin(direction_rad_));
-    const T along = c * dx + s * dy;
-    const T across = -s * dx + c * dy;
-    residual[0] = T(weight_) * ceres::atan2(across, along);
+    residual[0] = T(along_weight_) * (T(cos_) * dx + T(sin_) * dy - T(length_m_));
+    residual[1] = T(across_weight_) * (T(cos_) * dy - T(sin_) * dx);
     return true;
   }
 
-  static ceres::CostFunction* Create(double direction_rad, double weight) {
-    return new ceres::AutoDiffCostFunction<MotionDirectionResidual, 1, 2, 2>(
-        new MotionDirectionResidual(direction_rad, weight));
+  static ceres::CostFunction* Create(double direction_rad, double length_m,
+                                     double direction_stddev_rad, double length_stddev_m) {
+    return new ceres::AutoDiffCostFunction<MotionResidual, 2, 2, 2>(
+        new MotionResidual(direction_rad, length_m, direction_stddev_rad, length_stddev_m));
   }
 
  private:
-  const double direction_rad_;
-  const double weight_;
+  const double cos_;
+  const double sin_;
+  const double length_m_;
+  const double along_weight_;
+  const double across_weight_;
 };
 
 }  // namespace omninav::lattice

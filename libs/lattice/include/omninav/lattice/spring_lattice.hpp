@@ -17,13 +17,16 @@ struct SpringMeasurement {
   double length_m = 0.0;
 };
 
-// The direction of motion from place `from` to place `to`, in the lattice frame (the frame of
-// the first place's heading: 0 along +x), with its standard deviation.
+// The motion from place `from` to place `to`: its direction in the lattice frame (the frame of
+// the first place's heading: 0 along +x), measured from the phases (§3.4), and its length, with
+// their standard deviations.
 struct MotionMeasurement {
   int from = 0;
   int to = 0;
   double direction_rad = 0.0;
-  double stddev_rad = 0.15;  // §3.4: "uncertainty concerning the motion direction is within 15%"
+  double length_m = 0.0;
+  double direction_stddev_rad = 0.15;  // §3.4: "uncertainty ... within 15%"
+  double length_stddev_m = 0.1;
 };
 
 struct LatticeParams {
@@ -31,6 +34,7 @@ struct LatticeParams {
   double min_stiffness = 1e-3;       // springs weaker than this are dropped (sparsity)
   double loss_scale_m = 0.15;        // Cauchy loss on spring residuals: beyond ~this, a spring's
                                      // pull is discounted as an outlier (aliased places)
+  double motion_loss_scale = 1.0;    // Cauchy loss on motion residuals, in standard deviations
   int max_iterations = 200;
   int threads = 1;
 };
@@ -53,9 +57,9 @@ LatticeResult solve_lattice(int place_count, const std::vector<SpringMeasurement
                             const std::vector<MotionMeasurement>& motions,
                             const LatticeParams& params = {});
 
-// Starting positions: dead reckoning along the motion chain when every place after the first is
-// reached by a motion measurement (step lengths from the springs between consecutive places),
-// otherwise classical multidimensional scaling of the shortest-path distances over the springs.
+// Starting positions: dead reckoning along the motions when every place after the first is
+// reached by one (a breadth-first tree from place 0), otherwise classical multidimensional scaling
+// of the shortest-path distances over the springs.
 std::vector<Eigen::Vector2d> initial_positions(int place_count,
                                                const std::vector<SpringMeasurement>& springs,
                                                const std::vector<MotionMeasurement>& motions);

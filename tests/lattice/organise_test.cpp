@@ -1,0 +1,88 @@
+#include "omninav/lattice/organise.hpp"
+
+#include <gtest/gtest.h>
+
+#include <iostream>
+
+#include "omninav/core/errors.hpp"
+#include "omninav/lattice/lattice_report.hpp"
+#include "omninav/memory/exploration.hpp"
+#include "omninav/sim/renderer.hpp"
+#include "omninav/sim/room.hpp"
+#include "omninav/sim/trajectory.hpp"
+
+namespace omninav::lattice {
+namespace {
+
+// A map of a 30 cm grid of the built-in room rendered at 360×45 (the grid of 001 §3.3, Fig. 14;
+// points inside furniture are left out, as a robot could not stand there), every image a place,
+// headings from the truth, in the order a grid database lists them.
+memory::VisualMemory grid_map(const sim::RoomParams& room_params, const std::string& grid) {
+  const sim::World room = sim::make_room(room_params);
+  sim::RenderParams render;
+  render.geometry.width_px = 360;
+  render.geometry.height_px = 45;
+  const sim::Renderer renderer(room, render);
+  memory::VisualMemory map{memory::MapParameters{}};
+  memory::Explorer explorer(map, {}, "grid", "organise_test.cpp");
+  const sim::Trajectory trajectory = sim::make_trajectory(grid, room);
+  for (std::size_t i = 0; i < trajectory.poses.size(); ++i) {
+    io::Frame frame;
+    frame.index = static_cast<int>(i);
+    frame.image = renderer.render(trajectory.poses[i].pose);
+    frame.truth = trajectory.poses[i].pose;
+    frame.source = "grid#" + std::to_string(i);
+    explorer.add_place(frame);
+  }
+  return map;
+}
+
+OrganiseParams thirty_centimetres() {
+  OrganiseParams params;
+  params.step_m = 0.3;
+  return params;
+}
+
+TEST(Organise, RecoversTheRenderedGridOfTheDefaultRoom) {
+  memory::VisualMemory map = grid_map({}, "grid:nx=10,ny=8,spacing_m=0.3");
+  const OrganiseResult result = organise(map, thirty_centimetres());
+  const std::optional<LatticeEvaluation> evaluation = evaluate_against_truth(map, false);
+  ASSERT_TRUE(evaluation);
+  std::cout << "default room, " << map.place_count() << " places: RMSE " << evaluation->rmse.all
+            << " spacings (" << evaluation->rmse.interior << " interior); " << result.motions.size()
+            << " motions\n";
+  // Measured 0.73 (0.53 interior); springs alone (§3.2) gave 2.5 and folded it into a line.
+  // (Elsewhere in the room: 0.39 for the grid at x0 = 1.2, y0 = 1.0.) A regression guard: the
+  // issue's target, 0.35 interior, is not reached yet (docs/lattice.md).
+  EXPECT_LT(evaluation->rmse.all, 0.8);
+  EXPECT_GT(result.motions.size(), map.place_count());
+  EXPECT_EQ(result.lattice.springs_kept, result.springs.size());
+}
+
+TEST(Organise, RecoversAFullTenByEightGrid) {
+  // The default room has no free 2.7 × 2.1 m floor; this layout (seed 4, five boxes) has one.
+  sim::RoomParams room;
+  room.seed = 4;
+  room.furniture_count = 5;
+  memory::VisualMemory map = grid_map(room, "grid:x0=3.0,y0=0.3,nx=10,ny=8,spacing_m=0.3");
+  ASSERT_EQ(map.place_count(), 80u);
+  organise(map, thirty_centimetres());
+  const std::optional<LatticeEvaluation> evaluation = evaluate_against_truth(map, false);
+  ASSERT_TRUE(evaluation);
+  std::cout << "10 x 8 grid: RMSE " << evaluation->rmse.all << " spacings ("
+            << evaluation->rmse.interior << " interior of " << evaluation->rmse.interior_count
+            << ")\n";
+  // Measured 0.43 interior, 0.66 overall: short of the issue's 0.35 (see docs/lattice.md).
+  EXPECT_LT(evaluation->rmse.interior, 0.5);
+  EXPECT_LT(evaluation->rmse.all, 0.8);
+}
+
+TEST(Organise, ClearErrors) {
+  memory::VisualMemory empty{memory::MapParameters{}};
+  EXPECT_THROW(organise(empty, thirty_centimetres()), UsageError);
+  memory::VisualMemory map = grid_map({}, "grid:nx=3,ny=1,spacing_m=0.3");
+  EXPECT_THROW(organise(map, {}), UsageError);  // no step given, none in the map
+}
+
+}  // namespace
+}  // namespace omninav::lattice
