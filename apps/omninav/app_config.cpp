@@ -47,9 +47,10 @@ lattice::OrganiseParams load_lattice_config(const std::filesystem::path& config_
 NavigationConfig load_navigation_config(const std::filesystem::path& config_dir) {
   const ConfigReader config = ConfigReader::from_file(config_dir / "navigation.yaml");
   NavigationConfig navigation;
-  config.section("route").read("neighbour_spacings", navigation.neighbour_spacings, 1.0, 10.0);
+  navigation::load_route_params(config.section("route"), navigation.route);
   navigation::load_navigator_params(config.section("navigator"), navigation.navigator);
   sim::load_robot_params(config.section("robot"), navigation.robot);
+  navigation::load_trial_params(config.section("trials"), navigation.trials);
   config.require_all_known();
   return navigation;
 }

@@ -9,6 +9,7 @@
 #include "omninav/lattice/organise.hpp"
 #include "omninav/memory/memory_config.hpp"
 #include "omninav/navigation/navigator.hpp"
+#include "omninav/navigation/trials.hpp"
 #include "omninav/omni/unwrap.hpp"
 #include "omninav/sim/virtual_robot.hpp"
 #include "omninav/sim/world_loader.hpp"
@@ -39,12 +40,13 @@ memory::MemoryConfig load_memory_config(const std::filesystem::path& config_dir)
 lattice::OrganiseParams load_lattice_config(const std::filesystem::path& config_dir);
 
 struct NavigationConfig {
-  double neighbour_spacings = 1.6;  // route: lattice neighbours within this many spacings
+  navigation::RouteParams route;
   navigation::NavigatorParams navigator;
   sim::RobotParams robot;
+  navigation::TrialParams trials;
 };
 
-// <config_dir>/navigation.yaml: sections route, navigator and robot.
+// <config_dir>/navigation.yaml: sections route, navigator, robot and trials.
 NavigationConfig load_navigation_config(const std::filesystem::path& config_dir);
 
 }  // namespace omninav::cli

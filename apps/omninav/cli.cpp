@@ -44,6 +44,7 @@ int run(const std::vector<std::string>& args) {
   add_localise_command(app, global);
   add_export_command(app, global);
   add_organise_command(app, global);
+  add_route_command(app, global);
   add_navigate_command(app, global);
   add_demo_command(app, global);
 

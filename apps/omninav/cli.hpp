@@ -29,6 +29,7 @@ void add_explore_command(CLI::App& app, const GlobalOptions& global);
 void add_localise_command(CLI::App& app, const GlobalOptions& global);
 void add_export_command(CLI::App& app, const GlobalOptions& global);
 void add_organise_command(CLI::App& app, const GlobalOptions& global);
+void add_route_command(CLI::App& app, const GlobalOptions& global);
 void add_navigate_command(CLI::App& app, const GlobalOptions& global);
 void add_demo_command(CLI::App& app, const GlobalOptions& global);
 

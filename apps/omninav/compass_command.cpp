@@ -318,7 +318,9 @@ void add_compass_command(CLI::App& app, const GlobalOptions& global) {
   command
       ->add_option("-m,--method", options->method,
                    "alg1: Algorithm 1, a new reference image when the normalised amplitude falls\n"
-                   "      below sampling.threshold_norm_amp (\"Atm 0.6\");\n"
+                   "      below sampling.threshold_norm_amp (\"Atm 0.6\") or, once the pair shows\n"
+                   "      parallax, the rotation from the reference exceeds\n"
+                   "      sampling.max_reference_rotation_deg (ours; 0 = the paper's alone);\n"
                    "fx:N: a new reference every N+1 frames (\"Fx N\"; fx:0 = successive frames);\n"
                    "exhaustive | fft | phase: Algorithm 1 with that minimiser instead of\n"
                    "      compass.yaml's (exhaustive search, FFT correlation, Fourier phase)")

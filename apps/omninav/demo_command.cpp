@@ -1,8 +1,9 @@
-// omninav demo: the main job on the built-in room, with no arguments. For now (the foundation
-// issue) it renders a short exploration run with exact ground truth and writes its panoramas
-// and a contact sheet; the later stages (explore, organise, localise, navigate) join it as
-// they land.
-#include <iomanip>
+// omninav demo: the main job on the built-in room, with no arguments. It runs the same
+// subcommands a user would, in order, and prints each one's command line and report, so that
+// the demo is also the tutorial: render an exploration of the room (a 30 cm grid, the
+// reference images of 001 §3.3), explore it into a map, organise the map into a lattice,
+// localise query images rendered at random poses, plan a route and drive to a goal image.
+#include <fstream>
 #include <iostream>
 #include <sstream>
 
@@ -10,69 +11,106 @@
 #include "cli.hpp"
 #include "omninav/core/angles.hpp"
 #include "omninav/core/errors.hpp"
-#include "omninav/eval/contact_sheet.hpp"
-#include "omninav/eval/png.hpp"
-#include "render_job.hpp"
+#include "omninav/memory/map_file.hpp"
 
 namespace omninav::cli {
 namespace {
 
 struct DemoOptions {
   std::filesystem::path report = "report/demo";
-  int steps = 150;
+  std::filesystem::path map = "maps/demo.vmem";
+  int queries = 12;
+  int trials = 10;
   int seed = 7;
 };
 
-// A free spot near the room's centre for the walk to start from (furniture may stand there).
-cv::Point2d free_start(const sim::World& world) {
-  const double cx = (world.floor.min_x_m + world.floor.max_x_m) / 2.0;
-  const double cy = (world.floor.min_y_m + world.floor.max_y_m) / 2.0;
-  for (double radius = 0.0; radius < 5.0; radius += 0.1) {
-    for (double angle = 0.0; angle < kTwoPi; angle += 0.2) {
-      const double x = cx + radius * std::cos(angle), y = cy + radius * std::sin(angle);
-      if (world.is_free(x, y, 0.4)) return {x, y};
+// The exploration: a 10 × 8 grid every 30 cm over the middle of the default room (places inside
+// furniture are left out), as in 001 §3.3 (Fig. 14).
+constexpr const char* kGrid = "grid:x0=1.2,y0=1.0,nx=10,ny=8,spacing_m=0.3";
+constexpr const char* kGridSpacing = "0.3";  // metres, as organise --step-m takes it
+
+class Demo {
+ public:
+  Demo(const GlobalOptions& global, const DemoOptions& options)
+      : global_(global), options_(options) {}
+
+  // Runs `omninav <args>` as a user would, after printing it; its standard output goes to the
+  // terminal, or into `capture` when given. A failing stage stops the demo with its message.
+  void step(const std::string& what, const std::vector<std::string>& args,
+            const std::filesystem::path& capture = {}) {
+    std::cout << "\n== " << what << "\n$ omninav";
+    for (const std::string& arg : args) std::cout << ' ' << arg;
+    std::cout << (capture.empty() ? "" : " > " + capture.string()) << "\n" << std::flush;
+    std::vector<std::string> command = {"--config-dir", global_.config_dir.string()};
+    if (global_.quiet) command.push_back("--quiet");
+    command.insert(command.end(), args.begin(), args.end());
+    int status = 0;
+    if (capture.empty()) {
+      status = run(command);
+    } else {
+      std::ofstream file(capture);
+      std::streambuf* terminal = std::cout.rdbuf(file.rdbuf());
+      status = run(command);
+      std::cout.rdbuf(terminal);
+    }
+    if (status != 0) {
+      throw Error("demo: '" + what + "' failed (exit status " + std::to_string(status) + ")");
     }
   }
-  throw UsageError("demo: the room has no free floor to start from");
-}
 
-void run_demo(const GlobalOptions& global, const DemoOptions& options) {
-  const CameraConfig camera = load_camera_config(global.config_dir);
-  const sim::WorldsConfig worlds = load_worlds_config(global.config_dir, camera.panorama);
-  const sim::World world = sim::load_world("room", worlds);
-  const cv::Point2d start = free_start(world);
-  std::ostringstream spec;
-  spec << "walk:x=" << start.x << ",y=" << start.y << ",steps=" << options.steps
-       << ",step_m=0.05,seed=" << options.seed << ",fps=10";
-  const sim::Trajectory trajectory = sim::make_trajectory(spec.str(), world);
-  const sim::Renderer renderer(world, worlds.render);
+  void run_all() {
+    const std::filesystem::path& report = options_.report;
+    std::filesystem::create_directories(report);
+    std::filesystem::create_directories(options_.map.parent_path());
+    const std::string exploration = (report / "exploration").string();
+    const std::string map = options_.map.string();
+    std::cout << "omninav demo: the whole pipeline on the built-in room; pictures and tables go "
+                 "into "
+              << report.string() << "\n";
 
-  std::filesystem::create_directories(options.report);
-  const std::filesystem::path database = options.report / "exploration";
-  const std::vector<cv::Mat> previews =
-      render_database(renderer, trajectory, database, "omninav demo: " + spec.str(), true);
-  std::vector<std::string> captions;
-  const std::size_t step = std::max<std::size_t>(1, trajectory.poses.size() / 12);
-  for (std::size_t i = 0; i < previews.size(); ++i) {
-    const CameraPose& pose = trajectory.poses[i * step].pose;
-    std::ostringstream caption;
-    caption << std::fixed << std::setprecision(2) << "frame " << i * step << "  (" << pose.x_m
-            << ", " << pose.y_m << ") m  heading " << std::setprecision(0)
-            << rad_to_deg(pose.heading_rad) << " deg";
-    captions.push_back(caption.str());
+    step("1. render an exploration of the room (exact poses, a BoB database)",
+         {"render", "--trajectory", kGrid, "--out", exploration, "--force"});
+    step("2. explore: every image a place (Fourier signature, heading, thumbnail)",
+         {"explore", "--input", exploration, "--out", map, "--overwrite"});
+    step("3. organise the places into a lattice (springs and motions, Ceres)",
+         {"organise", map, "--step-m", kGridSpacing, "--picture",
+          (report / "lattice.png").string()});
+
+    // Queries: a random walk with long steps and sharp turns over the same floor.
+    const std::string queries = (report / "queries").string();
+    std::ostringstream walk;
+    walk << "walk:x=2.55,y=2.05,steps=" << options_.queries
+         << ",step_m=0.23,turn_deg=150,seed=" << options_.seed;
+    step("4. render query images at random poses and headings",
+         {"render", "--trajectory", walk.str(), "--out", queries, "--force"});
+    step("5. localise them, coarse to fine (scored against the truth; one picture per query)",
+         {"localise", map, queries, "--format", "csv", "--plot",
+          (report / "localisation.png").string()},
+         report / "localisation.csv");
+
+    // A route and a drive from one corner of the map to the image of the other.
+    const memory::VisualMemory memory = memory::load_map(options_.map);
+    const memory::Place& goal = memory.place(memory.place_count() - 1);
+    const memory::Place& start = memory.place(0);
+    std::ostringstream start_pose;
+    start_pose << start.truth->x_m << ',' << start.truth->y_m << ",90";
+    step("6. plan a route from the first place's image to the last's",
+         {"route", map, "--from", start.source, "--to", goal.source, "--plot",
+          (report / "route.png").string()});
+    step("7. drive there: grab a panorama, localise, turn by the compass, step, repeat",
+         {"navigate", map, "--start", start_pose.str(), "--goal", goal.source, "--out",
+          (report / "navigation").string()});
+    step("8. and over seeded random start and goal poses",
+         {"navigate", map, "--trials", std::to_string(options_.trials), "--seed",
+          std::to_string(options_.seed), "--out", (report / "trials").string()});
+    std::cout << "\nomninav demo: done; the map is " << map << ", the pictures are in "
+              << report.string() << "\n";
   }
-  const std::filesystem::path sheet = options.report / "contact_sheet.png";
-  eval::save_png(eval::contact_sheet(previews, captions, 2), sheet);
 
-  std::cout << "omninav demo\n"
-            << "  world:        built-in room " << worlds.room.size_x_m << " x "
-            << worlds.room.size_y_m << " m, " << world.obstacles.size() << " furniture boxes\n"
-            << "  exploration:  " << trajectory.poses.size() << " panoramas of "
-            << camera.panorama.width_px << "x" << camera.panorama.height_px << ", " << std::fixed
-            << std::setprecision(1) << trajectory.length_m() << " m random walk -> "
-            << database.string() << "\n"
-            << "  contact sheet: " << sheet.string() << "\n";
-}
+ private:
+  const GlobalOptions& global_;
+  const DemoOptions& options_;
+};
 
 }  // namespace
 
@@ -80,17 +118,24 @@ void add_demo_command(CLI::App& app, const GlobalOptions& global) {
   auto options = std::make_shared<DemoOptions>();
   CLI::App* command = app.add_subcommand(
       "demo",
-      "The whole pipeline on the built-in room, no arguments needed: renders an exploration "
-      "run with exact ground truth and writes its panoramas and pictures into the report "
-      "folder.");
+      "The whole pipeline on the built-in room, no arguments needed: renders a 30 cm grid "
+      "exploration, explores it into a map, organises the lattice, localises random query "
+      "images, plans a route and drives to a goal image, then over random start and goal "
+      "pairs. Prints every command it runs with its report; pictures and tables go into the "
+      "report folder.");
   command->add_option("--report", options->report, "Folder for the demo's outputs")
       ->capture_default_str();
-  command->add_option("--steps", options->steps, "Frames of the exploration walk")
-      ->capture_default_str()
-      ->check(CLI::Range(2, 100000));
-  command->add_option("--seed", options->seed, "Seed of the exploration walk")
+  command->add_option("--map", options->map, "Where to write the demo's map")
       ->capture_default_str();
-  command->callback([&global, options] { run_demo(global, *options); });
+  command->add_option("--queries", options->queries, "Query images to localise")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 10000));
+  command->add_option("--trials", options->trials, "Random start and goal pairs to drive")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 10000));
+  command->add_option("--seed", options->seed, "Seed of the queries and the trials")
+      ->capture_default_str();
+  command->callback([&global, options] { Demo(global, *options).run_all(); });
 }
 
 }  // namespace omninav::cli

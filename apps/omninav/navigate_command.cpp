@@ -1,5 +1,7 @@
-// omninav navigate: the reactive loop of 001_5bb151a4e28490b4.txt §3.5 with a virtual robot
-// in a rendered world, driven by the organised visual memory towards a goal image.
+// omninav navigate: the reactive loop of 001_5bb151a4e28490b4.txt §3.5, driven by the organised
+// visual memory towards a goal image: a virtual robot in a rendered world, or a robot on a grid
+// of stored images (a BoB grid database); and the evaluation over seeded random start and goal
+// pairs (--trials).
 #include <fstream>
 #include <iomanip>
 #include <iostream>
@@ -8,12 +10,16 @@
 #include "cli.hpp"
 #include "omninav/core/angles.hpp"
 #include "omninav/core/errors.hpp"
+#include "omninav/core/log.hpp"
 #include "omninav/core/parse.hpp"
 #include "omninav/eval/plot.hpp"
 #include "omninav/eval/png.hpp"
 #include "omninav/io/image_file.hpp"
 #include "omninav/memory/map_file.hpp"
 #include "omninav/navigation/memory_places.hpp"
+#include "omninav/navigation/robot_worlds.hpp"
+#include "omninav/navigation/trials.hpp"
+#include "panorama_input.hpp"
 
 namespace omninav::cli {
 namespace {
@@ -21,81 +27,67 @@ namespace {
 struct NavigateOptions {
   std::filesystem::path map;
   std::string world = "room";
-  std::string start;  // x,y,heading_deg
+  std::filesystem::path database;  // a grid of stored images instead of a rendered world
+  std::string start;               // x,y,heading_deg
   std::filesystem::path goal;
-  std::filesystem::path out;  // folder for steps.csv and path.png
+  std::filesystem::path out;  // folder for steps.csv and path.png, or trials.csv
   int max_steps = 0;
+  int trials = 0;
+  int seed = 1;
 };
 
-CameraPose parse_start(const std::string& text, double z_m) {
+Pose2 parse_start(const std::string& text) {
   const std::vector<std::string> fields = split(text, ',');
   if (fields.size() != 3) throw UsageError("--start: expected x,y,heading_deg, got '" + text + "'");
-  return {parse_double(fields[0], "--start x"),
-          parse_double(fields[1], "--start y"),
-          z_m,
-          deg_to_rad(parse_double(fields[2], "--start heading")),
-          0.0,
-          0.0};
+  return {parse_double(fields[0], "--start x"), parse_double(fields[1], "--start y"),
+          deg_to_rad(parse_double(fields[2], "--start heading"))};
 }
 
-void write_steps_csv(const navigation::NavigationResult& result,
-                     const std::vector<navigation::PlaceNode>& places,
+// The lattice frame turns with the first place's heading (lattice::lattice_headings): a heading
+// in it plus that heading is a heading in the world, when the map stores one.
+void write_steps_csv(const navigation::NavigationResult& result, double lattice_to_world_rad,
                      const std::filesystem::path& file) {
   std::ofstream csv(file);
   if (!csv) throw InputError(file.string() + ": cannot write");
-  csv << "step,x_m,y_m,heading_deg,place,similarity,heading_estimate_deg,heading_error_deg,turn_"
-         "deg,jump\n";
+  csv << "step,x_m,y_m,heading_deg,place,similarity,dissimilarity_per_value,heading_estimate_deg,"
+         "heading_error_deg,turn_deg,jump\n";
   for (const navigation::NavigationStep& step : result.steps) {
     csv << step.index << ',' << step.truth.x_m << ',' << step.truth.y_m << ','
         << rad_to_deg(step.truth.heading_rad) << ',' << step.match.place << ','
-        << step.match.similarity << ',' << rad_to_deg(step.heading_estimate_rad) << ','
-        << rad_to_deg(signed_difference(step.heading_estimate_rad + places[0].heading_rad,
+        << step.match.similarity << ',' << step.match.dissimilarity_per_value << ','
+        << rad_to_deg(step.heading_estimate_rad) << ','
+        << rad_to_deg(signed_difference(step.heading_estimate_rad + lattice_to_world_rad,
                                         step.truth.heading_rad))
         << ',' << rad_to_deg(step.turn_rad) << ',' << (step.jump ? 1 : 0) << '\n';
   }
 }
 
-void run_navigate(const GlobalOptions& global, const NavigateOptions& options) {
-  const CameraConfig camera = load_camera_config(global.config_dir);
-  sim::WorldsConfig worlds = load_worlds_config(global.config_dir, camera.panorama);
-  const memory::MemoryConfig memory_config = load_memory_config(global.config_dir);
-  NavigationConfig navigation = load_navigation_config(global.config_dir);
-  if (options.max_steps > 0) navigation.navigator.max_steps = options.max_steps;
-
-  const memory::VisualMemory memory = memory::load_map(options.map);
-  const std::vector<navigation::PlaceNode> places = navigation::places_from_memory(memory);
-  // The robot's camera makes panoramas of the size the map was built from.
-  worlds.render.geometry.width_px = memory.place(0).signature.width_px;
-  worlds.render.geometry.height_px = memory.place(0).signature.rows;
-  const memory::Localiser localiser(memory, memory_config.localisation);
-  signature::SignatureExtractor extractor(memory.parameters().signature);
-  const navigation::Localiser localise = navigation::memory_localiser(localiser, extractor);
-
-  const navigation::PlaceMatch goal = localise(io::read_image(options.goal));
-  if (goal.place < 0)
-    throw InputError(options.goal.string() + ": the goal image matches no place of the map");
-  const navigation::RoutePlan plan = navigation::plan_to_goal(
-      places,
-      navigation::lattice_neighbours(
-          places, navigation.neighbour_spacings * navigation::lattice_spacing(places)),
-      goal.place);
-
-  const sim::World world = sim::load_world(options.world, worlds);
-  const sim::Renderer renderer(world, worlds.render);
-  const double camera_z = memory.place(0).truth ? memory.place(0).truth->z_m : 1.0;
-  const CameraPose start = parse_start(options.start, camera_z);
-  if (!world.is_free(start.x_m, start.y_m)) {
-    throw UsageError("--start: (" + options.start +
-                     ") is inside furniture or outside the floor of " + world.name);
+void write_trials_csv(const std::vector<navigation::TrialOutcome>& outcomes,
+                      const std::filesystem::path& file) {
+  std::ofstream csv(file);
+  if (!csv) throw InputError(file.string() + ": cannot write");
+  csv << "trial,start_x_m,start_y_m,start_heading_deg,goal_x_m,goal_y_m,goal_heading_deg,"
+         "goal_place,stopped_at_goal,reached,final_error_m,path_m,straight_m,path_ratio,steps,"
+         "jumps\n";
+  for (std::size_t i = 0; i < outcomes.size(); ++i) {
+    const navigation::TrialOutcome& o = outcomes[i];
+    csv << i << ',' << o.trial.start.x_m << ',' << o.trial.start.y_m << ','
+        << rad_to_deg(o.trial.start.heading_rad) << ',' << o.trial.goal.x_m << ','
+        << o.trial.goal.y_m << ',' << rad_to_deg(o.trial.goal.heading_rad) << ',' << o.goal_place
+        << ',' << (o.stopped_at_goal ? 1 : 0) << ',' << (o.reached ? 1 : 0) << ','
+        << o.final_error_m << ',' << o.path_m << ',' << o.straight_m << ','
+        << o.path_m / o.straight_m << ',' << o.steps << ',' << o.jumps << '\n';
   }
-  sim::VirtualRobot robot(world, start, navigation.robot);
-  const navigation::NavigationResult result =
-      navigation::navigate(robot, renderer, places, plan, localise, navigation.navigator);
+}
 
-  std::filesystem::create_directories(options.out);
-  write_steps_csv(result, places, options.out / "steps.csv");
-  eval::PointsPlot lattice_path("The route over the lattice (places matched, in order)", "x (m)",
-                                "y (m)");
+// path.png: the places matched, in order, over the lattice; beside it the robot's true path
+// over the room's furniture (rendered worlds) or the grid's images (databases) and the places'
+// true positions when the map has them.
+void draw_path(const navigation::NavigationResult& result,
+               const std::vector<navigation::PlaceNode>& places, int goal,
+               const memory::VisualMemory& memory, const std::vector<sim::FloorBox>& obstacles,
+               const std::vector<cv::Point2d>& grid, const std::filesystem::path& file) {
+  eval::PointsPlot lattice_path("The route over the lattice (places matched, in order)", "x", "y");
   std::vector<cv::Point2d> lattice_points, matched, truth_path;
   for (const navigation::PlaceNode& place : places)
     lattice_points.emplace_back(place.position_m.x(), place.position_m.y());
@@ -106,9 +98,9 @@ void run_navigate(const GlobalOptions& global, const NavigateOptions& options) {
   for (std::size_t i = 1; i < matched.size(); ++i)
     lattice_path.add_segment({matched[i - 1], matched[i], 0.2, 1.0});
   lattice_path.add_points("places", lattice_points);
-  lattice_path.add_points("goal", {lattice_points[goal.place]});
-  eval::PointsPlot room_path("The robot's true path in the room", "x (m)", "y (m)");
-  for (const sim::FloorBox& box : world.obstacles) {
+  lattice_path.add_points("goal", {lattice_points[goal]});
+  eval::PointsPlot room_path("The robot's true path", "x (m)", "y (m)");
+  for (const sim::FloorBox& box : obstacles) {
     const std::array<cv::Point2d, 4> corners{
         cv::Point2d(box.min_x_m, box.min_y_m), cv::Point2d(box.max_x_m, box.min_y_m),
         cv::Point2d(box.max_x_m, box.max_y_m), cv::Point2d(box.min_x_m, box.max_y_m)};
@@ -117,21 +109,133 @@ void run_navigate(const GlobalOptions& global, const NavigateOptions& options) {
   }
   for (std::size_t i = 1; i < truth_path.size(); ++i)
     room_path.add_segment({truth_path[i - 1], truth_path[i], 0.1, 1.0});
+  if (!grid.empty()) room_path.add_points("grid images", grid);
   if (memory.all_have_truth()) {
     std::vector<cv::Point2d> true_places;
     for (std::size_t i = 0; i < memory.place_count(); ++i) {
       true_places.emplace_back(memory.place(i).truth->x_m, memory.place(i).truth->y_m);
     }
     room_path.add_points("places (truth)", true_places);
-    room_path.add_points("goal place", {true_places[goal.place]});
+    room_path.add_points("goal place", {true_places[goal]});
   }
   room_path.add_points("start", {truth_path.front()});
   cv::Mat picture;
   cv::hconcat(lattice_path.render(), room_path.render(), picture);
-  eval::save_png(picture, options.out / "path.png");
+  eval::save_png(picture, file);
+}
 
+// The images of a grid database (or any input whose images have poses), as panoramas.
+std::vector<navigation::GridImage> read_grid(const std::filesystem::path& input,
+                                             const std::filesystem::path& config_dir) {
+  PanoramaInput panoramas(input, config_dir, false);
+  std::vector<navigation::GridImage> images;
+  while (std::optional<io::Frame> frame = panoramas.next()) {
+    if (!frame->truth) {
+      throw InputError(frame->source + ": no pose; a grid world needs the position of every image");
+    }
+    images.push_back({frame->image, *frame->truth});
+  }
+  if (!panoramas.is_grid()) {
+    log_info(input.string() + " is not marked a grid database; its images are used as one");
+  }
+  return images;
+}
+
+void evaluate_trials(const NavigateOptions& options, const memory::VisualMemory& memory,
+                     const std::vector<navigation::PlaceNode>& places,
+                     const navigation::Localiser& localise, NavigationConfig navigation,
+                     const sim::World& world, const sim::Renderer& renderer) {
+  if (!memory.all_have_truth()) {
+    throw UsageError(options.map.string() +
+                     ": --trials scores against ground truth, and the map's places have none");
+  }
+  std::vector<Eigen::Vector2d> mapped;
+  std::vector<cv::Point2d> points;
+  for (std::size_t i = 0; i < memory.place_count(); ++i) {
+    mapped.emplace_back(memory.place(i).truth->x_m, memory.place(i).truth->y_m);
+    points.emplace_back(mapped.back().x(), mapped.back().y());
+  }
+  const double spacing_m = memory::typical_spacing(points);
+  navigation.trials.count = options.trials;
+  navigation.trials.seed = static_cast<std::uint32_t>(options.seed);
+  const std::vector<navigation::Trial> trials =
+      navigation::random_trials(world, mapped, spacing_m, navigation.robot.radius_m,
+                                memory.place(0).truth->z_m, navigation.trials);
+  const std::vector<navigation::TrialOutcome> outcomes = navigation::run_trials(
+      trials, world, renderer, places, localise, navigation::match_limit(memory, navigation.route),
+      navigation.route, navigation.navigator, navigation.robot,
+      navigation.trials.goal_radius_spacings * spacing_m);
+  std::filesystem::create_directories(options.out);
+  write_trials_csv(outcomes, options.out / "trials.csv");
+  std::cout << navigation::summarise(outcomes).text() << " (seed " << options.seed
+            << "; reached: stopped within " << std::fixed << std::setprecision(2)
+            << navigation.trials.goal_radius_spacings * spacing_m
+            << " m of the goal); trials: " << (options.out / "trials.csv").string() << "\n";
+}
+
+void run_navigate(const GlobalOptions& global, const NavigateOptions& options) {
+  if (options.trials > 0 && !options.database.empty())
+    throw UsageError("--trials renders its goals: it needs a --world, not a --database");
+  if (options.trials == 0 && (options.start.empty() || options.goal.empty()))
+    throw UsageError("navigate needs --start and --goal (or --trials N for an evaluation)");
+  const CameraConfig camera = load_camera_config(global.config_dir);
+  sim::WorldsConfig worlds = load_worlds_config(global.config_dir, camera.panorama);
+  const memory::MemoryConfig memory_config = load_memory_config(global.config_dir);
+  NavigationConfig navigation = load_navigation_config(global.config_dir);
+  if (options.max_steps > 0) navigation.navigator.max_steps = options.max_steps;
+
+  const memory::VisualMemory memory = memory::load_map(options.map);
+  const std::vector<navigation::PlaceNode> places = navigation::places_from_memory(memory);
+  const memory::Localiser localiser(memory, memory_config.localisation);
+  signature::SignatureExtractor extractor(memory.parameters().signature);
+  const navigation::Localiser localise = navigation::memory_localiser(localiser, extractor);
+
+  // The robot in a rendered world, or on a grid of stored images.
+  std::optional<sim::World> world;
+  std::unique_ptr<sim::Renderer> renderer;
+  std::unique_ptr<sim::VirtualRobot> robot;
+  std::unique_ptr<navigation::NavigationWorld> body;
+  std::vector<cv::Point2d> grid;
+  if (options.database.empty()) {
+    world = sim::load_world(options.world, worlds);
+    // The robot's camera makes panoramas of the size the map was built from.
+    worlds.render.geometry.width_px = memory.place(0).signature.width_px;
+    worlds.render.geometry.height_px = memory.place(0).signature.rows;
+    renderer = std::make_unique<sim::Renderer>(*world, worlds.render);
+    if (options.trials > 0) {
+      evaluate_trials(options, memory, places, localise, navigation, *world, *renderer);
+      return;
+    }
+    const Pose2 start = parse_start(options.start);
+    if (!world->is_free(start.x_m, start.y_m)) {
+      throw UsageError("--start: (" + options.start +
+                       ") is inside furniture or outside the floor of " + world->name);
+    }
+    const double camera_z = memory.place(0).truth ? memory.place(0).truth->z_m : 1.0;
+    robot = std::make_unique<sim::VirtualRobot>(
+        *world, CameraPose{start.x_m, start.y_m, camera_z, start.heading_rad, 0.0, 0.0},
+        navigation.robot);
+    body = std::make_unique<navigation::RenderedWorld>(*robot, *renderer);
+  } else {
+    std::vector<navigation::GridImage> images = read_grid(options.database, global.config_dir);
+    for (const navigation::GridImage& image : images)
+      grid.emplace_back(image.pose.x_m, image.pose.y_m);
+    body = std::make_unique<navigation::GridDatabaseWorld>(
+        std::move(images), parse_start(options.start), navigation.robot);
+  }
+
+  const navigation::GoalRun run = navigation::navigate_to_image(
+      *body, io::read_image(options.goal), options.goal.string(), places, localise,
+      navigation::match_limit(memory, navigation.route), navigation.route, navigation.navigator);
+  const navigation::NavigationResult& result = run.result;
+
+  std::filesystem::create_directories(options.out);
+  write_steps_csv(result, memory.place(0).heading_rad.value_or(0.0), options.out / "steps.csv");
+  draw_path(result, places, run.goal.place, memory,
+            world ? world->obstacles : std::vector<sim::FloorBox>{}, grid,
+            options.out / "path.png");
   std::cout << std::fixed << std::setprecision(2) << (result.reached ? "reached" : "did not reach")
-            << " the goal (place " << goal.place << ") in " << result.steps.size() << " steps, "
+            << " the goal (place " << run.goal.place << ") in " << result.steps.size() << " steps, "
             << result.path_length_m << " m driven, " << result.jumps
             << " localisation jumps; steps: " << (options.out / "steps.csv").string()
             << ", picture: " << (options.out / "path.png").string() << "\n";
@@ -143,23 +247,45 @@ void add_navigate_command(CLI::App& app, const GlobalOptions& global) {
   auto options = std::make_shared<NavigateOptions>();
   CLI::App* command = app.add_subcommand(
       "navigate",
-      "Drive a virtual robot in a world to the place of a goal image, reactively: grab a "
-      "panorama, localise it in the organised memory, read the heading against the place, turn "
-      "to the place's direction towards the goal, step, repeat (001_5bb151a4e28490b4.txt §3.5). "
-      "Writes steps.csv (true pose, place matched, heading estimate and error) and path.png.");
+      "Drive a robot to the place of a goal image, reactively: grab a panorama, localise it in "
+      "the organised memory, read the heading against the place, turn to the place's direction "
+      "towards the goal, step, repeat (001_5bb151a4e28490b4.txt §3.5). The robot is a virtual "
+      "one in a rendered --world, or stands on the images of a grid --database (a step goes to "
+      "the nearest grid image, a turn rolls the panorama). Writes steps.csv (true pose, place "
+      "matched, heading estimate and error) and path.png. With --trials N: N seeded random "
+      "start and goal pairs in the mapped area, clear of furniture, each goal image rendered at "
+      "its pose; prints the share reached and the path over the straight line, writes "
+      "trials.csv (needs a map with ground truth).");
   command->add_option("map", options->map, "An organised map (.vmem)")
       ->required()
       ->check(CLI::ExistingFile);
-  command->add_option("--world", options->world, "'room' or a Wavefront .obj file")
-      ->capture_default_str();
-  command->add_option("--start", options->start, "The robot's true start: x_m,y_m,heading_deg")
+  CLI::Option* world =
+      command->add_option("--world", options->world, "'room' or a Wavefront .obj file")
+          ->capture_default_str();
+  command
+      ->add_option("--database", options->database,
+                   "A grid of stored panoramas with poses (a BoB grid database) to navigate in, "
+                   "instead of a rendered world")
+      ->check(CLI::ExistingDirectory)
+      ->excludes(world);
+  CLI::Option* start = command->add_option(
+      "--start", options->start,
+      "The robot's true start: x_m,y_m,heading_deg (on a grid: the nearest grid image)");
+  CLI::Option* goal = command->add_option("--goal", options->goal, "The goal image (a panorama)")
+                          ->check(CLI::ExistingFile);
+  command->add_option("--out", options->out, "Folder for steps.csv and path.png (or trials.csv)")
       ->required();
-  command->add_option("--goal", options->goal, "The goal image (a panorama)")
-      ->required()
-      ->check(CLI::ExistingFile);
-  command->add_option("--out", options->out, "Folder for steps.csv and path.png")->required();
   command->add_option("--max-steps", options->max_steps, "Step budget (default: navigation.yaml)")
       ->check(CLI::Range(1, 100000));
+  command
+      ->add_option("--trials", options->trials,
+                   "Evaluate over this many seeded random start and goal pairs instead")
+      ->check(CLI::Range(1, 100000))
+      ->excludes(start)
+      ->excludes(goal);
+  command->add_option("--seed", options->seed, "Seed of the --trials poses and motion noise")
+      ->check(CLI::Range(0, 1'000'000'000))
+      ->capture_default_str();
   command->callback([&global, options] { run_navigate(global, *options); });
 }
 

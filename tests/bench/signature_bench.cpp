@@ -1,14 +1,19 @@
 // The visual memory's speed and size (issue 4 §4). Targets on one core: ≤ 20 µs per 360×45
 // signature; ≤ 10 ms per query at 100,000 places.
-// Run: build/bin/signature_bench   (one core: taskset -c 0 build/bin/signature_bench)
+// Run: build/bin/signature_bench   (one core: taskset -c 1 build/bin/signature_bench; the
+// signature alone: --benchmark_filter=signature_time --benchmark_repetitions=5)
 #include <benchmark/benchmark.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <map>
 #include <memory>
 #include <random>
 
+#include "../../libs/signature/src/fast_math.hpp"
+#include "../../libs/signature/src/low_frequency_dft.hpp"
+#include "../../libs/signature/src/panorama_lines.hpp"
 #include "../signature/synthetic_signatures.hpp"
 #include "omninav/memory/exploration.hpp"
 #include "omninav/memory/map_file.hpp"
@@ -31,22 +36,89 @@ cv::Mat rendered_panorama(int width, int height) {
   return renderer.render(CameraPose{2.2, 1.9, 1.0, 0.4, 0.0, 0.0});
 }
 
-// Signature time per panorama: colour conversion, the FFT of every row, magnitudes, phases.
-void signature_time(benchmark::State& state, int width, int height, ColourMode mode) {
+// Signature time per panorama: colour conversion, the transform of every row, magnitudes,
+// phases. The fast path (the default) and, as its baseline in the same run, the reference path
+// (cv::cvtColor, FFTW, the C library's atan2; the tests' oracle).
+void signature_time(benchmark::State& state, int width, int height, ColourMode mode,
+                    signature::SignaturePath path) {
   const cv::Mat panorama = rendered_panorama(width, height);
-  signature::SignatureExtractor extractor({15, mode});
+  signature::SignatureExtractor extractor({15, mode}, path);
   for (auto _ : state) benchmark::DoNotOptimize(extractor.compute(panorama));
   state.counters["rows_per_s"] = benchmark::Counter(
       static_cast<double>(state.iterations()) * height, benchmark::Counter::kIsRate);
 }
-BENCHMARK_CAPTURE(signature_time, 360x45_luminance, 360, 45, ColourMode::kLuminance)
+constexpr auto kFast = signature::SignaturePath::kFast;
+constexpr auto kReference = signature::SignaturePath::kReference;
+BENCHMARK_CAPTURE(signature_time, 360x45_luminance, 360, 45, ColourMode::kLuminance, kFast)
     ->Unit(benchmark::kMicrosecond);
-BENCHMARK_CAPTURE(signature_time, 360x45_per_channel, 360, 45, ColourMode::kPerChannel)
+BENCHMARK_CAPTURE(signature_time, 360x45_luminance_reference, 360, 45, ColourMode::kLuminance,
+                  kReference)
     ->Unit(benchmark::kMicrosecond);
-BENCHMARK_CAPTURE(signature_time, 720x80_luminance, 720, 80, ColourMode::kLuminance)
+BENCHMARK_CAPTURE(signature_time, 360x45_per_channel, 360, 45, ColourMode::kPerChannel, kFast)
     ->Unit(benchmark::kMicrosecond);
-BENCHMARK_CAPTURE(signature_time, 720x80_per_channel, 720, 80, ColourMode::kPerChannel)
+BENCHMARK_CAPTURE(signature_time, 360x45_per_channel_reference, 360, 45, ColourMode::kPerChannel,
+                  kReference)
     ->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(signature_time, 720x80_luminance, 720, 80, ColourMode::kLuminance, kFast)
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(signature_time, 720x80_luminance_reference, 720, 80, ColourMode::kLuminance,
+                  kReference)
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(signature_time, 720x80_per_channel, 720, 80, ColourMode::kPerChannel, kFast)
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(signature_time, 720x80_per_channel_reference, 720, 80, ColourMode::kPerChannel,
+                  kReference)
+    ->Unit(benchmark::kMicrosecond);
+
+// The fast path's stages for a 360×45 panorama (the library's internals, as in
+// tests/signature/fast_path_test.cpp), for the breakdown in docs/memory.md. As in compute(),
+// each stage works on one line (or one batch of lines) at a time in small buffers that stay in
+// the L1 cache; whole-image buffers would make the stages look slower than they are together.
+void signature_stage(benchmark::State& state, int stage) {
+  const cv::Mat panorama = rendered_panorama(360, 45);
+  const int width = panorama.cols, rows = panorama.rows, m = 15;
+  const signature::detail::LowFrequencyDft dft(width, m);
+  const int batch = signature::detail::LowFrequencyDft::kMaxLines;
+  std::vector<float> line(static_cast<std::size_t>(width));
+  std::vector<float> folded(static_cast<std::size_t>(batch) * width);
+  std::vector<float> re(static_cast<std::size_t>(rows) * m), im(re.size());
+  std::vector<float> magnitude(re.size()), phase(re.size());
+  for (int j = 0; j < batch; ++j) {
+    signature::detail::load_line(panorama, ColourMode::kLuminance, 20 + j, line.data());
+    dft.fold(line.data(), folded.data() + static_cast<std::size_t>(j) * width);
+  }
+  for (auto _ : state) {
+    switch (stage) {
+      case 0:  // every row's luminance, into one line buffer
+        for (int y = 0; y < rows; ++y) {
+          signature::detail::load_line(panorama, ColourMode::kLuminance, y, line.data());
+          benchmark::ClobberMemory();
+        }
+        break;
+      case 1:  // folding 45 lines
+        for (int y = 0; y < rows; ++y) {
+          dft.fold(line.data(), folded.data() + static_cast<std::size_t>(y % batch) * width);
+          benchmark::ClobberMemory();
+        }
+        break;
+      case 2:  // the first 15 components of 45 folded lines, a batch at a time
+        for (int first = 0; first < rows; first += batch) {
+          dft.transform_folded(folded.data(), std::min(batch, rows - first), re.data() + first * m,
+                               im.data() + first * m);
+        }
+        break;
+      default:  // 675 magnitudes and phases
+        signature::detail::to_polar(re.data(), im.data(), re.size(), 1.0f / width, magnitude.data(),
+                                    phase.data());
+        break;
+    }
+    benchmark::ClobberMemory();
+  }
+}
+BENCHMARK_CAPTURE(signature_stage, 360x45_luminance_rows, 0)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(signature_stage, 360x45_fold, 1)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(signature_stage, 360x45_first_15_components, 2)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(signature_stage, 360x45_magnitudes_and_phases, 3)->Unit(benchmark::kMicrosecond);
 
 // N synthetic places on a 30 cm grid (synthetic_signatures.hpp), 45 rows, m = 15, built once
 // per (N, channels).

@@ -10,6 +10,7 @@
 
 #include "omninav/core/angles.hpp"
 #include "omninav/io/sequence.hpp"
+#include "omninav/memory/map_file.hpp"
 #include "omninav/omni/unwrap.hpp"
 #include "support/shared_data.hpp"
 
@@ -116,9 +117,22 @@ TEST_F(CommandLine, HelpAndUsageErrors) {
 
 TEST_F(CommandLine, DemoWritesItsReport) {
   const std::filesystem::path report = folder_ / "report";
-  ASSERT_EQ(run_omninav({"demo", "--report", report.string(), "--steps", "12"}), 0) << errors_;
-  EXPECT_TRUE(std::filesystem::exists(report / "contact_sheet.png"));
-  EXPECT_EQ(io::open_sequence(report / "exploration")->size(), 12u);
+  const std::filesystem::path map = folder_ / "demo.vmem";
+  ASSERT_EQ(run_omninav({"demo", "--report", report.string(), "--map", map.string(), "--queries",
+                         "4", "--trials", "2"}),
+            0)
+      << errors_;
+  // Every stage leaves its output: the exploration, the organised map, the localisation, the
+  // route and the drives.
+  EXPECT_EQ(io::open_sequence(report / "exploration")->size(), 57u);  // the grid minus furniture
+  const memory::VisualMemory memory = memory::load_map(map);
+  EXPECT_EQ(memory.place_count(), 57u);
+  EXPECT_TRUE(memory.all_have_lattice());
+  for (const char* file : {"exploration/contact_sheet.png", "lattice.png", "localisation.csv",
+                           "localisation_0000.png", "route.png", "navigation/steps.csv",
+                           "navigation/path.png", "trials/trials.csv"}) {
+    EXPECT_TRUE(std::filesystem::exists(report / file)) << file;
+  }
 }
 
 TEST_F(CommandLine, UnwrapRecoversRenderedPanoramasFromSyntheticMirrorImages) {

@@ -61,7 +61,7 @@ std::shared_ptr<const FftwBuffer<fftw_complex>> conjugate_mask_spectrum(const Co
   const auto key = std::make_pair(mask.key(), mask.width_px());
   if (const auto found = cache.find(key); found != cache.end()) return found->second;
   const int width = mask.width_px();
-  const FftPlans& plans = fft_plans(width, planning);
+  const FftPlans plans = fft_plans(width, planning);
   FftwBuffer<double> line(static_cast<std::size_t>(width));
   for (int c = 0; c < width; ++c) line.data()[c] = mask.selected(c) ? 1.0 : 0.0;
   auto spectrum = std::make_shared<FftwBuffer<fftw_complex>>(static_cast<std::size_t>(plans.bins));
@@ -71,6 +71,22 @@ std::shared_ptr<const FftwBuffer<fftw_complex>> conjugate_mask_spectrum(const Co
 }
 
 }  // namespace
+
+// The work arrays of correlation_costs for one width.
+struct CorrelationScratch {
+  int width = 0;
+  std::vector<double> sum_re, sum_im;  // bins
+  FftwBuffer<fftw_complex> spectrum;   // bins (FFTW-aligned: the inverse plan runs on it)
+  FftwBuffer<double> correlation;      // width
+  void resize(int new_width, int bins) {
+    if (new_width == width) return;
+    width = new_width;
+    sum_re.assign(static_cast<std::size_t>(bins), 0.0);
+    sum_im.assign(static_cast<std::size_t>(bins), 0.0);
+    spectrum = FftwBuffer<fftw_complex>(static_cast<std::size_t>(bins));
+    correlation = FftwBuffer<double>(static_cast<std::size_t>(new_width));
+  }
+};
 
 // re += Re(conj(b)·a), im += Im(conj(b)·a) over `bins` interleaved complex values. Compiled
 // for AVX-512, AVX2 and the baseline, picked at load time (the same sums in every version:
@@ -114,39 +130,48 @@ std::vector<double> correlation_costs(const DistanceFunction& distance, const Co
   }
   distance.check(first, second);
   const int width = first.width();
-  const auto first_role = detail::first_spectra(first, planning);
-  const auto second_role = detail::second_spectra(second, distance.mask(), planning);
-  const auto mask = detail::conjugate_mask_spectrum(distance.mask(), planning);
-  const detail::LineSpectra& first_rows = first_role->rows;
-  const detail::LineSpectra& second_rows = second_role->rows();
-  const int bins = first_rows.bins;
+  const int bins = width / 2 + 1;
 
-  // Σ_lines conj(B_l)·A_l, real and imaginary parts apart so that the loop vectorises.
-  std::vector<double> sum_re(static_cast<std::size_t>(bins), 0.0);
-  std::vector<double> sum_im(static_cast<std::size_t>(bins), 0.0);
-  for (int l = 0; l < first_rows.lines; ++l) {
-    detail::accumulate_conjugate_products(&first_rows.line(l)[0][0], &second_rows.line(l)[0][0],
-                                          sum_re.data(), sum_im.data(), bins);
-  }
+  // Per-thread work arrays, kept between calls (no allocation per pair).
+  thread_local detail::CorrelationScratch work;
+  work.resize(width, bins);
+
+  // Σ_lines conj(B_l)·A_l, real and imaginary parts apart so that the loop vectorises; summed
+  // line after line as the transforms deliver them (fft_spectra.hpp, pair_spectra).
+  std::fill(work.sum_re.begin(), work.sum_re.end(), 0.0);
+  std::fill(work.sum_im.begin(), work.sum_im.end(), 0.0);
+  const detail::PairSpectra pair =
+      detail::pair_spectra(first, second, distance.mask(), planning,
+                           [bins](const detail::LineSpectra& first_rows,
+                                  const detail::LineSpectra& second_rows, int begin, int end) {
+                             for (int l = begin; l < end; ++l) {
+                               detail::accumulate_conjugate_products(
+                                   &first_rows.line(l)[0][0], &second_rows.line(l)[0][0],
+                                   work.sum_re.data(), work.sum_im.data(), bins);
+                             }
+                           });
+  const auto& first_role = pair.first;
+  const auto& second_role = pair.second;
+  const auto mask = detail::conjugate_mask_spectrum(distance.mask(), planning);
 
   // conj(M)·Q̂ − 2·Σ conj(B_l)·A_l, then one inverse transform.
-  const detail::FftPlans& plans = detail::fft_plans(width, planning);
-  detail::FftwBuffer<fftw_complex> spectrum(static_cast<std::size_t>(bins));
+  const detail::FftPlans plans = detail::fft_plans(width, planning);
+  fftw_complex* spectrum = work.spectrum.data();
   const fftw_complex* q = first_role->column_energy.data();
   const fftw_complex* m = mask->data();
   for (int f = 0; f < bins; ++f) {
     const std::size_t i = static_cast<std::size_t>(f);
-    spectrum.data()[f][0] = m[f][0] * q[f][0] - m[f][1] * q[f][1] - 2.0 * sum_re[i];
-    spectrum.data()[f][1] = m[f][0] * q[f][1] + m[f][1] * q[f][0] - 2.0 * sum_im[i];
+    spectrum[f][0] = m[f][0] * q[f][0] - m[f][1] * q[f][1] - 2.0 * work.sum_re[i];
+    spectrum[f][1] = m[f][0] * q[f][1] + m[f][1] * q[f][0] - 2.0 * work.sum_im[i];
   }
-  detail::FftwBuffer<double> correlation(static_cast<std::size_t>(width));
-  fftw_execute_dft_c2r(plans.one_c2r, spectrum.data(), correlation.data());
+  double* correlation = work.correlation.data();
+  fftw_execute_dft_c2r(plans.one_c2r, spectrum, correlation);
 
   std::vector<double> costs(static_cast<std::size_t>(width));
   const double scale = 1.0 / width;
   for (int shift = 0; shift < width; ++shift) {
     costs[static_cast<std::size_t>(shift)] =
-        second_role->masked_energy + correlation.data()[shift] * scale;
+        second_role->masked_energy + correlation[shift] * scale;
   }
   return costs;
 }

@@ -50,10 +50,11 @@ PhaseEstimate estimate_phase_shift(const CompassFrame& first, const CompassFrame
     alpha = width * numerator / (kTwoPi * denominator);
   }
   if (!(denominator > 0.0) || !std::isfinite(alpha)) return PhaseEstimate{};
-  // Into (−W/2, W/2].
+  // Into (−W/2, W/2]. A half turn is ±W/2 up to rounding (the sums' order moves it by ~10⁻¹⁴
+  // columns either way): within 10⁻⁹ columns of −W/2 it is read as +W/2, the interval's end.
   alpha = std::fmod(alpha, static_cast<double>(width));
   if (alpha > width / 2.0) alpha -= width;
-  if (alpha <= -width / 2.0) alpha += width;
+  if (alpha <= -width / 2.0 + 1e-9) alpha += width;
   estimate.shift_px = alpha;
   return estimate;
 }

@@ -15,12 +15,19 @@ std::string describe(const SamplingParams& sampling) {
     text << "Fx " << sampling.fixed_skip_frames;
   } else {
     text << "Atm " << sampling.threshold_norm_amp;
+    if (sampling.max_reference_rotation_rad > 0.0) {
+      text << " cap " << rad_to_deg(sampling.max_reference_rotation_rad) << "°";
+    }
   }
   return text.str();
 }
 
 VisualCompass::VisualCompass(const CompassParams& params, double initial_heading_rad)
     : params_(params), matcher_(params.matcher), initial_heading_rad_(initial_heading_rad) {
+  if (!(params.sampling.max_reference_rotation_rad >= 0.0) ||
+      !(params.sampling.parallax_ratio >= 0.0)) {
+    throw UsageError("the rotation cap of Algorithm 1 needs a rotation and a parallax ratio >= 0");
+  }
   if (params.sampling.policy == SamplingPolicy::kFixedSkip &&
       params.sampling.fixed_skip_frames < 0) {
     throw UsageError("Fx n needs n >= 0 frames skipped, got " +
@@ -29,6 +36,17 @@ VisualCompass::VisualCompass(const CompassParams& params, double initial_heading
 }
 
 VisualCompass::~VisualCompass() = default;
+
+bool VisualCompass::beyond_rotation_cap(const PairMatch& match,
+                                        double rotation_ref_previous_rad) const {
+  const SamplingParams& sampling = params_.sampling;
+  if (!(sampling.max_reference_rotation_rad > 0.0)) return false;
+  // r_rc as line 15 will use it: unwrapped next to r_rp.
+  const double rotation_rad =
+      rotation_ref_previous_rad + signed_difference(match.rotation_rad, rotation_ref_previous_rad);
+  const bool parallax = match.distance_min > sampling.parallax_ratio * match.self_amplitude;
+  return std::abs(rotation_rad) > sampling.max_reference_rotation_rad && parallax;
+}
 
 CompassEstimate VisualCompass::push(const CompassFrame& frame) {
   CompassEstimate estimate;
@@ -73,8 +91,9 @@ CompassEstimate VisualCompass::push(const CompassFrame& frame) {
         static_cast<int>(std::lround(-shift_px_of_rotation(rotation_ref_previous_rad, width)));
     match = matcher_.match(*reference_, frame, start_shift);
     estimate.evaluations = match.evaluations;
-    // Line 10.
-    switch_reference = !fixed_skip && match.amplitude_norm < params_.sampling.threshold_norm_amp;
+    // Line 10, and the rotation cap (visual_compass.hpp: ours, not the paper's).
+    switch_reference = !fixed_skip && (match.amplitude_norm < params_.sampling.threshold_norm_amp ||
+                                       beyond_rotation_cap(match, rotation_ref_previous_rad));
   }
   if (switch_reference) {
     if (!previous_is_reference) {

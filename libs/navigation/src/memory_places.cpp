@@ -1,15 +1,19 @@
 #include "omninav/navigation/memory_places.hpp"
 
 #include <algorithm>
+#include <iomanip>
 #include <limits>
+#include <sstream>
 
 #include "omninav/core/errors.hpp"
+#include "omninav/core/log.hpp"
+#include "omninav/core/panorama.hpp"
 #include "omninav/lattice/organise.hpp"
 
 namespace omninav::navigation {
 
 std::vector<PlaceNode> places_from_memory(const memory::VisualMemory& memory) {
-  if (memory.place_count() == 0) throw UsageError("the map has no places");
+  if (memory.place_count() == 0) throw InputError("the map has no places");
   if (!memory.all_have_lattice()) {
     throw UsageError("the map has no lattice yet: run 'omninav organise' on it first");
   }
@@ -27,23 +31,14 @@ std::vector<PlaceNode> places_from_memory(const memory::VisualMemory& memory) {
   return places;
 }
 
-double lattice_spacing(const std::vector<PlaceNode>& places) {
-  if (places.size() < 2) return 1.0;
-  std::vector<double> nearest;
-  for (std::size_t i = 0; i < places.size(); ++i) {
-    double best = std::numeric_limits<double>::infinity();
-    for (std::size_t j = 0; j < places.size(); ++j) {
-      if (i != j) best = std::min(best, (places[i].position_m - places[j].position_m).norm());
-    }
-    nearest.push_back(best);
-  }
-  std::nth_element(nearest.begin(), nearest.begin() + nearest.size() / 2, nearest.end());
-  return nearest[nearest.size() / 2];
-}
-
 Localiser memory_localiser(const memory::Localiser& localiser,
                            signature::SignatureExtractor& extractor) {
   return [&localiser, &extractor](const cv::Mat& panorama) {
+    const int rows = localiser.memory().parameters().panorama_rows;
+    if (panorama.rows != rows) {
+      throw InputError("a panorama of " + std::to_string(panorama.rows) + " rows; the map's have " +
+                       std::to_string(rows));
+    }
     const memory::Localisation result =
         localiser.localise(extractor.compute(panorama, "the robot's view"));
     PlaceMatch match;
@@ -51,8 +46,54 @@ Localiser memory_localiser(const memory::Localiser& localiser,
     match.place = static_cast<int>(result.best.front().place);
     match.similarity = result.best.front().similarity;
     match.heading_in_place_rad = result.best.front().relative_heading_rad;
+    const signature::Signature& place = localiser.memory().place(match.place).signature;
+    const int components = localiser.params().hierarchy.levels.back();
+    match.dissimilarity_per_value =
+        result.best.front().dissimilarity / (static_cast<double>(place.lines()) * components);
+    if (result.position && result.position->frame == memory::PositionFrame::kLattice) {
+      match.position =
+          Eigen::Vector2d(result.position->interpolated_x, result.position->interpolated_y);
+    }
     return match;
   };
+}
+
+double match_limit(const memory::VisualMemory& memory, const RouteParams& params) {
+  std::vector<double> links;
+  for (const memory::VisualMemory::EdgeRef& edge : memory.edges()) {
+    links.push_back(edge.edge->dissimilarity /
+                    static_cast<double>(memory.place(edge.from).signature.size()));
+  }
+  if (links.empty()) {
+    log_warning(
+        "the map has no links between places: images are not checked against a "
+        "dissimilarity limit (navigation.yaml route.match_dissimilarity_ratio)");
+    return std::numeric_limits<double>::infinity();
+  }
+  std::nth_element(links.begin(), links.begin() + links.size() / 2, links.end());
+  return params.match_dissimilarity_ratio * links[links.size() / 2];
+}
+
+PlaceMatch match_image(const Localiser& localise, const cv::Mat& image, double limit,
+                       const std::string& what) {
+  require_panorama(image, what);
+  PlaceMatch match;
+  try {
+    match = localise(image);
+  } catch (const InputError& error) {
+    throw InputError(what + ": " + error.what());
+  }
+  if (match.place < 0) throw InputError(what + ": matches no place of the map (no candidate)");
+  if (match.dissimilarity_per_value > limit) {
+    std::ostringstream message;
+    message << what << ": matches no place of the map (the nearest, place " << match.place
+            << ", differs by " << std::fixed << std::setprecision(2)
+            << match.dissimilarity_per_value << " grey levels per compared value, more than "
+            << limit << ": navigation.yaml route.match_dissimilarity_ratio times the map's "
+            << "typical difference between neighbouring places)";
+    throw InputError(message.str());
+  }
+  return match;
 }
 
 }  // namespace omninav::navigation

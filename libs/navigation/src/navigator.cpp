@@ -10,6 +10,22 @@ namespace {
 
 constexpr int kEscapeSteps = 3;
 
+// Drops the link from `place` to its next place from `plan`'s graph and plans again from the
+// goal; keeps the new plan when `place` still reaches the goal (returns true), else leaves
+// `plan` as it was.
+bool replan_without_link(const std::vector<PlaceNode>& places, int place, RoutePlan& plan) {
+  const int next = plan.next[place];
+  if (next < 0) return false;
+  std::vector<Edge> edges;
+  for (const Edge& edge : plan.edges) {
+    if (edge != Edge(place, next) && edge != Edge(next, place)) edges.push_back(edge);
+  }
+  RoutePlan replanned = plan_to_goal(places, edges, plan.goal);
+  if (!replanned.reaches_goal(place)) return false;
+  plan = std::move(replanned);
+  return true;
+}
+
 }  // namespace
 
 void load_navigator_params(const ConfigReader& section, NavigatorParams& params) {
@@ -18,27 +34,32 @@ void load_navigator_params(const ConfigReader& section, NavigatorParams& params)
   section.read("goal_similarity", params.goal_similarity, 0.0, 1000.0);
   section.read("goal_confirmations", params.goal_confirmations, 1, 100);
   section.read("unstick_turn_deg", params.unstick_turn_deg, 0.0, 180.0);
+  section.read("aim_at_next_place", params.aim_at_next_place);
 }
 
-NavigationResult navigate(sim::VirtualRobot& robot, const sim::Renderer& renderer,
-                          const std::vector<PlaceNode>& places, const RoutePlan& plan,
-                          const Localiser& localise, const NavigatorParams& params) {
+NavigationResult navigate(NavigationWorld& world, const std::vector<PlaceNode>& places,
+                          const RoutePlan& initial_plan, const Localiser& localise,
+                          const NavigatorParams& params) {
   NavigationResult result;
+  RoutePlan plan = initial_plan;
   int expected = -1;  // the place the plan said we would reach next
   int goal_matches = 0;
-  // Escaping an obstacle the plan runs into (the lattice knows nothing of furniture): drive a
-  // few steps at an angle from the planned direction, turning the other way each time the
-  // robot is blocked again, then follow the plan again.
+  // Escaping an obstacle when replanning finds no other route: drive a few steps at an angle
+  // from the planned direction, turning the other way each time the robot is blocked again,
+  // then follow the plan again.
   int escape_steps_left = 0;
+  // Aiming at the next place from the position estimate is left off for a few steps after a
+  // block: the estimate that led into the obstacle would lead into it again.
+  int steps_since_block = kEscapeSteps + 1;
   int escape_side = 1;
   for (int index = 0; index < params.max_steps; ++index) {
     NavigationStep step;
     step.index = index;
-    step.truth = robot.pose();
-    step.match = localise(renderer.render(robot.pose(), robot.elapsed_s(), index));
+    step.truth = world.truth();
+    step.match = localise(world.view(index));
     const int place = step.match.place;
     if (place < 0) {  // nothing recognised (an empty candidate set): go on straight ahead
-      result.path_length_m += robot.move(0.0, params.step_m);
+      result.path_length_m += world.move(0.0, params.step_m);
       result.steps.push_back(step);
       continue;
     }
@@ -67,17 +88,32 @@ NavigationResult navigate(sim::VirtualRobot& robot, const sim::Renderer& rendere
     // Turn to the place's assigned direction, measured against the place's own heading: the
     // robot's heading relative to the place is what the image tells, whatever the lattice.
     double direction_in_place = plan.direction_in_place_rad[place];
-    if (place == plan.goal || !plan.reaches_goal(place))
+    if (place == plan.goal || !plan.reaches_goal(place)) {
       direction_in_place = step.match.heading_in_place_rad;
-    if (escape_steps_left > 0) {
+    } else if (params.aim_at_next_place && step.match.position &&
+               steps_since_block > kEscapeSteps) {
+      const Eigen::Vector2d to = places[plan.next[place]].position_m - *step.match.position;
+      if (to.norm() > 1e-9) {
+        direction_in_place =
+            signed_difference(std::atan2(to.y(), to.x()), places[place].heading_rad);
+      }
+    }
+    const bool escaping = escape_steps_left > 0;
+    if (escaping) {
       direction_in_place += escape_side * deg_to_rad(params.unstick_turn_deg);
       --escape_steps_left;
     }
     step.turn_rad = signed_difference(direction_in_place, step.match.heading_in_place_rad);
-    const double driven = robot.move(step.turn_rad, params.step_m);
+    const double driven = world.move(step.turn_rad, params.step_m);
+    ++steps_since_block;
     if (driven < 0.5 * params.step_m) {
-      escape_side = -escape_side;
-      escape_steps_left = kEscapeSteps;
+      steps_since_block = 0;
+      if (escaping || !replan_without_link(places, place, plan)) {
+        escape_side = -escape_side;
+        escape_steps_left = kEscapeSteps;
+      } else {
+        ++result.replans;
+      }
     }
     result.path_length_m += driven;
     expected = plan.next[place] >= 0 ? plan.next[place] : place;

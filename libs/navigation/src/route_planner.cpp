@@ -6,7 +6,9 @@
 #include <limits>
 
 #include "omninav/core/angles.hpp"
+#include "omninav/core/config.hpp"
 #include "omninav/core/errors.hpp"
+#include "omninav/memory/localisation.hpp"
 
 namespace omninav::navigation {
 namespace {
@@ -23,6 +25,18 @@ void require_place(int place, std::size_t count, const char* what) {
 }
 
 }  // namespace
+
+void load_route_params(const ConfigReader& section, RouteParams& params) {
+  section.read("neighbour_spacings", params.neighbour_spacings, 1.0, 10.0);
+  section.read("match_dissimilarity_ratio", params.match_dissimilarity_ratio, 0.1, 100.0);
+}
+
+double lattice_spacing(const std::vector<PlaceNode>& places) {
+  std::vector<cv::Point2d> points;
+  for (const PlaceNode& place : places)
+    points.emplace_back(place.position_m.x(), place.position_m.y());
+  return memory::typical_spacing(points);
+}
 
 std::vector<Edge> lattice_neighbours(const std::vector<PlaceNode>& places, double radius_m) {
   std::vector<Edge> edges;
@@ -66,6 +80,7 @@ RoutePlan plan_to_goal(const std::vector<PlaceNode>& places, const std::vector<E
 
   RoutePlan plan;
   plan.goal = goal;
+  plan.edges = edges;
   plan.next.assign(places.size(), -1);
   plan.cost_m.assign(places.size(), std::numeric_limits<double>::infinity());
   plan.direction_rad.assign(places.size(), 0.0);
@@ -82,6 +97,13 @@ RoutePlan plan_to_goal(const std::vector<PlaceNode>& places, const std::vector<E
         signed_difference(plan.direction_rad[place], places[place].heading_rad);
   }
   return plan;
+}
+
+RoutePlan plan_over_lattice(const std::vector<PlaceNode>& places, const RouteParams& params,
+                            int goal) {
+  return plan_to_goal(
+      places, lattice_neighbours(places, params.neighbour_spacings * lattice_spacing(places)),
+      goal);
 }
 
 }  // namespace omninav::navigation

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <opencv2/imgproc.hpp>
 #include <optional>
 
@@ -11,6 +12,7 @@
 #include "omninav/core/config.hpp"
 #include "omninav/core/errors.hpp"
 #include "omninav/core/panorama.hpp"
+#include "panorama_lines.hpp"
 
 namespace omninav::signature {
 
@@ -56,19 +58,21 @@ Signature Signature::truncated(int m) const {
 struct SignatureExtractor::Workspace {
   int width = 0;
   int lines = 0;
-  detail::FftwBuffer<float> in;  // lines × width, line after line
-  cv::Mat grey;                  // luminance, reused between calls
+  detail::FftwBuffer<float> in;  // lines × width, line after line, for FFTW
+  cv::Mat grey;                  // luminance, for the reference path only
   // FFTW, for full spectra and for sizes the direct transform does not serve.
   int fft_width = 0, fft_lines = 0;
   fftwf_plan plan = nullptr;
   detail::FftwBuffer<fftwf_complex> out;
   // The direct transform of the first components (low_frequency_dft.hpp) and its output.
   std::optional<detail::LowFrequencyDft> direct;
-  std::vector<float> re, im;
+  std::vector<float> line;    // one line as floats (panorama_lines.hpp)
+  std::vector<float> folded;  // up to LowFrequencyDft::kMaxLines folded lines
+  std::vector<float> re, im;  // lines × m, unscaled
 };
 
-SignatureExtractor::SignatureExtractor(SignatureParams params)
-    : params_(params), work_(std::make_unique<Workspace>()) {
+SignatureExtractor::SignatureExtractor(SignatureParams params, SignaturePath path)
+    : params_(params), path_(path), work_(std::make_unique<Workspace>()) {
   if (params_.components < 1) {
     throw UsageError("a signature needs at least one component, got " +
                      std::to_string(params_.components));
@@ -92,11 +96,17 @@ void SignatureExtractor::transform(const cv::Mat& panorama, const std::string& w
     work.lines = lines;
   }
   float* in = work.in.data();
+  if (path_ == SignaturePath::kFast) {
+    for (int line = 0; line < lines; ++line) {
+      detail::load_line(panorama, params_.colour, line,
+                        in + static_cast<std::size_t>(line) * width);
+    }
+    return;
+  }
+  // The reference path: a whole grey image from OpenCV, then its rows as floats.
   if (channels == 1) {
     const cv::Mat* grey = &panorama;
     if (panorama.channels() == 3) {
-      // OpenCV's fixed-point BGR→grey is several times faster than a float loop; it rounds
-      // to whole grey levels, as the 8-bit input already is.
       cv::cvtColor(panorama, work.grey, cv::COLOR_BGR2GRAY);
       grey = &work.grey;
     }
@@ -145,21 +155,37 @@ Signature SignatureExtractor::compute(const cv::Mat& panorama, const std::string
                      " columns wide has only " + std::to_string(panorama.cols / 2 + 1) +
                      " Fourier components, fewer than the " + std::to_string(m) + " asked for");
   }
-  transform(panorama, what);
+  require_panorama(panorama, what);
   Workspace& work = *work_;
-  const std::size_t count = static_cast<std::size_t>(work.lines) * m;
+  const int width = panorama.cols;
+  const int channels = params_.colour == ColourMode::kLuminance ? 1 : 3;
+  const int lines = panorama.rows * channels;
+  const std::size_t count = static_cast<std::size_t>(lines) * m;
   work.re.resize(count);
   work.im.resize(count);
-  if (detail::LowFrequencyDft::applicable(work.width, m)) {
-    if (!work.direct || work.direct->width() != work.width || work.direct->components() != m) {
-      work.direct.emplace(work.width, m);
+  if (path_ == SignaturePath::kFast && detail::LowFrequencyDft::applicable(width, m)) {
+    // Line by line into a small buffer, folded, and transformed a few lines at a time: the
+    // panorama is read once and nothing of its size is written.
+    if (!work.direct || work.direct->width() != width || work.direct->components() != m) {
+      work.direct.emplace(width, m);
     }
-    for (int line = 0; line < work.lines; ++line) {
-      work.direct->transform(work.in.data() + static_cast<std::size_t>(line) * work.width,
-                             work.re.data() + static_cast<std::size_t>(line) * m,
-                             work.im.data() + static_cast<std::size_t>(line) * m);
+    const detail::LowFrequencyDft& direct = *work.direct;
+    const int batch = detail::LowFrequencyDft::kMaxLines;
+    work.line.resize(static_cast<std::size_t>(width));
+    work.folded.resize(static_cast<std::size_t>(batch) * direct.folded_size());
+    for (int first = 0; first < lines; first += batch) {
+      const int n = std::min(batch, lines - first);
+      for (int j = 0; j < n; ++j) {
+        detail::load_line(panorama, params_.colour, first + j, work.line.data());
+        direct.fold(work.line.data(),
+                    work.folded.data() + static_cast<std::size_t>(j) * direct.folded_size());
+      }
+      direct.transform_folded(work.folded.data(), n,
+                              work.re.data() + static_cast<std::size_t>(first) * m,
+                              work.im.data() + static_cast<std::size_t>(first) * m);
     }
   } else {
+    transform(panorama, what);
     run_fft();
     const int half = work.width / 2 + 1;
     for (int line = 0; line < work.lines; ++line) {
@@ -172,20 +198,26 @@ Signature SignatureExtractor::compute(const cv::Mat& panorama, const std::string
   }
   Signature signature;
   signature.rows = panorama.rows;
-  signature.channels = params_.colour == ColourMode::kLuminance ? 1 : 3;
+  signature.channels = channels;
   signature.components = m;
-  signature.width_px = work.width;
+  signature.width_px = width;
   signature.magnitude.resize(count);
   signature.phase_rad.resize(count);
-  const float scale = 1.0f / static_cast<float>(work.width);
-  const float* re = work.re.data();
-  const float* im = work.im.data();
+  const float scale = 1.0f / static_cast<float>(width);
   float* magnitude = signature.magnitude.data();
-  float* phase = signature.phase_rad.data();
-  for (std::size_t i = 0; i < count; ++i) {
-    const float a = re[i] * scale, b = im[i] * scale;
-    magnitude[i] = std::sqrt(a * a + b * b);
-    phase[i] = detail::fast_atan2(b, a);
+  if (path_ == SignaturePath::kFast) {
+    detail::to_polar(work.re.data(), work.im.data(), count, scale, magnitude,
+                     signature.phase_rad.data());
+  } else {
+    for (std::size_t i = 0; i < count; ++i) {
+      const float a = work.re[i] * scale, b = work.im[i] * scale;
+      magnitude[i] = std::hypot(a, b);
+      signature.phase_rad[i] = std::atan2(b, a);
+      // atan2(−0, x < 0) is −π; the signature's phases are in (−π, π].
+      if (signature.phase_rad[i] <= -std::numbers::pi_v<float>) {
+        signature.phase_rad[i] = std::numbers::pi_v<float>;
+      }
+    }
   }
   if (params_.normalise_brightness) {
     const std::size_t per_channel = static_cast<std::size_t>(signature.rows) * m;

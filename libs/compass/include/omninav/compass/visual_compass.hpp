@@ -15,6 +15,18 @@
 // with t = 0.6055 (Table 2). When I_p is I_r itself (the second frame of a sequence) there is
 // nothing to fall back on: the match stands and is flagged low_amplitude.
 //
+// BEYOND THE PAPER: the rotation cap. Line 10's test also succeeds when |r_rc| exceeds
+// max_reference_rotation_rad while the pair shows parallax, d_m > parallax_ratio·A(I_r, I_r)
+// (the minimum's rise that §3.4.4 reads as parallax, Figs. 11-12). Why: the field of view moves
+// with the second image (§3.4.3), centred on ITS front and back, but on a curved path the
+// translation between the two frames points along the chord, half the rotation away; the
+// bands then sit off the focus of expansion, the expansion inside them is lopsided, and the
+// minimum of d is biased by an amount that grows with rotation × translation and keeps its sign
+// while the robot keeps turning one way. With t alone a reference can last 61° of turn and
+// 0.96 m on the rendered CIRCLE (21° max error over three turns); capped at 6° it stays within
+// 3° (docs/compass.md). A pure rotation shows no parallax (d_m ≈ 0), so it keeps its one or
+// two references. max_reference_rotation_rad = 0 gives the paper's Algorithm 1 exactly.
+//
 // "Fx n" (§4.3: "skipping a fixed number of frames"): the same loop with line 10's test
 // replaced by "I_c is more than n + 1 frames after I_r". The reference frames are then frames
 // 0, n+1, 2(n+1), ...; each is measured against the one before it, and every frame in between
@@ -42,6 +54,14 @@ struct SamplingParams {
   double threshold_norm_amp = 0.6055;
   // n of "Fx n": frames skipped between references.
   int fixed_skip_frames = 3;
+  // Ours (the rotation cap above): also replace the reference when the rotation from it exceeds
+  // this, radians, once the pair shows parallax; 0: off (the paper's Algorithm 1). 6° keeps the
+  // bands within 3° of the direction of travel (docs/compass.md: 5-6° work on rendered CIRCLE).
+  double max_reference_rotation_rad = 6.0 * 3.14159265358979323846 / 180.0;
+  // Parallax shown: the pair's minimum d_m above this share of the reference's self amplitude
+  // A(I_r, I_r). Rendered pure rotations stay below 0.075 (95th percentile), 6 cm of translation
+  // in the default room gives 0.08-0.20 (docs/compass.md).
+  double parallax_ratio = 0.08;
 };
 
 struct CompassParams {
@@ -82,6 +102,9 @@ class VisualCompass {
   const PairMatcher& matcher() const { return matcher_; }
 
  private:
+  // Whether the match of line 9 passes the rotation cap (ours, see above).
+  bool beyond_rotation_cap(const PairMatch& match, double rotation_ref_previous_rad) const;
+
   CompassParams params_;
   PairMatcher matcher_;
   double initial_heading_rad_;
@@ -95,7 +118,8 @@ class VisualCompass {
   double current_heading_rad_ = 0.0;       // ω_c
 };
 
-// How Tables 3-4 name the method: "Atm 0.6055", "Fx 3".
+// How Tables 3-4 name the method: "Atm 0.6055", "Fx 3"; Algorithm 1 with the rotation cap on
+// says so: "Atm 0.6055 cap 6°".
 std::string describe(const SamplingParams& sampling);
 
 }  // namespace omninav::compass

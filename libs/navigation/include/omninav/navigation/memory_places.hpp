@@ -2,6 +2,8 @@
 // The organised visual memory as the planner and the navigator see it.
 
 #include <memory>
+#include <opencv2/core.hpp>
+#include <string>
 #include <vector>
 
 #include "omninav/memory/localisation.hpp"
@@ -12,18 +14,27 @@
 
 namespace omninav::navigation {
 
-// Every place's lattice position and its heading in the lattice frame. Throws UsageError when
-// the map has no lattice yet ("run omninav organise") or a place has no heading (neither
-// stored nor measurable along the exploration).
+// Every place's lattice position and its heading in the lattice frame. Throws InputError for a
+// map without places, UsageError when the map has no lattice yet ("run omninav organise") or a
+// place has no heading (neither stored nor measurable along the exploration).
 std::vector<PlaceNode> places_from_memory(const memory::VisualMemory& memory);
-
-// The median distance from each place to its nearest neighbour on the lattice.
-double lattice_spacing(const std::vector<PlaceNode>& places);
 
 // A navigator's localiser backed by the memory's hierarchical localisation: the best place,
 // its similarity, and the robot's heading relative to the place from the phases. The
 // localiser and the extractor must outlive the returned function.
 Localiser memory_localiser(const memory::Localiser& localiser,
                            signature::SignatureExtractor& extractor);
+
+// The largest mean dissimilarity per value at which an image still matches a place of
+// `memory`: params.match_dissimilarity_ratio × the median over the map's links of their
+// dissimilarity per value. Infinite for a map without links (then only an empty candidate set
+// fails to match), with a warning in the log.
+double match_limit(const memory::VisualMemory& memory, const RouteParams& params);
+
+// Localises `image` (named `what` in messages, e.g. "goal.png") and checks that it matches a
+// place: InputError when it matches none (no candidate, or a mean dissimilarity per value above
+// `limit`, see match_limit), when it is not a panorama or has another height than the map's.
+PlaceMatch match_image(const Localiser& localise, const cv::Mat& image, double limit,
+                       const std::string& what);
 
 }  // namespace omninav::navigation

@@ -11,7 +11,28 @@
 #include <utility>
 #include <vector>
 
+namespace omninav {
+class ConfigReader;
+}
+
 namespace omninav::navigation {
+
+struct RouteParams {
+  // Places closer than this many lattice spacings are neighbours in the memory graph (§3.5
+  // plans over the lattice's neighbours; 1.6 takes the 8-neighbourhood of a square grid).
+  double neighbour_spacings = 1.6;
+  // An image matches a place only when their mean |Δ magnitude| per compared value (the
+  // finest level's Eq. 2/6 over lines × components) is at most this many times the median of
+  // the map's links (consecutive places of the exploration): an image may look a little less
+  // like its best place than neighbouring places look like each other, not much less. Eq. 3's
+  // similarity cannot tell: it rescales so that the best place always scores 1000. Measured in
+  // tests/navigation (MatchThreshold): on a 30 cm grid of the built-in room the links' median
+  // is 2.08, views anywhere between the places lie within 1.62 (0.78×), noise at 3.42 (1.65×).
+  double match_dissimilarity_ratio = 1.3;
+};
+
+// Reads the `route:` section of navigation.yaml.
+void load_route_params(const ConfigReader& section, RouteParams& params);
 
 // A place of the memory as the planner sees it: where the lattice put it, and its stored
 // heading in the lattice frame.
@@ -22,11 +43,15 @@ struct PlaceNode {
 
 using Edge = std::pair<int, int>;
 
+// The median distance from each place to its nearest neighbour on the lattice.
+double lattice_spacing(const std::vector<PlaceNode>& places);
+
 // Links every pair of places closer than `radius_m` on the lattice (the lattice neighbours).
 std::vector<Edge> lattice_neighbours(const std::vector<PlaceNode>& places, double radius_m);
 
 struct RoutePlan {
   int goal = -1;
+  std::vector<Edge> edges;                     // the memory graph it was planned over
   std::vector<int> next;                       // the neighbour to go to next; -1 for the goal and
                                                // for places that cannot reach it
   std::vector<double> cost_m;                  // length of the route to the goal (∞ if none)
@@ -42,5 +67,9 @@ struct RoutePlan {
 // for a goal or an edge that names no place.
 RoutePlan plan_to_goal(const std::vector<PlaceNode>& places, const std::vector<Edge>& edges,
                        int goal);
+
+// plan_to_goal over the lattice neighbours within params.neighbour_spacings lattice spacings.
+RoutePlan plan_over_lattice(const std::vector<PlaceNode>& places, const RouteParams& params,
+                            int goal);
 
 }  // namespace omninav::navigation

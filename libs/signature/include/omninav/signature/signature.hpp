@@ -81,15 +81,30 @@ struct Signature {
   }
 };
 
+// How an extractor computes the components. Both give the same signature to float precision
+// (tests/signature/fast_path_test.cpp: every coefficient within 1e-3 grey levels, plus the
+// polynomial atan2's 1e-5 rad); kFast is the one to use.
+enum class SignaturePath {
+  // Lines converted one at a time (luminance as OpenCV computes it, src/panorama_lines.hpp),
+  // the direct transform of the first components where it applies (below), FFTW elsewhere,
+  // vectorised magnitudes and phases (a polynomial atan2, error < 1e-5 rad).
+  kFast,
+  // The reference: cv::cvtColor into a grey image, FFTW for every size, std::hypot and
+  // std::atan2. The oracle the fast path is tested against, and the benchmark's baseline.
+  kReference,
+};
+
 // Computes signatures of panoramas of any size. Widths divisible by 4 with m ≤ 32 use a direct
 // transform of the first m components (faster than a whole FFT, src/low_frequency_dft.hpp);
 // other sizes and full spectra use FFTW, one plan per (width, lines), made once per process
 // (under a mutex: FFTW's planner is not thread-safe) and executed on this extractor's own
 // buffers, so one extractor per thread runs in parallel. Deterministic: FFTW plans are made
-// with FFTW_ESTIMATE, whose choice does not depend on timing.
+// with FFTW_ESTIMATE, whose choice does not depend on timing. After the first call with a
+// given size, compute() allocates nothing but the returned signature.
 class SignatureExtractor {
  public:
-  explicit SignatureExtractor(SignatureParams params = {});
+  explicit SignatureExtractor(SignatureParams params = {},
+                              SignaturePath path = SignaturePath::kFast);
   ~SignatureExtractor();
   SignatureExtractor(SignatureExtractor&&) noexcept;
   SignatureExtractor& operator=(SignatureExtractor&&) noexcept;
@@ -110,6 +125,7 @@ class SignatureExtractor {
   void transform(const cv::Mat& panorama, const std::string& what);  // into lines of floats
   void run_fft();
   SignatureParams params_;
+  SignaturePath path_;
   std::unique_ptr<Workspace> work_;
 };
 

@@ -1,0 +1,243 @@
+// omninav route: plan over the organised visual memory from the place of the current image to
+// the place of a goal image (001_5bb151a4e28490b4.txt §3.5), print the route and draw it.
+#include <iomanip>
+#include <iostream>
+#include <opencv2/core/persistence.hpp>
+#include <sstream>
+
+#include "app_config.hpp"
+#include "cli.hpp"
+#include "omninav/core/angles.hpp"
+#include "omninav/core/errors.hpp"
+#include "omninav/core/log.hpp"
+#include "omninav/eval/png.hpp"
+#include "omninav/io/image_file.hpp"
+#include "omninav/memory/map_file.hpp"
+#include "omninav/navigation/figures.hpp"
+#include "omninav/navigation/memory_places.hpp"
+
+namespace omninav::cli {
+namespace {
+
+struct RouteOptions {
+  std::filesystem::path map;
+  std::filesystem::path from;
+  std::filesystem::path to;
+  std::string format = "text";
+  std::filesystem::path plot;  // empty: <map>.route.png
+};
+
+// One place of the route, as printed.
+struct RouteStep {
+  int place = 0;
+  Eigen::Vector2d lattice = Eigen::Vector2d::Zero();
+  double cost = 0.0;                    // route length left to the goal, lattice units
+  std::optional<double> direction_deg;  // towards the next place, lattice frame; none at the goal
+  std::optional<double> direction_in_place_deg;  // the same from the place's stored heading
+  std::optional<Eigen::Vector2d> truth_m;        // the place's true position, when the map has it
+};
+
+struct Route {
+  navigation::PlaceMatch from, to;
+  std::vector<RouteStep> steps;
+  std::optional<double> turn_deg;  // the start: turn from the robot's heading now
+};
+
+std::string number(double value, int digits) {
+  std::ostringstream text;
+  text << std::fixed << std::setprecision(digits) << value;
+  return text.str();
+}
+
+std::string optional_number(const std::optional<double>& value, int digits) {
+  return value ? number(*value, digits) : "";
+}
+
+Route make_route(const memory::VisualMemory& memory,
+                 const std::vector<navigation::PlaceNode>& places,
+                 const navigation::RoutePlan& plan, const navigation::PlaceMatch& from,
+                 const navigation::PlaceMatch& to) {
+  Route route{from, to, {}, std::nullopt};
+  for (const int place : plan.route_from(from.place)) {
+    RouteStep step;
+    step.place = place;
+    step.lattice = places[place].position_m;
+    step.cost = plan.cost_m[place];
+    if (place != plan.goal) {
+      step.direction_deg = rad_to_deg(plan.direction_rad[place]);
+      step.direction_in_place_deg = rad_to_deg(plan.direction_in_place_rad[place]);
+    }
+    if (const std::optional<CameraPose>& truth = memory.place(place).truth)
+      step.truth_m = Eigen::Vector2d(truth->x_m, truth->y_m);
+    route.steps.push_back(step);
+  }
+  if (from.place != plan.goal) {
+    route.turn_deg = rad_to_deg(
+        signed_difference(plan.direction_in_place_rad[from.place], from.heading_in_place_rad));
+  }
+  return route;
+}
+
+void print_text(const Route& route, const RouteOptions& options) {
+  std::cout << "route from " << options.from.string() << " (place " << route.from.place
+            << ", dissimilarity " << number(route.from.dissimilarity_per_value, 2)
+            << " per value) to " << options.to.string() << " (place " << route.to.place << ", "
+            << number(route.to.dissimilarity_per_value, 2) << "): " << route.steps.size()
+            << " place" << (route.steps.size() == 1 ? "" : "s") << ", "
+            << number(route.steps.front().cost, 2) << " lattice units\n";
+  if (route.turn_deg) {
+    std::cout << "now: turn " << (*route.turn_deg >= 0 ? "+" : "") << number(*route.turn_deg, 1)
+              << " deg (counter-clockwise positive) from the robot's heading, then go\n";
+  } else {
+    std::cout << "now: the current image already matches the goal's place\n";
+  }
+  std::cout << "  place  lattice x,y      to goal  direction  from place's heading\n";
+  for (const RouteStep& step : route.steps) {
+    std::cout << "  " << std::setw(5) << step.place << "  " << std::setw(7)
+              << number(step.lattice.x(), 2) << "," << std::setw(7) << number(step.lattice.y(), 2)
+              << "  " << std::setw(7) << number(step.cost, 2) << "  ";
+    if (step.direction_deg) {
+      std::cout << std::setw(9) << number(*step.direction_deg, 1) << "  " << std::setw(9)
+                << number(*step.direction_in_place_deg, 1) << " deg";
+    } else {
+      std::cout << "     goal";
+    }
+    if (step.truth_m) {
+      std::cout << "   (truth " << number(step.truth_m->x(), 2) << ", "
+                << number(step.truth_m->y(), 2) << " m)";
+    }
+    std::cout << "\n";
+  }
+}
+
+void print_csv(const Route& route) {
+  std::cout << "step,place,lattice_x,lattice_y,cost,direction_deg,direction_in_place_deg,"
+               "turn_from_robot_deg,truth_x_m,truth_y_m\n";
+  for (std::size_t i = 0; i < route.steps.size(); ++i) {
+    const RouteStep& step = route.steps[i];
+    std::cout << i << ',' << step.place << ',' << number(step.lattice.x(), 4) << ','
+              << number(step.lattice.y(), 4) << ',' << number(step.cost, 4) << ','
+              << optional_number(step.direction_deg, 3) << ','
+              << optional_number(step.direction_in_place_deg, 3) << ','
+              << (i == 0 ? optional_number(route.turn_deg, 3) : "") << ','
+              << (step.truth_m ? number(step.truth_m->x(), 4) : "") << ','
+              << (step.truth_m ? number(step.truth_m->y(), 4) : "") << '\n';
+  }
+}
+
+// JSON through OpenCV's FileStorage, which quotes and escapes strings for us.
+void print_json(const Route& route, const RouteOptions& options) {
+  cv::FileStorage json(
+      ".json", cv::FileStorage::WRITE | cv::FileStorage::MEMORY | cv::FileStorage::FORMAT_JSON);
+  json << "map" << options.map.string();
+  const auto write_match = [&json](const std::string& key, const std::filesystem::path& image,
+                                   const navigation::PlaceMatch& match) {
+    json << key << "{";
+    json << "image" << image.string() << "place" << match.place << "dissimilarity_per_value"
+         << match.dissimilarity_per_value << "heading_in_place_deg"
+         << rad_to_deg(match.heading_in_place_rad);
+    json << "}";
+  };
+  write_match("from", options.from, route.from);
+  write_match("to", options.to, route.to);
+  json << "length" << route.steps.front().cost;
+  if (route.turn_deg) json << "turn_from_robot_deg" << *route.turn_deg;
+  json << "route"
+       << "[";
+  for (const RouteStep& step : route.steps) {
+    json << "{"
+         << "place" << step.place << "lattice_x" << step.lattice.x() << "lattice_y"
+         << step.lattice.y() << "cost" << step.cost;
+    if (step.direction_deg) {
+      json << "direction_deg" << *step.direction_deg << "direction_in_place_deg"
+           << *step.direction_in_place_deg;
+    }
+    if (step.truth_m) json << "truth_x_m" << step.truth_m->x() << "truth_y_m" << step.truth_m->y();
+    json << "}";
+  }
+  json << "]";
+  std::cout << json.releaseAndGetString();
+}
+
+void run_route(const GlobalOptions& global, const RouteOptions& options) {
+  const memory::MemoryConfig memory_config = load_memory_config(global.config_dir);
+  const NavigationConfig navigation = load_navigation_config(global.config_dir);
+  const memory::VisualMemory memory = memory::load_map(options.map);
+  std::vector<navigation::PlaceNode> places;
+  try {
+    places = navigation::places_from_memory(memory);
+  } catch (const InputError& error) {
+    throw InputError(options.map.string() + ": " + error.what());
+  } catch (const UsageError& error) {
+    throw UsageError(options.map.string() + ": " + error.what());
+  }
+  const memory::Localiser localiser(memory, memory_config.localisation);
+  signature::SignatureExtractor extractor(memory.parameters().signature);
+  const navigation::Localiser localise = navigation::memory_localiser(localiser, extractor);
+  const double limit = navigation::match_limit(memory, navigation.route);
+  const navigation::PlaceMatch from =
+      navigation::match_image(localise, io::read_image(options.from), limit, options.from.string());
+  const navigation::PlaceMatch to =
+      navigation::match_image(localise, io::read_image(options.to), limit, options.to.string());
+
+  // §3.5: the search tree grows from the goal, so every place gets its direction at once.
+  const navigation::RoutePlan plan =
+      navigation::plan_over_lattice(places, navigation.route, to.place);
+  if (!plan.reaches_goal(from.place)) {
+    throw InputError(options.map.string() + ": no route from place " + std::to_string(from.place) +
+                     " to place " + std::to_string(to.place) +
+                     " over the lattice neighbours (within " +
+                     number(navigation.route.neighbour_spacings, 1) + " spacings)");
+  }
+  const Route route = make_route(memory, places, plan, from, to);
+  if (options.format == "csv") {
+    print_csv(route);
+  } else if (options.format == "json") {
+    print_json(route, options);
+  } else {
+    print_text(route, options);
+  }
+
+  std::optional<std::vector<Eigen::Vector2d>> truth;
+  if (memory.all_have_truth()) {
+    truth.emplace();
+    for (std::size_t i = 0; i < memory.place_count(); ++i)
+      truth->emplace_back(memory.place(i).truth->x_m, memory.place(i).truth->y_m);
+  }
+  std::filesystem::path plot = options.plot;
+  if (plot.empty()) plot = std::filesystem::path(options.map).replace_extension(".route.png");
+  eval::save_png(navigation::route_figure(places, plan, from.place, truth), plot);
+  log_info("route picture: " + plot.string());
+}
+
+}  // namespace
+
+void add_route_command(CLI::App& app, const GlobalOptions& global) {
+  auto options = std::make_shared<RouteOptions>();
+  CLI::App* command = app.add_subcommand(
+      "route",
+      "Plan the way from the current image to a goal image over an organised map "
+      "(001_5bb151a4e28490b4.txt §3.5): localise both, grow the search tree from the goal's "
+      "place over the lattice neighbours (Boost.Graph's Dijkstra), give every place its "
+      "direction towards the goal relative to the place's stored heading, and print the route "
+      "from the current place: its places, lattice positions, the direction to take at each, "
+      "and the turn from the robot's heading now. Draws the lattice with every place's "
+      "direction and the route (and the route over the places' true positions when the map has "
+      "ground truth).");
+  command->add_option("map", options->map, "An organised map (.vmem)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  command->add_option("--from", options->from, "The current image (a panorama)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  command->add_option("--to", options->to, "The goal image (a panorama)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  command->add_option("--format", options->format, "text, csv or json")
+      ->check(CLI::IsMember({"text", "csv", "json"}))
+      ->capture_default_str();
+  command->add_option("--plot", options->plot, "The route picture (default: <map>.route.png)");
+  command->callback([&global, options] { run_route(global, *options); });
+}
+
+}  // namespace omninav::cli

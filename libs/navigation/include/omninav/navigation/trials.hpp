@@ -1,0 +1,106 @@
+#pragma once
+// Navigating to a goal image, once or over many seeded random start and goal poses: the
+// evaluation of DESIGN.md ("share of start/goal pairs reached, and path length") and of issue
+// 5's target (≥ 95% of 100 random pairs in the built-in room reached, mean path ≤ 1.5× the
+// straight line). The trials read ground truth (the goal's pose, the robot's true path) only
+// to score; the navigator itself never sees it.
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <functional>
+#include <opencv2/core.hpp>
+#include <string>
+#include <vector>
+
+#include "omninav/core/pose.hpp"
+#include "omninav/navigation/navigator.hpp"
+#include "omninav/navigation/route_planner.hpp"
+#include "omninav/sim/renderer.hpp"
+#include "omninav/sim/virtual_robot.hpp"
+#include "omninav/sim/world.hpp"
+
+namespace omninav {
+class ConfigReader;
+}
+
+namespace omninav::navigation {
+
+// One navigation: the goal image's place, the plan to it and the run.
+struct GoalRun {
+  PlaceMatch goal;
+  RoutePlan plan;
+  NavigationResult result;
+};
+
+// Matches `goal_image` (named `what` in messages) to a place (match_image with `match_limit`:
+// InputError when it matches none), plans to it over the lattice and drives `world`'s robot
+// there.
+GoalRun navigate_to_image(NavigationWorld& world, const cv::Mat& goal_image,
+                          const std::string& what, const std::vector<PlaceNode>& places,
+                          const Localiser& localise, double match_limit, const RouteParams& route,
+                          const NavigatorParams& navigator);
+
+struct TrialParams {
+  int count = 100;         // start and goal pairs
+  std::uint32_t seed = 1;  // draws poses and seeds each trial's motion noise
+  // Start and goal at least this many place spacings apart (a shorter straight line makes
+  // the path ratio meaningless).
+  double min_separation_spacings = 3.0;
+  // A trial reaches its goal when the navigator stops there and the robot truly stands
+  // within this many place spacings of the goal pose.
+  double goal_radius_spacings = 1.0;
+};
+
+// Reads the `trials:` section of navigation.yaml (count and seed are command-line values).
+void load_trial_params(const ConfigReader& section, TrialParams& params);
+
+struct Trial {
+  CameraPose start;
+  CameraPose goal;
+};
+
+// `params.count` seeded random pairs of poses in the mapped area: uniform over the bounding
+// box of `mapped_m` (the places' true positions), kept where `world` is free with
+// `clearance_m` and within one `spacing_m` of a place (no holes of the map, nothing outside
+// it), start and goal at least min_separation_spacings · spacing_m apart, headings uniform,
+// at height z_m. Throws UsageError when the area leaves no room for such pairs.
+std::vector<Trial> random_trials(const sim::World& world,
+                                 const std::vector<Eigen::Vector2d>& mapped_m, double spacing_m,
+                                 double clearance_m, double z_m, const TrialParams& params);
+
+struct TrialOutcome {
+  Trial trial;
+  int goal_place = -1;           // -1: the goal image matched no place (the trial fails)
+  bool stopped_at_goal = false;  // the navigator recognised the goal place and stopped
+  bool reached = false;          // ... and truly stands within the goal radius
+  double final_error_m = 0.0;    // from where the robot stopped to the goal pose (truth)
+  double path_m = 0.0;           // distance driven
+  double straight_m = 0.0;       // from start to goal, straight
+  int steps = 0;
+  int jumps = 0;
+};
+
+// Runs every trial: the goal image rendered at the goal pose, a fresh virtual robot at the
+// start (motion noise seeded by robot.seed + the trial's index), navigate_to_image.
+std::vector<TrialOutcome> run_trials(const std::vector<Trial>& trials, const sim::World& world,
+                                     const sim::Renderer& renderer,
+                                     const std::vector<PlaceNode>& places,
+                                     const Localiser& localise, double match_limit,
+                                     const RouteParams& route, const NavigatorParams& navigator,
+                                     const sim::RobotParams& robot, double goal_radius_m);
+
+struct TrialSummary {
+  int trials = 0;
+  int reached = 0;
+  double reached_share = 0.0;
+  double mean_path_ratio = 0.0;    // mean over reached trials of path / straight line
+  double median_path_ratio = 0.0;  // the same, median
+  double mean_steps = 0.0;         // over reached trials
+
+  // "reached 96 of 100 goals (96.0%); path / straight line: mean 1.31, median 1.22".
+  std::string text() const;
+};
+
+TrialSummary summarise(const std::vector<TrialOutcome>& outcomes);
+
+}  // namespace omninav::navigation

@@ -1,0 +1,154 @@
+#include "omninav/navigation/trials.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <limits>
+#include <sstream>
+
+#include "omninav/core/angles.hpp"
+#include "omninav/core/config.hpp"
+#include "omninav/core/errors.hpp"
+#include "omninav/core/progress.hpp"
+#include "omninav/navigation/memory_places.hpp"
+#include "omninav/navigation/robot_worlds.hpp"
+
+namespace omninav::navigation {
+namespace {
+
+// Draws tried per pose before the area is declared too small: a mapped area that is mostly
+// furniture still yields poses within a few hundred draws.
+constexpr int kDrawsPerPose = 10000;
+
+double nearest_m(const std::vector<Eigen::Vector2d>& points, const Eigen::Vector2d& at) {
+  double best = std::numeric_limits<double>::infinity();
+  for (const Eigen::Vector2d& point : points) best = std::min(best, (point - at).norm());
+  return best;
+}
+
+}  // namespace
+
+GoalRun navigate_to_image(NavigationWorld& world, const cv::Mat& goal_image,
+                          const std::string& what, const std::vector<PlaceNode>& places,
+                          const Localiser& localise, double match_limit, const RouteParams& route,
+                          const NavigatorParams& navigator) {
+  GoalRun run;
+  run.goal = match_image(localise, goal_image, match_limit, what);
+  run.plan = plan_over_lattice(places, route, run.goal.place);
+  run.result = navigate(world, places, run.plan, localise, navigator);
+  return run;
+}
+
+void load_trial_params(const ConfigReader& section, TrialParams& params) {
+  section.read("min_separation_spacings", params.min_separation_spacings, 0.0, 1000.0);
+  section.read("goal_radius_spacings", params.goal_radius_spacings, 0.1, 100.0);
+}
+
+std::vector<Trial> random_trials(const sim::World& world,
+                                 const std::vector<Eigen::Vector2d>& mapped_m, double spacing_m,
+                                 double clearance_m, double z_m, const TrialParams& params) {
+  if (mapped_m.empty()) throw UsageError("trials: the map has no places");
+  Eigen::Vector2d low = mapped_m.front(), high = mapped_m.front();
+  for (const Eigen::Vector2d& point : mapped_m) {
+    low = low.cwiseMin(point);
+    high = high.cwiseMax(point);
+  }
+  cv::RNG rng(params.seed);
+  const auto draw_position = [&](const std::function<bool(const Eigen::Vector2d&)>& accept) {
+    for (int draw = 0; draw < kDrawsPerPose; ++draw) {
+      const Eigen::Vector2d at(rng.uniform(low.x(), high.x()), rng.uniform(low.y(), high.y()));
+      if (world.is_free(at.x(), at.y(), clearance_m) && nearest_m(mapped_m, at) <= spacing_m &&
+          accept(at)) {
+        return at;
+      }
+    }
+    throw UsageError("trials: no free pose found in the mapped area of " + world.name +
+                     " (clear of furniture by " + std::to_string(clearance_m) + " m, " +
+                     std::to_string(params.min_separation_spacings) +
+                     " spacings from the other end)");
+  };
+  std::vector<Trial> trials;
+  for (int i = 0; i < params.count; ++i) {
+    const Eigen::Vector2d start = draw_position([](const Eigen::Vector2d&) { return true; });
+    const Eigen::Vector2d goal = draw_position([&](const Eigen::Vector2d& at) {
+      return (at - start).norm() >= params.min_separation_spacings * spacing_m;
+    });
+    const double start_heading = rng.uniform(-kPi, kPi);
+    const double goal_heading = rng.uniform(-kPi, kPi);
+    trials.push_back({{start.x(), start.y(), z_m, start_heading, 0.0, 0.0},
+                      {goal.x(), goal.y(), z_m, goal_heading, 0.0, 0.0}});
+  }
+  return trials;
+}
+
+std::vector<TrialOutcome> run_trials(const std::vector<Trial>& trials, const sim::World& world,
+                                     const sim::Renderer& renderer,
+                                     const std::vector<PlaceNode>& places,
+                                     const Localiser& localise, double match_limit,
+                                     const RouteParams& route, const NavigatorParams& navigator,
+                                     const sim::RobotParams& robot, double goal_radius_m) {
+  std::vector<TrialOutcome> outcomes;
+  Progress progress("navigation trials", trials.size());
+  for (std::size_t i = 0; i < trials.size(); ++i) {
+    TrialOutcome outcome;
+    outcome.trial = trials[i];
+    const CameraPose& start = trials[i].start;
+    const CameraPose& goal = trials[i].goal;
+    outcome.straight_m = std::hypot(goal.x_m - start.x_m, goal.y_m - start.y_m);
+    sim::RobotParams noise = robot;
+    noise.seed = robot.seed + static_cast<std::uint32_t>(i);
+    sim::VirtualRobot virtual_robot(world, start, noise);
+    RenderedWorld rendered(virtual_robot, renderer);
+    try {
+      const GoalRun run = navigate_to_image(rendered, renderer.render(goal),
+                                            "trial " + std::to_string(i) + "'s goal", places,
+                                            localise, match_limit, route, navigator);
+      outcome.goal_place = run.goal.place;
+      outcome.stopped_at_goal = run.result.reached;
+      outcome.path_m = run.result.path_length_m;
+      outcome.steps = static_cast<int>(run.result.steps.size());
+      outcome.jumps = run.result.jumps;
+    } catch (const InputError&) {
+      // The goal image matched no place: the trial fails, the others go on.
+    }
+    const CameraPose& end = virtual_robot.pose();
+    outcome.final_error_m = std::hypot(goal.x_m - end.x_m, goal.y_m - end.y_m);
+    outcome.reached = outcome.stopped_at_goal && outcome.final_error_m <= goal_radius_m;
+    outcomes.push_back(outcome);
+    progress.advance();
+  }
+  return outcomes;
+}
+
+TrialSummary summarise(const std::vector<TrialOutcome>& outcomes) {
+  TrialSummary summary;
+  summary.trials = static_cast<int>(outcomes.size());
+  std::vector<double> ratios;
+  double steps = 0.0;
+  for (const TrialOutcome& outcome : outcomes) {
+    if (!outcome.reached) continue;
+    ++summary.reached;
+    ratios.push_back(outcome.path_m / outcome.straight_m);
+    steps += outcome.steps;
+  }
+  if (summary.trials > 0) summary.reached_share = double(summary.reached) / summary.trials;
+  if (!ratios.empty()) {
+    for (const double ratio : ratios) summary.mean_path_ratio += ratio / ratios.size();
+    std::nth_element(ratios.begin(), ratios.begin() + ratios.size() / 2, ratios.end());
+    summary.median_path_ratio = ratios[ratios.size() / 2];
+    summary.mean_steps = steps / summary.reached;
+  }
+  return summary;
+}
+
+std::string TrialSummary::text() const {
+  std::ostringstream text;
+  text << std::fixed << std::setprecision(1) << "reached " << reached << " of " << trials
+       << " goals (" << 100.0 * reached_share
+       << "%); path / straight line over those reached: " << std::setprecision(2) << "mean "
+       << mean_path_ratio << ", median " << median_path_ratio << "; mean " << std::setprecision(1)
+       << mean_steps << " steps";
+  return text.str();
+}
+
+}  // namespace omninav::navigation
