@@ -283,7 +283,10 @@ void add_navigate_command(CLI::App& app, const GlobalOptions& global) {
       ->check(CLI::Range(1, 100000))
       ->excludes(start)
       ->excludes(goal);
-  command->add_option("--seed", options->seed, "Seed of the --trials poses and motion noise")
+  command
+      ->add_option("--seed", options->seed,
+                   "Seed of the --trials start and goal poses (motion noise: navigation.yaml "
+                   "robot.seed + the trial's index)")
       ->check(CLI::Range(0, 1'000'000'000))
       ->capture_default_str();
   command->callback([&global, options] { run_navigate(global, *options); });

@@ -42,7 +42,7 @@ GoalRun navigate_to_image(NavigationWorld& world, const cv::Mat& goal_image,
 
 struct TrialParams {
   int count = 100;         // start and goal pairs
-  std::uint32_t seed = 1;  // draws poses and seeds each trial's motion noise
+  std::uint32_t seed = 1;  // draws the start and goal poses
   // Start and goal at least this many place spacings apart (a shorter straight line makes
   // the path ratio meaningless).
   double min_separation_spacings = 3.0;
