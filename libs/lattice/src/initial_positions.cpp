@@ -8,8 +8,8 @@
 #include <limits>
 #include <queue>
 
+#include "motion_blocks.hpp"
 #include "omninav/core/errors.hpp"
-#include "omninav/lattice/residuals.hpp"
 #include "omninav/lattice/spring_lattice.hpp"
 
 namespace omninav::lattice {
@@ -110,12 +110,7 @@ std::vector<Eigen::Vector2d> initial_positions(int place_count,
   // (MotionResidual is linear in the positions): its one minimum averages the errors out, and
   // is a start from which the robust problem does not fall into a fold.
   ceres::Problem problem;
-  for (const MotionMeasurement& motion : motions) {
-    problem.AddResidualBlock(
-        MotionResidual::Create(motion.direction_rad, motion.length_m, motion.direction_stddev_rad,
-                               motion.length_stddev_m),
-        nullptr, positions[motion.from].data(), positions[motion.to].data());
-  }
+  detail::add_motion_blocks(problem, motions, positions, nullptr);
   problem.SetParameterBlockConstant(positions[0].data());
   ceres::Solver::Options options;
   options.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;

@@ -5,6 +5,7 @@
 
 #include "omninav/eval/plot.hpp"
 #include "omninav/lattice/stiffness.hpp"
+#include "omninav/memory/localisation.hpp"
 
 namespace omninav::lattice {
 namespace {
@@ -29,16 +30,9 @@ std::optional<LatticeEvaluation> evaluate_against_truth(const memory::VisualMemo
     truth.emplace_back(memory.place(i).truth->x_m, memory.place(i).truth->y_m);
   }
   LatticeEvaluation evaluation;
-  std::vector<double> nearest;
-  for (std::size_t i = 0; i < truth.size(); ++i) {
-    double best = std::numeric_limits<double>::infinity();
-    for (std::size_t j = 0; j < truth.size(); ++j) {
-      if (i != j) best = std::min(best, (truth[i] - truth[j]).norm());
-    }
-    nearest.push_back(best);
-  }
-  std::nth_element(nearest.begin(), nearest.begin() + nearest.size() / 2, nearest.end());
-  evaluation.spacing_m = nearest[nearest.size() / 2];
+  std::vector<cv::Point2d> truth_points;
+  for (const Eigen::Vector2d& t : truth) truth_points.emplace_back(t.x(), t.y());
+  evaluation.spacing_m = memory::typical_spacing(truth_points);
   for (std::size_t i = 0; i < truth.size(); ++i) {
     int neighbours = 0;
     for (std::size_t j = 0; j < truth.size(); ++j) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <set>
+#include <span>
 #include <tuple>
 
 #include "omninav/core/angles.hpp"
@@ -10,23 +11,12 @@
 #include "omninav/core/errors.hpp"
 #include "omninav/core/log.hpp"
 #include "omninav/core/parse.hpp"
+#include "omninav/core/statistics.hpp"
 #include "omninav/signature/dissimilarity.hpp"
 #include "omninav/signature/motion.hpp"
 
 namespace omninav::lattice {
 namespace {
-
-double median(std::vector<double> values) {
-  std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
-  return values[values.size() / 2];
-}
-
-double quantile(std::vector<double> values, double share) {
-  const std::size_t index =
-      std::min(values.size() - 1, static_cast<std::size_t>(share * values.size()));
-  std::nth_element(values.begin(), values.begin() + index, values.end());
-  return values[index];
-}
 
 // The step between consecutive places: the user's, else the map's spacing policy.
 std::pair<double, std::string> scale_of(const memory::VisualMemory& memory,
@@ -101,29 +91,40 @@ Eigen::MatrixXd pair_dissimilarities(const memory::VisualMemory& memory) {
   return dissimilarity;
 }
 
-// The `count` places most similar to `place`, most similar first.
-std::vector<int> most_similar(const Eigen::MatrixXd& dissimilarity, int place, int count) {
-  std::vector<int> others;
-  for (int other = 0; other < dissimilarity.rows(); ++other) {
-    if (other != place) others.push_back(other);
+// Each place's `count` most similar other places, most similar first: ranked once, for the
+// local step (the first), the motions and the springs (the first few of each list).
+using Ranking = std::vector<std::vector<int>>;
+
+Ranking rank_by_similarity(const Eigen::MatrixXd& dissimilarity, int count) {
+  Ranking ranking(dissimilarity.rows());
+  for (int place = 0; place < dissimilarity.rows(); ++place) {
+    std::vector<int>& others = ranking[place];
+    for (int other = 0; other < dissimilarity.rows(); ++other) {
+      if (other != place) others.push_back(other);
+    }
+    const auto keep = std::min<std::size_t>(std::max(count, 0), others.size());
+    std::partial_sort(
+        others.begin(), others.begin() + static_cast<std::ptrdiff_t>(keep), others.end(),
+        [&](int x, int y) { return dissimilarity(place, x) < dissimilarity(place, y); });
+    others.resize(keep);
   }
-  const auto keep = std::min<std::size_t>(std::max(count, 0), others.size());
-  std::partial_sort(
-      others.begin(), others.begin() + static_cast<std::ptrdiff_t>(keep), others.end(),
-      [&](int x, int y) { return dissimilarity(place, x) < dissimilarity(place, y); });
-  others.resize(keep);
-  return others;
+  return ranking;
+}
+
+// The first `count` of a ranked list.
+std::span<const int> first(const std::vector<int>& ranked, int count) {
+  return {ranked.data(), std::min<std::size_t>(std::max(count, 0), ranked.size())};
 }
 
 void calibrate(const memory::VisualMemory& memory, const Eigen::MatrixXd& dissimilarity,
-               const OrganiseParams& params, DistanceCalibration& calibration) {
+               const Ranking& ranking, const OrganiseParams& params,
+               DistanceCalibration& calibration) {
   std::tie(calibration.step_m, calibration.step_source) = scale_of(memory, params);
   const int count = static_cast<int>(dissimilarity.rows());
   std::vector<double> all;
   for (int a = 0; a < count; ++a) {
     for (int b = a + 1; b < count; ++b) all.push_back(dissimilarity(a, b));
-    calibration.local_step_dissimilarity.push_back(
-        dissimilarity(a, most_similar(dissimilarity, a, 1).front()));
+    calibration.local_step_dissimilarity.push_back(dissimilarity(a, ranking[a].front()));
   }
   calibration.step_dissimilarity = median(calibration.local_step_dissimilarity);
   calibration.plateau_dissimilarity = quantile(all, 0.9);
@@ -159,6 +160,7 @@ std::optional<double> motion_direction(const memory::VisualMemory& memory,
 
 std::vector<MotionMeasurement> measure_motions(const memory::VisualMemory& memory,
                                                const Eigen::MatrixXd& dissimilarity,
+                                               const Ranking& ranking,
                                                const DistanceCalibration& calibration,
                                                const OrganiseParams& params) {
   const std::vector<std::optional<double>> headings = lattice_headings(memory);
@@ -181,7 +183,7 @@ std::vector<MotionMeasurement> measure_motions(const memory::VisualMemory& memor
     }
   }
   for (int a = 0; a < dissimilarity.rows(); ++a) {
-    for (int b : most_similar(dissimilarity, a, params.motion_neighbours)) {
+    for (int b : first(ranking[a], params.motion_neighbours)) {
       add(a, b, calibration.distance_m(a, b, dissimilarity(a, b)));
     }
   }
@@ -198,19 +200,21 @@ OrganiseResult organise(memory::VisualMemory& memory, const OrganiseParams& para
   OrganiseResult result;
   const Eigen::MatrixXd dissimilarity = pair_dissimilarities(memory);
   DistanceCalibration& calibration = result.calibration;
-  calibrate(memory, dissimilarity, params, calibration);
+  const Ranking ranking =
+      rank_by_similarity(dissimilarity, std::max({1, params.neighbours, params.motion_neighbours}));
+  calibrate(memory, dissimilarity, ranking, params, calibration);
 
   // Springs (Eq. 4): each place to its most similar places, once per pair.
   std::set<std::pair<int, int>> sprung;
   for (int a = 0; a < count; ++a) {
-    for (int b : most_similar(dissimilarity, a, params.neighbours)) {
+    for (int b : first(ranking[a], params.neighbours)) {
       if (sprung.insert({std::min(a, b), std::max(a, b)}).second) {
         result.springs.push_back({a, b, calibration.distance_m(a, b, dissimilarity(a, b))});
       }
     }
   }
   if (params.motion_constraints) {
-    result.motions = measure_motions(memory, dissimilarity, calibration, params);
+    result.motions = measure_motions(memory, dissimilarity, ranking, calibration, params);
   }
 
   LatticeParams lattice = params.lattice;

@@ -2,6 +2,7 @@
 
 #include <ceres/ceres.h>
 
+#include "motion_blocks.hpp"
 #include "omninav/core/errors.hpp"
 #include "omninav/lattice/residuals.hpp"
 #include "omninav/lattice/stiffness.hpp"
@@ -29,6 +30,10 @@ LatticeResult solve_lattice(int place_count, const std::vector<SpringMeasurement
   for (const MotionMeasurement& motion : motions) {
     require_place(motion.from, place_count, "a motion constraint");
     require_place(motion.to, place_count, "a motion constraint");
+    if (motion.from == motion.to || !(motion.length_m > 0.0)) {
+      throw UsageError("lattice: a motion from place " + std::to_string(motion.from) + " to " +
+                       std::to_string(motion.to) + " needs two places and a length > 0");
+    }
   }
 
   LatticeResult result;
@@ -54,16 +59,7 @@ LatticeResult solve_lattice(int place_count, const std::vector<SpringMeasurement
   }
   // Motions measured between places that only look alike (a wrong neighbour) are outliers too.
   ceres::LossFunction* motion_loss = new ceres::CauchyLoss(params.motion_loss_scale);
-  for (const MotionMeasurement& motion : motions) {
-    if (motion.from == motion.to || !(motion.length_m > 0.0)) {
-      throw UsageError("lattice: a motion from place " + std::to_string(motion.from) + " to " +
-                       std::to_string(motion.to) + " needs two places and a length > 0");
-    }
-    problem.AddResidualBlock(
-        MotionResidual::Create(motion.direction_rad, motion.length_m, motion.direction_stddev_rad,
-                               motion.length_stddev_m),
-        motion_loss, result.positions[motion.from].data(), result.positions[motion.to].data());
-  }
+  detail::add_motion_blocks(problem, motions, result.positions, motion_loss);
   for (int place = 0; place < place_count; ++place) {
     if (!problem.HasParameterBlock(result.positions[place].data())) {
       throw UsageError("lattice: place " + std::to_string(place) +

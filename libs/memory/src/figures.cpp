@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "omninav/core/errors.hpp"
+#include "omninav/core/statistics.hpp"
 #include "omninav/eval/plot.hpp"
 #include "omninav/eval/png.hpp"
 #include "omninav/io/image_file.hpp"
@@ -423,9 +424,8 @@ SignatureFigures write_signature_figures(const VisualMemory& memory,
     std::vector<double> bx{0.0}, by{0.0};
     for (auto& [bin, values] : bins) {
       if (values.size() < 3) continue;
-      std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
       bx.push_back(bin * 0.5 * spacing);
-      by.push_back(values[values.size() / 2]);
+      by.push_back(median(values));
     }
     plot.add_series("median of all pairs", bx, by, eval::SeriesStyle::kLineAndPoints);
     save_csv("fig7_dissimilarity_distance.csv", csv.str());

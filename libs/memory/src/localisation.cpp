@@ -9,6 +9,7 @@
 #include "omninav/core/angles.hpp"
 #include "omninav/core/config.hpp"
 #include "omninav/core/errors.hpp"
+#include "omninav/core/statistics.hpp"
 #include "omninav/signature/phase_heading.hpp"
 
 namespace omninav::memory {
@@ -50,8 +51,7 @@ double typical_spacing(const std::vector<cv::Point2d>& points) {
     }
     nearest.push_back(best);
   }
-  std::nth_element(nearest.begin(), nearest.begin() + nearest.size() / 2, nearest.end());
-  const double spacing = nearest[nearest.size() / 2];
+  const double spacing = median(std::move(nearest));
   return spacing > 0.0 ? spacing : 1.0;
 }
 
@@ -215,9 +215,7 @@ std::vector<double> LocalisationScore::level_mean_size() const {
 
 std::optional<double> LocalisationScore::median_heading_error_rad() const {
   if (heading_errors_.empty()) return std::nullopt;
-  std::vector<double> sorted = heading_errors_;
-  std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
-  return sorted[sorted.size() / 2];
+  return median(heading_errors_);
 }
 
 std::string LocalisationScore::summary(const std::vector<int>& levels) const {

@@ -8,6 +8,7 @@
 #include "omninav/core/errors.hpp"
 #include "omninav/core/log.hpp"
 #include "omninav/core/panorama.hpp"
+#include "omninav/core/statistics.hpp"
 #include "omninav/lattice/organise.hpp"
 
 namespace omninav::navigation {
@@ -70,8 +71,7 @@ double match_limit(const memory::VisualMemory& memory, const RouteParams& params
         "dissimilarity limit (navigation.yaml route.match_dissimilarity_ratio)");
     return std::numeric_limits<double>::infinity();
   }
-  std::nth_element(links.begin(), links.begin() + links.size() / 2, links.end());
-  return params.match_dissimilarity_ratio * links[links.size() / 2];
+  return params.match_dissimilarity_ratio * median(std::move(links));
 }
 
 PlaceMatch match_image(const Localiser& localise, const cv::Mat& image, double limit,

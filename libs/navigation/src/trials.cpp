@@ -10,6 +10,7 @@
 #include "omninav/core/config.hpp"
 #include "omninav/core/errors.hpp"
 #include "omninav/core/progress.hpp"
+#include "omninav/core/statistics.hpp"
 #include "omninav/navigation/memory_places.hpp"
 #include "omninav/navigation/robot_worlds.hpp"
 
@@ -134,8 +135,7 @@ TrialSummary summarise(const std::vector<TrialOutcome>& outcomes) {
   if (summary.trials > 0) summary.reached_share = double(summary.reached) / summary.trials;
   if (!ratios.empty()) {
     for (const double ratio : ratios) summary.mean_path_ratio += ratio / ratios.size();
-    std::nth_element(ratios.begin(), ratios.begin() + ratios.size() / 2, ratios.end());
-    summary.median_path_ratio = ratios[ratios.size() / 2];
+    summary.median_path_ratio = median(ratios);
     summary.mean_steps = steps / summary.reached;
   }
   return summary;

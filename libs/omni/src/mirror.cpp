@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "omninav/core/errors.hpp"
+#include "omninav/core/statistics.hpp"
 
 namespace omninav::omni {
 namespace {
@@ -72,12 +73,6 @@ std::optional<Circle> fit_circle(const std::vector<cv::Point2d>& points) {
   const double squared = cx * cx + cy * cy - solution.at<double>(2);
   if (!(squared > 0.0)) return std::nullopt;
   return Circle{{cx + mean.x, cy + mean.y}, std::sqrt(squared)};
-}
-
-double median(std::vector<double> values) {
-  const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
-  std::nth_element(values.begin(), middle, values.end());
-  return *middle;
 }
 
 }  // namespace

@@ -7,10 +7,10 @@
 #include <optional>
 
 #include "fast_math.hpp"
-#include "fft_plans.hpp"
 #include "low_frequency_dft.hpp"
 #include "omninav/core/config.hpp"
 #include "omninav/core/errors.hpp"
+#include "omninav/core/fftw_plans.hpp"
 #include "omninav/core/panorama.hpp"
 #include "panorama_lines.hpp"
 
@@ -58,12 +58,12 @@ Signature Signature::truncated(int m) const {
 struct SignatureExtractor::Workspace {
   int width = 0;
   int lines = 0;
-  detail::FftwBuffer<float> in;  // lines × width, line after line, for FFTW
-  cv::Mat grey;                  // luminance, for the reference path only
+  fftw::Buffer<float> in;  // lines × width, line after line, for FFTW
+  cv::Mat grey;            // luminance, for the reference path only
   // FFTW, for full spectra and for sizes the direct transform does not serve.
   int fft_width = 0, fft_lines = 0;
   fftwf_plan plan = nullptr;
-  detail::FftwBuffer<fftwf_complex> out;
+  fftw::Buffer<fftwf_complex> out;
   // The direct transform of the first components (low_frequency_dft.hpp) and its output.
   std::optional<detail::LowFrequencyDft> direct;
   std::vector<float> line;    // one line as floats (panorama_lines.hpp)
@@ -91,7 +91,7 @@ void SignatureExtractor::transform(const cv::Mat& panorama, const std::string& w
   const int lines = rows * channels;
   Workspace& work = *work_;
   if (work.width != width || work.lines != lines) {
-    work.in = detail::FftwBuffer<float>(static_cast<std::size_t>(width) * lines);
+    work.in = fftw::Buffer<float>(static_cast<std::size_t>(width) * lines);
     work.width = width;
     work.lines = lines;
   }
@@ -139,9 +139,12 @@ void SignatureExtractor::transform(const cv::Mat& panorama, const std::string& w
 void SignatureExtractor::run_fft() {
   Workspace& work = *work_;
   if (work.fft_width != work.width || work.fft_lines != work.lines) {
-    work.plan = detail::rows_r2c_plan(work.width, work.lines);
-    work.out = detail::FftwBuffer<fftwf_complex>(static_cast<std::size_t>(work.width / 2 + 1) *
-                                                 work.lines);
+    // `lines` real transforms of `width` points, line after line, from the process-wide cache.
+    // FFTW_ESTIMATE: the plan depends on the sizes only, never on timing, so the same input
+    // gives bit-identical signatures in every run (DESIGN.md, Determinism).
+    work.plan = fftw::lines_r2c_float({work.width, work.lines, 0, fftw::Planning::kEstimate});
+    work.out =
+        fftw::Buffer<fftwf_complex>(static_cast<std::size_t>(work.width / 2 + 1) * work.lines);
     work.fft_width = work.width;
     work.fft_lines = work.lines;
   }
