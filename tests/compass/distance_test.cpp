@@ -44,8 +44,9 @@ TEST(ColumnMask, BandsScaleWithTheWidthAndMapOntoThemselvesUnderAHalfTurn) {
             ColumnMask::front_back(360, deg_to_rad(60.0)).key());
 }
 
-// The fast kernel and the plain transcription of Eq. 2 are written independently; they must
-// agree exactly, for every metric, mask, channel count and shift (including wrap-round).
+// The fast kernel (on column-major copies and on rows) and the plain transcription of Eq. 2 are
+// written independently; they must agree exactly, for every metric, mask, channel count and
+// shift (including wrap-round).
 TEST(DistanceFunction, FastKernelEqualsThePlainTranscriptionOfEquation2) {
   for (const int channels : {1, 3}) {
     for (const int width : {45, 180, 360}) {
@@ -57,10 +58,13 @@ TEST(DistanceFunction, FastKernelEqualsThePlainTranscriptionOfEquation2) {
               metric, front_back ? ColumnMask::front_back(width, deg_to_rad(60.0))
                                  : ColumnMask::whole(width));
           for (int shift = -width; shift <= 2 * width; shift += 7) {
-            ASSERT_EQ(distance.cost(first, second, shift),
-                      distance.reference_cost(first, second, shift))
+            const Cost reference = distance.reference_cost(first, second, shift);
+            ASSERT_EQ(distance.cost(first, second, shift), reference)
                 << "channels " << channels << " width " << width << " metric " << to_string(metric)
                 << " mask " << front_back << " shift " << shift;
+            ASSERT_EQ(distance.cost_on_rows(first, second, shift), reference)
+                << "rows: channels " << channels << " width " << width << " metric "
+                << to_string(metric) << " mask " << front_back << " shift " << shift;
           }
         }
       }

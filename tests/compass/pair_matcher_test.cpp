@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <opencv2/imgproc.hpp>
+#include <string>
 
 #include "compass_test_support.hpp"
 #include "omninav/core/angles.hpp"
@@ -193,6 +194,34 @@ TEST(PairMatcher, CompetingMinimaAreFlagged) {
       PairMatcher(params_with(MinimiserKind::kFft))
           .match(CompassFrame(render_room(3, 2, 0)), CompassFrame(render_room(3.1, 2, 5)));
   EXPECT_TRUE(clear.flags.ok()) << clear.flags.describe();
+}
+
+// (c) estimates the distance function in single precision, but its minimum and every cost the
+// sub-pixel fit and the amplitudes read are exact: the whole match is the oracle's, to the bit.
+TEST(PairMatcher, TheFftGivesTheOraclesMatchExactly) {
+  for (const auto& [width, height] : {std::make_pair(360, 45), std::make_pair(1080, 60)}) {
+    for (int i = 0; i < (width == 360 ? 3 : 1); ++i) {
+      const CompassFrame first(render_room(1.5 + 0.7 * i, 2.0, 30.0 * i, width, height));
+      const CompassFrame second(
+          render_room(1.55 + 0.7 * i, 2.03, 30.0 * i + 4.4 - 3.1 * i, width, height));
+      for (const bool front_back : {true, false}) {
+        const PairMatch oracle =
+            PairMatcher(params_with(MinimiserKind::kExhaustive, front_back)).match(first, second);
+        const PairMatch fft =
+            PairMatcher(params_with(MinimiserKind::kFft, front_back)).match(first, second);
+        const std::string where = std::to_string(width) + " pair " + std::to_string(i) + " mask " +
+                                  std::to_string(front_back);
+        EXPECT_EQ(fft.shift_px, oracle.shift_px) << where;
+        EXPECT_EQ(fft.subpixel_shift_px, oracle.subpixel_shift_px) << where;
+        EXPECT_EQ(fft.rotation_rad, oracle.rotation_rad) << where;
+        EXPECT_EQ(fft.distance_min, oracle.distance_min) << where;
+        EXPECT_EQ(fft.amplitude, oracle.amplitude) << where;
+        EXPECT_EQ(fft.amplitude_norm, oracle.amplitude_norm) << where;
+        EXPECT_EQ(fft.amplitude_norm_px, oracle.amplitude_norm_px) << where;
+        EXPECT_EQ(fft.flags.describe(), oracle.flags.describe()) << where;
+      }
+    }
+  }
 }
 
 TEST(PairMatcher, RefusesFramesOfDifferentSizesAndEmptyImages) {

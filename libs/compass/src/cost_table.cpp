@@ -1,6 +1,7 @@
 #include "omninav/compass/cost_table.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 
 namespace omninav::compass {
@@ -14,10 +15,11 @@ bool shift_before(int shift_a, Cost cost_a, int shift_b, Cost cost_b, int width_
 }
 
 CostTable::CostTable(const DistanceFunction& distance, const CompassFrame& first,
-                     const CompassFrame& second)
+                     const CompassFrame& second, Kernel kernel)
     : distance_(distance),
       first_(first),
       second_(second),
+      kernel_(kernel),
       costs_(static_cast<std::size_t>(distance.width_px()), Cost{-1}) {
   distance_.check(first_, second_);
 }
@@ -25,14 +27,29 @@ CostTable::CostTable(const DistanceFunction& distance, const CompassFrame& first
 Cost CostTable::at(int shift_px) {
   Cost& slot = costs_[index(shift_px)];
   if (slot < 0) {
-    slot = distance_.cost(first_, second_, shift_px);
+    slot = kernel_ == Kernel::kColumns ? distance_.cost(first_, second_, shift_px)
+                                       : distance_.cost_on_rows(first_, second_, shift_px);
     ++evaluations_;
   }
   return slot;
 }
 
+void CostTable::set_estimates(const std::vector<double>& estimates) {
+  estimates_.resize(costs_.size());
+  for (std::size_t i = 0; i < estimates_.size(); ++i) {
+    estimates_[i] = estimates[i] <= 0.0 ? Cost{0} : static_cast<Cost>(std::llround(estimates[i]));
+  }
+}
+
+Cost CostTable::cost_or_estimate(int shift_px) const {
+  const std::size_t i = index(shift_px);
+  if (costs_[i] >= 0 || estimates_.empty()) return costs_[i];
+  return estimates_[i];
+}
+
 bool CostTable::complete() const {
-  return std::none_of(costs_.begin(), costs_.end(), [](Cost cost) { return cost < 0; });
+  return !estimates_.empty() ||
+         std::none_of(costs_.begin(), costs_.end(), [](Cost cost) { return cost < 0; });
 }
 
 int CostTable::best_known() const {

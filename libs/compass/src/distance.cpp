@@ -53,18 +53,16 @@ OMNINAV_KERNEL_CLONES Cost run_cost_l1(const std::uint8_t* a, const std::uint8_t
   return run_cost_impl<Metric::kL1>(a, b, n);
 }
 
-// The fast kernel, on the frames' column-major copies: column k of the second image is compared
-// with column k + α of the first (Eq. 2 written over the second image's columns,
-// field_of_view.hpp), so each run [begin, end) of mask columns is one contiguous run of bytes in
-// both images, split in two where it wraps round.
+// The fast kernels. Eq. 2 written over the second image's columns (field_of_view.hpp): column k
+// of the second image is compared with column k + α of the first, so each run [begin, end) of
+// mask columns is one contiguous run of bytes in both images, split in two where it wraps
+// round, in any layout where a column's bytes are `column_bytes` contiguous bytes: the frames'
+// column-major copies (one run per band: H·C bytes per column) or one row of each frame (C
+// bytes per column).
 template <Metric kMetric>
-Cost shifted_cost(const CompassFrame& first, const CompassFrame& second, const ColumnMask& mask,
-                  int shift_px) {
-  const int width = first.width();
-  const std::size_t column_bytes =
-      static_cast<std::size_t>(first.height()) * static_cast<std::size_t>(first.channels());
-  const std::uint8_t* first_columns = first.column_major();
-  const std::uint8_t* second_columns = second.column_major();
+Cost shifted_cost(const std::uint8_t* first, const std::uint8_t* second, std::size_t column_bytes,
+                  const ColumnMask& mask, int shift_px) {
+  const int width = mask.width_px();
   const int shift = wrap_shift(shift_px, width);
   const auto run_cost = kMetric == Metric::kL2 ? run_cost_l2 : run_cost_l1;
   Cost total = 0;
@@ -72,12 +70,32 @@ Cost shifted_cost(const CompassFrame& first, const CompassFrame& second, const C
     const int start = wrap_shift(begin + shift, width);
     const int length = end - begin;
     const int before_wrap = std::min(length, width - start);
-    total += run_cost(second_columns + begin * column_bytes, first_columns + start * column_bytes,
+    total += run_cost(second + begin * column_bytes, first + start * column_bytes,
                       static_cast<std::size_t>(before_wrap) * column_bytes);
     if (before_wrap < length) {
-      total += run_cost(second_columns + (begin + before_wrap) * column_bytes, first_columns,
+      total += run_cost(second + (begin + before_wrap) * column_bytes, first,
                         static_cast<std::size_t>(length - before_wrap) * column_bytes);
     }
+  }
+  return total;
+}
+
+template <Metric kMetric>
+Cost shifted_cost_on_columns(const CompassFrame& first, const CompassFrame& second,
+                             const ColumnMask& mask, int shift_px) {
+  const std::size_t column_bytes =
+      static_cast<std::size_t>(first.height()) * static_cast<std::size_t>(first.channels());
+  return shifted_cost<kMetric>(first.column_major(), second.column_major(), column_bytes, mask,
+                               shift_px);
+}
+
+template <Metric kMetric>
+Cost shifted_cost_on_rows(const CompassFrame& first, const CompassFrame& second,
+                          const ColumnMask& mask, int shift_px) {
+  const std::size_t column_bytes = static_cast<std::size_t>(first.channels());
+  Cost total = 0;
+  for (int r = 0; r < first.height(); ++r) {
+    total += shifted_cost<kMetric>(first.row(r), second.row(r), column_bytes, mask, shift_px);
   }
   return total;
 }
@@ -110,8 +128,16 @@ void DistanceFunction::check(const CompassFrame& first, const CompassFrame& seco
 Cost DistanceFunction::cost(const CompassFrame& first, const CompassFrame& second,
                             int shift_px) const {
   check(first, second);
-  return metric_ == Metric::kL2 ? shifted_cost<Metric::kL2>(first, second, mask_, shift_px)
-                                : shifted_cost<Metric::kL1>(first, second, mask_, shift_px);
+  return metric_ == Metric::kL2
+             ? shifted_cost_on_columns<Metric::kL2>(first, second, mask_, shift_px)
+             : shifted_cost_on_columns<Metric::kL1>(first, second, mask_, shift_px);
+}
+
+Cost DistanceFunction::cost_on_rows(const CompassFrame& first, const CompassFrame& second,
+                                    int shift_px) const {
+  check(first, second);
+  return metric_ == Metric::kL2 ? shifted_cost_on_rows<Metric::kL2>(first, second, mask_, shift_px)
+                                : shifted_cost_on_rows<Metric::kL1>(first, second, mask_, shift_px);
 }
 
 Cost DistanceFunction::reference_cost(const CompassFrame& first, const CompassFrame& second,

@@ -1,6 +1,7 @@
 #pragma once
 // What a CompassFrame caches about itself (frame.hpp). Private to libs/compass.
 
+#include <complex>
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -23,6 +24,9 @@ struct FrameCaches {
   std::shared_ptr<const FirstSpectra> first;
   std::map<std::uint64_t, std::shared_ptr<const SecondSpectra>> second;  // by ColumnMask::key
   std::map<std::uint64_t, double> self_amplitude;  // by distance function (metric and mask)
+  // Components 1..K of every line's spectrum (line r·C + ch, K values each), by K, for the
+  // phase estimate (phase.cpp).
+  std::map<int, std::shared_ptr<const std::vector<std::complex<double>>>> low_frequencies;
   // Q(c) = Σ_rows,channels I(c)², exact in doubles (below 2⁵³), for the FFT's constant terms.
   std::vector<double> column_energy;
 };

@@ -21,21 +21,31 @@ bool shift_before(int shift_a, Cost cost_a, int shift_b, Cost cost_b, int width_
 
 class CostTable {
  public:
+  // How at() evaluates a cost (distance.hpp): on the frames' column-major copies, made once per
+  // frame, for searches that visit many shifts; on their rows when only a few are evaluated.
+  enum class Kernel { kColumns, kRows };
+
   // Keeps references to its arguments: they must outlive the table.
-  CostTable(const DistanceFunction& distance, const CompassFrame& first,
-            const CompassFrame& second);
+  CostTable(const DistanceFunction& distance, const CompassFrame& first, const CompassFrame& second,
+            Kernel kernel = Kernel::kColumns);
 
   int width_px() const { return static_cast<int>(costs_.size()); }
 
-  // The cost at `shift_px` (any integer), evaluated with DistanceFunction::cost the first time
+  // The exact cost at `shift_px` (any integer), evaluated by the table's kernel the first time
   // it is asked for.
   Cost at(int shift_px);
   double distance_at(int shift_px) { return distance_.distance(at(shift_px)); }
   bool known(int shift_px) const { return costs_[index(shift_px)] >= 0; }
-  // Records a cost found another way (by the oracle or the FFT).
+  // Records a cost found another way (by the oracle).
   void set(int shift_px, Cost cost) { costs_[index(shift_px)] = cost; }
+  // Records estimates of every shift's cost (the FFT's, within the bound of fft_correlation.hpp;
+  // rounded, negative ones to 0). They never stand in for exact costs: at() still evaluates a
+  // shift exactly the first time it is asked for, and best_known() ignores them.
+  void set_estimates(const std::vector<double>& estimates);
+  // The exact cost at `shift_px` when known, else its estimate, else −1.
+  Cost cost_or_estimate(int shift_px) const;
 
-  // Whether every shift is known.
+  // Whether every shift is known, exactly or by an estimate.
   bool complete() const;
   // How many costs at() had to evaluate (the minimisers' work, for reports and benchmarks).
   int evaluations() const { return evaluations_; }
@@ -58,7 +68,9 @@ class CostTable {
   const DistanceFunction& distance_;
   const CompassFrame& first_;
   const CompassFrame& second_;
+  Kernel kernel_;
   std::vector<Cost> costs_;
+  std::vector<Cost> estimates_;  // empty, or one per shift
   int evaluations_ = 0;
 };
 

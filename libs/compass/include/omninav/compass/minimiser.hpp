@@ -10,8 +10,9 @@
 //               values spanning 20° centred on the local minimum; when one of them is lower the
 //               descent restarts from it. Finds the global minimum when the start is good
 //               (Algorithm 1 starts from the previous rotation) or when seeded by the phase.
-//   fft         (c) every d(α) at once by masked circular cross-correlation (fft_minimiser.cpp
-//               derives it), then the same order on the exact integer costs.
+//   fft         (c) every d(α) at once by masked circular cross-correlation in single
+//               precision, within a stated bound (fft_correlation.cpp derives both), then the
+//               shifts that may be the minimum evaluated exactly: the same minimum and cost.
 //   phase       (d) the Fourier-phase estimate of 001_5bb151a4e28490b4.txt §2.1 (phase.hpp):
 //               no distance minimisation at all; its integer shift is the rounded estimate.
 //
@@ -36,7 +37,7 @@ MinimiserKind minimiser_kind_of(std::string_view name);
 
 enum class FftPlanning {
   kEstimate,  // FFTW_ESTIMATE: plans from the sizes alone, made instantly
-  kMeasure,   // FFTW_MEASURE: plans timed once per size (~0.3 s each), faster transforms
+  kMeasure,   // FFTW_MEASURE: plans timed once per size (~0.4 s at 1080), faster transforms
 };
 
 struct MinimiserParams {
@@ -50,8 +51,8 @@ struct MinimiserParams {
   bool seed_with_phase = false;
   // (a): use the fast kernel instead of the plain oracle code (benchmarks only).
   bool exhaustive_fast_kernel = false;
-  // (c): how FFTW plans. Either way the costs are rounded to the exact integers they
-  // approximate, so results do not depend on the plan FFTW picks.
+  // (c): how FFTW plans. The minimum and its cost are exact either way, so results do not
+  // depend on the plan FFTW picks (the other shifts' estimates do, within their bound).
   FftPlanning fft_planning = FftPlanning::kEstimate;
   PhaseParams phase;
 };

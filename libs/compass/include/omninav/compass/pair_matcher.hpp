@@ -75,7 +75,8 @@ struct PairMatch {
   double amplitude_norm_px = 0.0;  // A_n, pixel resolution (Eq. 9 normalised)
   double self_amplitude = 0.0;     // A(I_i, I_i), the normaliser
   ConfidenceFlags flags;
-  int evaluations = 0;  // distance evaluations by the fast kernel (oracle and FFT: see kind)
+  int evaluations = 0;  // distance evaluations by the fast kernel (FFT: the shifts it left to
+                        // evaluate exactly and the sub-pixel fit's; the oracle: W)
 };
 
 class PairMatcher {
@@ -102,6 +103,7 @@ class PairMatcher {
  private:
   PairMatcherParams params_;
   std::unique_ptr<Minimiser> minimiser_;
+  CostTable::Kernel kernel_;  // for the minimiser's tables and the self amplitudes
   mutable std::mutex mutex_;
   mutable std::map<int, std::unique_ptr<DistanceFunction>> distances_;
 };

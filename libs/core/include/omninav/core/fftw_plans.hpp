@@ -75,7 +75,8 @@ class Buffer {
 
 // `lines` one-dimensional transforms of length `width`: real lines one after another, `width`
 // values apart; spectra of width/2 + 1 complex values, `stride` complex values apart (0: packed,
-// width/2 + 1; a larger stride keeps every spectrum's start SIMD-aligned).
+// width/2 + 1; a larger stride keeps every spectrum's start SIMD-aligned). For complex lines
+// (lines_forward_float) lines and spectra both have `width` values, `stride` apart (0: width).
 struct LinesShape {
   int width = 0;
   int lines = 1;
@@ -89,6 +90,8 @@ struct LinesShape {
 // Real lines → spectra (FFTW's forward transform, unnormalised). Keeps its input.
 fftw_plan lines_r2c(const LinesShape& shape);
 fftwf_plan lines_r2c_float(const LinesShape& shape);
+// Complex lines → their spectra (the forward transform, unnormalised). Keeps its input.
+fftwf_plan lines_forward_float(const LinesShape& shape);
 // Spectra → real lines (the backward transform, unnormalised: × width). Overwrites its input.
 fftw_plan lines_c2r(const LinesShape& shape);
 fftwf_plan lines_c2r_float(const LinesShape& shape);
