@@ -163,8 +163,8 @@ void evaluate_trials(const NavigateOptions& options, const memory::VisualMemory&
                                 memory.place(0).truth->z_m, navigation.trials);
   const std::vector<navigation::TrialOutcome> outcomes = navigation::run_trials(
       trials, world, renderer, places, localise, navigation::match_limit(memory, navigation.route),
-      navigation.route, navigation.navigator, navigation.robot,
-      navigation.trials.goal_radius_spacings * spacing_m);
+      navigation::homing_scale(memory, places), navigation.route, navigation.navigator,
+      navigation.robot, navigation.trials.goal_radius_spacings * spacing_m);
   std::filesystem::create_directories(options.out);
   write_trials_csv(outcomes, options.out / "trials.csv");
   std::cout << navigation::summarise(outcomes).text() << " (seed " << options.seed
@@ -226,7 +226,8 @@ void run_navigate(const GlobalOptions& global, const NavigateOptions& options) {
 
   const navigation::GoalRun run = navigation::navigate_to_image(
       *body, io::read_image(options.goal), options.goal.string(), places, localise,
-      navigation::match_limit(memory, navigation.route), navigation.route, navigation.navigator);
+      navigation::match_limit(memory, navigation.route), navigation::homing_scale(memory, places),
+      navigation.route, navigation.navigator);
   const navigation::NavigationResult& result = run.result;
 
   std::filesystem::create_directories(options.out);

@@ -45,7 +45,10 @@ RoomMap* build_room_map() {
   map->render.geometry.width_px = 180;
   map->render.geometry.height_px = 24;
   map->renderer = std::make_unique<sim::Renderer>(map->world, map->render);
-  memory::Explorer explorer(map->memory, memory::ExplorationParams{}, "rendered grid", "test");
+  // Headings from the truth: these tests isolate navigation from the visual compass too.
+  memory::ExplorationParams exploration;
+  exploration.heading_source = "truth";
+  memory::Explorer explorer(map->memory, exploration, "rendered grid", "test");
   int index = 0;
   for (int iy = 0; iy < 8; ++iy) {
     for (int ix = 0; ix < 10; ++ix) {
@@ -83,6 +86,7 @@ class RoomNavigation : public ::testing::Test {
   }
   static const RoomMap& map() { return *map_; }
   static double limit() { return match_limit(map().memory, RouteParams{}); }
+  static HomingScale homing() { return homing_scale(map().memory, map().places); }
   // The place nearest to (x, y) by truth.
   static int nearest_place(double x_m, double y_m) {
     int best = 0;
@@ -109,8 +113,9 @@ TEST_F(RoomNavigation, AShortNavigationInTheRoomReachesItsGoal) {
   ASSERT_TRUE(map().world.is_free(goal.x_m, goal.y_m, 0.15));
   sim::VirtualRobot robot(map().world, start, sim::RobotParams{});
   RenderedWorld world(robot, *map().renderer);
-  const GoalRun run = navigate_to_image(world, map().renderer->render(goal), "goal", map().places,
-                                        map().localise, limit(), RouteParams{}, NavigatorParams{});
+  const GoalRun run =
+      navigate_to_image(world, map().renderer->render(goal), "goal", map().places, map().localise,
+                        limit(), homing(), RouteParams{}, NavigatorParams{});
   // The goal image is recognised as the place nearest the goal pose.
   EXPECT_EQ(run.goal.place, nearest_place(goal.x_m, goal.y_m));
   ASSERT_TRUE(run.result.reached) << run.result.steps.size() << " steps";
@@ -128,8 +133,9 @@ TEST_F(RoomNavigation, HeadingsReadFromThePlacesMatchTheTruth) {
   const CameraPose goal{1.5, 2.5, 1.0, 0.0, 0.0, 0.0};
   sim::VirtualRobot robot(map().world, start, sim::RobotParams{});
   RenderedWorld world(robot, *map().renderer);
-  const GoalRun run = navigate_to_image(world, map().renderer->render(goal), "goal", map().places,
-                                        map().localise, limit(), RouteParams{}, NavigatorParams{});
+  const GoalRun run =
+      navigate_to_image(world, map().renderer->render(goal), "goal", map().places, map().localise,
+                        limit(), homing(), RouteParams{}, NavigatorParams{});
   ASSERT_FALSE(run.result.steps.empty());
   const double first_heading = *map().memory.place(0).heading_rad;
   for (const NavigationStep& step : run.result.steps) {
@@ -210,7 +216,7 @@ TEST_F(RoomNavigation, SeededTrialsReachTheirGoals) {
 
   const std::vector<TrialOutcome> outcomes =
       run_trials(trials, map().world, *map().renderer, map().places, map().localise, limit(),
-                 RouteParams{}, NavigatorParams{}, sim::RobotParams{}, kSpacing_m);
+                 homing(), RouteParams{}, NavigatorParams{}, sim::RobotParams{}, kSpacing_m);
   for (const TrialOutcome& outcome : outcomes) {
     EXPECT_TRUE(outcome.reached) << "goal " << outcome.trial.goal.x_m << ","
                                  << outcome.trial.goal.y_m << " missed by " << outcome.final_error_m
@@ -269,8 +275,9 @@ TEST_F(RoomNavigation, NavigationOnARenderedGridReachesItsGoal) {
   const CameraPose& start_pose = map().grid[start].pose;
   GridDatabaseWorld world(map().grid, {start_pose.x_m, start_pose.y_m, deg_to_rad(-100.0)},
                           sim::RobotParams{});
-  const GoalRun run = navigate_to_image(world, map().grid[goal].panorama, "goal", map().places,
-                                        map().localise, limit(), RouteParams{}, NavigatorParams{});
+  const GoalRun run =
+      navigate_to_image(world, map().grid[goal].panorama, "goal", map().places, map().localise,
+                        limit(), homing(), RouteParams{}, NavigatorParams{});
   EXPECT_EQ(run.goal.place, goal);
   ASSERT_TRUE(run.result.reached) << run.result.steps.size() << " steps";
   const CameraPose& goal_pose = map().grid[goal].pose;

@@ -59,19 +59,43 @@ Localiser memory_localiser(const memory::Localiser& localiser,
   };
 }
 
-double match_limit(const memory::VisualMemory& memory, const RouteParams& params) {
+namespace {
+
+// The median over the map's links of their dissimilarity per value; none without links.
+std::optional<double> median_link_dissimilarity(const memory::VisualMemory& memory) {
   std::vector<double> links;
   for (const memory::VisualMemory::EdgeRef& edge : memory.edges()) {
     links.push_back(edge.edge->dissimilarity /
                     static_cast<double>(memory.place(edge.from).signature.size()));
   }
-  if (links.empty()) {
+  if (links.empty()) return std::nullopt;
+  return median(std::move(links));
+}
+
+}  // namespace
+
+double match_limit(const memory::VisualMemory& memory, const RouteParams& params) {
+  const std::optional<double> link = median_link_dissimilarity(memory);
+  if (!link) {
     log_warning(
         "the map has no links between places: images are not checked against a "
         "dissimilarity limit (navigation.yaml route.match_dissimilarity_ratio)");
     return std::numeric_limits<double>::infinity();
   }
-  return params.match_dissimilarity_ratio * median(std::move(links));
+  return params.match_dissimilarity_ratio * *link;
+}
+
+HomingScale homing_scale(const memory::VisualMemory& memory, const std::vector<PlaceNode>& places) {
+  HomingScale scale{memory.parameters().signature, memory.parameters().weights, 0.0};
+  const std::optional<double> link = median_link_dissimilarity(memory);
+  if (!link || *link <= 0.0) {
+    log_warning(
+        "the map has no links between distinct places: the navigator stops on recognising the "
+        "goal's place, without homing on the goal image");
+    return scale;
+  }
+  scale.metres_per_dissimilarity = lattice_spacing(places) / *link;
+  return scale;
 }
 
 PlaceMatch match_image(const Localiser& localise, const cv::Mat& image, double limit,

@@ -1,6 +1,9 @@
 #include "omninav/navigation/navigator.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
+#include <optional>
 
 #include "omninav/core/angles.hpp"
 #include "omninav/core/config.hpp"
@@ -35,11 +38,16 @@ void load_navigator_params(const ConfigReader& section, NavigatorParams& params)
   section.read("goal_confirmations", params.goal_confirmations, 1, 100);
   section.read("unstick_turn_deg", params.unstick_turn_deg, 0.0, 180.0);
   section.read("aim_at_next_place", params.aim_at_next_place);
+  section.read("loop_entries", params.loop_entries, 0, 100000);
+  section.read("home_on_goal_image", params.home_on_goal_image);
+  section.read("homing_step_m", params.homing_step_m, 0.01, 5.0);
+  section.read("homing_stop_m", params.homing_stop_m, 0.0, 5.0);
+  section.read("homing_max_steps", params.homing_max_steps, 0, 100000);
 }
 
 NavigationResult navigate(NavigationWorld& world, const std::vector<PlaceNode>& places,
                           const RoutePlan& initial_plan, const Localiser& localise,
-                          const NavigatorParams& params) {
+                          const NavigatorParams& params, const GoalHoming& homing) {
   NavigationResult result;
   RoutePlan plan = initial_plan;
   int expected = -1;  // the place the plan said we would reach next
@@ -52,37 +60,85 @@ NavigationResult navigate(NavigationWorld& world, const std::vector<PlaceNode>& 
   // block: the estimate that led into the obstacle would lead into it again.
   int steps_since_block = kEscapeSteps + 1;
   int escape_side = 1;
+  std::vector<int> entries(places.size(), 0);  // times each place was entered (loops)
+  // Homing on the goal image: the cue of the last view, once the goal place was recognised.
+  std::optional<GoalCue> homing_from;
   for (int index = 0; index < params.max_steps; ++index) {
     NavigationStep step;
     step.index = index;
     step.truth = world.truth();
-    step.match = localise(world.view(index));
+    const cv::Mat view = world.view(index);
+    step.match = localise(view);
     const int place = step.match.place;
-    if (place < 0) {  // nothing recognised (an empty candidate set): go on straight ahead
-      result.path_length_m += world.move(0.0, params.step_m);
-      result.steps.push_back(step);
-      continue;
-    }
-    step.heading_estimate_rad =
-        wrap_angle(places[place].heading_rad + step.match.heading_in_place_rad);
-    // A jump: neither where we were, nor where we were heading, nor next to either.
-    if (expected >= 0) {
-      const Eigen::Vector2d here = places[place].position_m;
-      const double near_m = 2.0 * params.step_m + 1e-9;
-      step.jump = (here - places[expected].position_m).norm() > near_m &&
-                  (result.steps.empty() ||
-                   (here - places[result.steps.back().match.place].position_m).norm() > near_m);
-      result.jumps += step.jump ? 1 : 0;
+    const int previous = result.steps.empty() ? -1 : result.steps.back().match.place;
+    if (place >= 0) {
+      step.heading_estimate_rad =
+          wrap_angle(places[place].heading_rad + step.match.heading_in_place_rad);
     }
 
-    if (place == plan.goal && step.match.similarity >= params.goal_similarity) {
-      if (++goal_matches >= params.goal_confirmations) {
+    if (!homing_from) {
+      if (place < 0) {  // nothing recognised (an empty candidate set): go on straight ahead
+        result.path_length_m += world.move(0.0, params.step_m);
+        result.steps.push_back(step);
+        continue;
+      }
+      // A jump: neither where we were, nor where we were heading, nor next to either.
+      if (expected >= 0) {
+        const Eigen::Vector2d here = places[place].position_m;
+        const double near_m = 2.0 * params.step_m + 1e-9;
+        step.jump = (here - places[expected].position_m).norm() > near_m &&
+                    (previous < 0 || (here - places[previous].position_m).norm() > near_m);
+        result.jumps += step.jump ? 1 : 0;
+      }
+      if (place == plan.goal && step.match.similarity >= params.goal_similarity) {
+        if (++goal_matches >= params.goal_confirmations) {
+          if (!homing || !params.home_on_goal_image || params.homing_max_steps == 0) {
+            result.steps.push_back(step);
+            result.reached = true;
+            return result;
+          }
+          // The goal place is recognised: from here on, home on the goal image (no view to
+          // compare this first one with yet).
+          homing_from = GoalCue{std::numeric_limits<double>::infinity(), 0.0, true};
+        }
+      } else {
+        goal_matches = 0;
+      }
+    }
+
+    if (homing_from) {
+      // Step towards the goal image, as far as it seems to be (up to a homing step), while it
+      // seems farther than homing_stop_m and nearer than at the last view; stop when it seems
+      // farther (the last step passed the goal), when the phases show no displacement (at the
+      // goal), or when the homing budget is spent.
+      const GoalCue cue = homing(view);
+      if (cue.distance_m <= params.homing_stop_m || cue.distance_m >= homing_from->distance_m ||
+          !cue.valid || result.homing_steps >= params.homing_max_steps) {
         result.steps.push_back(step);
         result.reached = true;
         return result;
       }
-    } else {
-      goal_matches = 0;
+      step.turn_rad = cue.bearing_rad;
+      const double distance_m = std::min(cue.distance_m, params.homing_step_m);
+      const double driven = world.move(step.turn_rad, distance_m);
+      result.path_length_m += driven;
+      ++result.homing_steps;
+      result.steps.push_back(step);
+      // Blocked (the goal lies beside furniture): this is as near as the robot gets.
+      if (driven < 0.5 * distance_m) {
+        result.reached = true;
+        return result;
+      }
+      homing_from = cue;
+      continue;
+    }
+
+    // Going round in circles: entering the same place again and again. Its direction leads
+    // into places whose directions lead back; plan again without the link it follows.
+    if (place != previous && params.loop_entries > 0 && ++entries[place] >= params.loop_entries &&
+        place != plan.goal) {
+      entries[place] = 0;
+      if (replan_without_link(places, place, plan)) ++result.loops;
     }
 
     // Turn to the place's assigned direction, measured against the place's own heading: the
@@ -119,6 +175,8 @@ NavigationResult navigate(NavigationWorld& world, const std::vector<PlaceNode>& 
     expected = plan.next[place] >= 0 ? plan.next[place] : place;
     result.steps.push_back(step);
   }
+  // The budget ran out while homing: the goal place was recognised, as the paper's robot asks.
+  result.reached = homing_from.has_value();
   return result;
 }
 

@@ -31,12 +31,13 @@ double nearest_m(const std::vector<Eigen::Vector2d>& points, const Eigen::Vector
 
 GoalRun navigate_to_image(NavigationWorld& world, const cv::Mat& goal_image,
                           const std::string& what, const std::vector<PlaceNode>& places,
-                          const Localiser& localise, double match_limit, const RouteParams& route,
-                          const NavigatorParams& navigator) {
+                          const Localiser& localise, double match_limit, const HomingScale& homing,
+                          const RouteParams& route, const NavigatorParams& navigator) {
   GoalRun run;
   run.goal = match_image(localise, goal_image, match_limit, what);
   run.plan = plan_over_lattice(places, route, run.goal.place);
-  run.result = navigate(world, places, run.plan, localise, navigator);
+  run.result =
+      navigate(world, places, run.plan, localise, navigator, goal_homing(goal_image, homing));
   return run;
 }
 
@@ -86,7 +87,8 @@ std::vector<TrialOutcome> run_trials(const std::vector<Trial>& trials, const sim
                                      const sim::Renderer& renderer,
                                      const std::vector<PlaceNode>& places,
                                      const Localiser& localise, double match_limit,
-                                     const RouteParams& route, const NavigatorParams& navigator,
+                                     const HomingScale& homing, const RouteParams& route,
+                                     const NavigatorParams& navigator,
                                      const sim::RobotParams& robot, double goal_radius_m) {
   std::vector<TrialOutcome> outcomes;
   Progress progress("navigation trials", trials.size());
@@ -103,7 +105,7 @@ std::vector<TrialOutcome> run_trials(const std::vector<Trial>& trials, const sim
     try {
       const GoalRun run = navigate_to_image(rendered, renderer.render(goal),
                                             "trial " + std::to_string(i) + "'s goal", places,
-                                            localise, match_limit, route, navigator);
+                                            localise, match_limit, homing, route, navigator);
       outcome.goal_place = run.goal.place;
       outcome.stopped_at_goal = run.result.reached;
       outcome.path_m = run.result.path_length_m;

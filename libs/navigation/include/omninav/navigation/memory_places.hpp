@@ -8,6 +8,7 @@
 
 #include "omninav/memory/localisation.hpp"
 #include "omninav/memory/visual_memory.hpp"
+#include "omninav/navigation/homing.hpp"
 #include "omninav/navigation/navigator.hpp"
 #include "omninav/navigation/route_planner.hpp"
 #include "omninav/signature/signature.hpp"
@@ -30,6 +31,12 @@ Localiser memory_localiser(const memory::Localiser& localiser,
 // dissimilarity per value. Infinite for a map without links (then only an empty candidate set
 // fails to match), with a warning in the log.
 double match_limit(const memory::VisualMemory& memory, const RouteParams& params);
+
+// What homing on a goal image needs from `memory` (homing.hpp): its signature parameters and
+// weights, and the lattice spacing of `places` over the median dissimilarity per value of the
+// map's links, which join places about one spacing apart. Without links, metres_per_dissimilarity
+// is 0 (homing never moves), with a warning in the log.
+HomingScale homing_scale(const memory::VisualMemory& memory, const std::vector<PlaceNode>& places);
 
 // Localises `image` (named `what` in messages, e.g. "goal.png") and checks that it matches a
 // place: InputError when it matches none (no candidate, or a mean dissimilarity per value above

@@ -8,6 +8,9 @@
 // direction (furniture the lattice knows nothing of, met because the robot stands beside the
 // place rather than on it), that link of the memory graph is dropped and the plan is made again
 // from the goal without it; only when no route is left does the robot try escape turns.
+// Two more things go beyond the paper (docs/navigation.md has the measurements): a place the
+// robot keeps coming back to gets the same treatment as a blocked link, and once the goal's
+// place is recognised the robot homes on the goal image itself (homing.hpp).
 
 #include <functional>
 #include <opencv2/core.hpp>
@@ -15,6 +18,7 @@
 #include <vector>
 
 #include "omninav/core/pose.hpp"
+#include "omninav/navigation/homing.hpp"
 #include "omninav/navigation/route_planner.hpp"
 
 namespace omninav {
@@ -58,6 +62,18 @@ struct NavigatorParams {
   // fewer goals with seed 2 (90%), and a short run on a 180-column map oscillated
   // (/tmp/notes/issue5-nav.md). Off, or without an estimate, the place's direction is followed.
   bool aim_at_next_place = false;
+  // Beyond §3.5: a place entered this many times in one run means the robot goes round in
+  // circles (the directions of neighbouring places lead into each other where the lattice is
+  // distorted): its link to its next place is dropped and the plan made again, as for a blocked
+  // link. 0: never.
+  int loop_entries = 3;
+  // Beyond §3.5 (homing.hpp): with a GoalHoming, once the goal place is recognised the robot
+  // steps towards the goal image while the goal seems nearer than at the last view and farther
+  // than homing_stop_m, instead of stopping at once.
+  bool home_on_goal_image = true;
+  double homing_step_m = 0.1;   // longest homing step (a step goes as far as the goal seems)
+  double homing_stop_m = 0.15;  // the goal seeming this near ends homing
+  int homing_max_steps = 8;     // homing steps at most (they count against max_steps too)
 };
 
 // Reads the `navigator:` section of navigation.yaml.
@@ -92,12 +108,16 @@ struct NavigationResult {
   std::vector<NavigationStep> steps;
   double path_length_m = 0.0;  // distance the robot drove
   int jumps = 0;
-  int replans = 0;  // links of the memory graph found blocked, and the plan made without them
+  int replans = 0;       // links of the memory graph found blocked, and the plan made without them
+  int loops = 0;         // places entered loop_entries times, and the plan made without their link
+  int homing_steps = 0;  // steps taken towards the goal image after recognising its place
 };
 
+// Drives `world`'s robot along `plan` until it recognises the goal place, then, when `homing`
+// is given and params.home_on_goal_image, homes on the goal image.
 NavigationResult navigate(NavigationWorld& world, const std::vector<PlaceNode>& places,
                           const RoutePlan& plan, const Localiser& localise,
-                          const NavigatorParams& params);
+                          const NavigatorParams& params, const GoalHoming& homing = {});
 
 // The loop in a rendered world: navigate(RenderedWorld(robot, renderer), ...)
 // (robot_worlds.cpp).

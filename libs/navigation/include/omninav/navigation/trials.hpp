@@ -34,11 +34,11 @@ struct GoalRun {
 
 // Matches `goal_image` (named `what` in messages) to a place (match_image with `match_limit`:
 // InputError when it matches none), plans to it over the lattice and drives `world`'s robot
-// there.
+// there, homing on the goal image at the end (homing_scale gives `homing` for a map).
 GoalRun navigate_to_image(NavigationWorld& world, const cv::Mat& goal_image,
                           const std::string& what, const std::vector<PlaceNode>& places,
-                          const Localiser& localise, double match_limit, const RouteParams& route,
-                          const NavigatorParams& navigator);
+                          const Localiser& localise, double match_limit, const HomingScale& homing,
+                          const RouteParams& route, const NavigatorParams& navigator);
 
 struct TrialParams {
   int count = 100;         // start and goal pairs
@@ -86,7 +86,8 @@ std::vector<TrialOutcome> run_trials(const std::vector<Trial>& trials, const sim
                                      const sim::Renderer& renderer,
                                      const std::vector<PlaceNode>& places,
                                      const Localiser& localise, double match_limit,
-                                     const RouteParams& route, const NavigatorParams& navigator,
+                                     const HomingScale& homing, const RouteParams& route,
+                                     const NavigatorParams& navigator,
                                      const sim::RobotParams& robot, double goal_radius_m);
 
 struct TrialSummary {
