@@ -38,7 +38,8 @@ void run_organise(const GlobalOptions& global, const OrganiseOptions& options) {
             << " per step (median of the places' own), plateau "
             << calibration.plateau_dissimilarity << "\n"
             << "  springs:  " << organised.lattice.springs_kept << " kept of "
-            << organised.lattice.springs_given << " (x1 = " << calibration.correlation_range_m
+            << organised.lattice.springs_given << " offered, of " << organised.lattice.place_pairs
+            << " pairs of places (x1 = " << calibration.correlation_range_m
             << " m; weaker than K = " << params.lattice.min_stiffness << " dropped), "
             << organised.lattice.motion_constraints << " motions (directions from the phases)\n"
             << "  solver:   " << organised.lattice.summary << "\n";

@@ -6,10 +6,8 @@
 
 #include "omninav/core/errors.hpp"
 #include "omninav/lattice/lattice_report.hpp"
-#include "omninav/memory/exploration.hpp"
-#include "omninav/sim/renderer.hpp"
 #include "omninav/sim/room.hpp"
-#include "omninav/sim/trajectory.hpp"
+#include "support/rendered_grid_map.hpp"
 
 namespace omninav::lattice {
 namespace {
@@ -22,19 +20,7 @@ memory::VisualMemory grid_map(const sim::RoomParams& room_params, const std::str
   sim::RenderParams render;
   render.geometry.width_px = 360;
   render.geometry.height_px = 45;
-  const sim::Renderer renderer(room, render);
-  memory::VisualMemory map{memory::MapParameters{}};
-  memory::Explorer explorer(map, {}, "grid", "organise_test.cpp");
-  const sim::Trajectory trajectory = sim::make_trajectory(grid, room);
-  for (std::size_t i = 0; i < trajectory.poses.size(); ++i) {
-    io::Frame frame;
-    frame.index = static_cast<int>(i);
-    frame.image = renderer.render(trajectory.poses[i].pose);
-    frame.truth = trajectory.poses[i].pose;
-    frame.source = "grid#" + std::to_string(i);
-    explorer.add_place(frame);
-  }
-  return map;
+  return testing::rendered_grid_map(room, render, grid, "organise_test.cpp");
 }
 
 OrganiseParams thirty_centimetres() {

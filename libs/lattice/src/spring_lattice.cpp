@@ -37,6 +37,7 @@ LatticeResult solve_lattice(int place_count, const std::vector<SpringMeasurement
   }
 
   LatticeResult result;
+  result.place_pairs = static_cast<std::size_t>(place_count) * (place_count - 1) / 2;
   result.springs_given = springs.size();
   result.motion_constraints = motions.size();
   result.positions = initial_positions(place_count, springs, motions);

@@ -41,8 +41,9 @@ struct LatticeParams {
 
 struct LatticeResult {
   std::vector<Eigen::Vector2d> positions;  // place i at positions[i]; place 0 at the origin
-  std::size_t springs_given = 0;
-  std::size_t springs_kept = 0;  // after dropping negligible ones
+  std::size_t place_pairs = 0;    // n(n − 1)/2, the springs of §3.2's full model (Eq. 4)
+  std::size_t springs_given = 0;  // offered: each place's most similar places
+  std::size_t springs_kept = 0;   // after dropping negligible ones
   std::size_t motion_constraints = 0;
   bool converged = false;
   double initial_cost = 0.0;
