@@ -36,6 +36,11 @@ void run_explore(const GlobalOptions& global, const ExploreOptions& options) {
   if (options.every_n_frames >= 0) params.every_n_frames = options.every_n_frames;
   if (options.every_m >= 0.0) params.every_m = options.every_m;
   if (!options.heading_source.empty()) params.heading_source = options.heading_source;
+  if (params.heading_source == "compass" || params.heading_source == "auto") {
+    const compass::CompassConfig compass = load_compass_config(global.config_dir);
+    params.compass = compass.compass;
+    params.compass_width_px = compass.width_px;
+  }
   if (!options.colour.empty()) {
     config.map.signature.colour = signature::colour_mode_from_string(options.colour);
   }
@@ -80,7 +85,9 @@ void run_explore(const GlobalOptions& global, const ExploreOptions& options) {
                 ? " (every frame a place: " +
                       std::string(input.is_grid() ? "a grid database" : "--all-frames") + ")"
                 : ""));
-  memory::Explorer explorer(memory, params, options.input.string(), description.str());
+  memory::Explorer explorer(
+      memory, params, options.input.string(), description.str(),
+      input.is_grid() ? memory::FrameOrder::kUnordered : memory::FrameOrder::kStream);
   {
     Progress progress("explore", input.size());
     while (std::optional<io::Frame> frame = input.next()) {
@@ -137,8 +144,12 @@ void add_explore_command(CLI::App& app, const GlobalOptions& global) {
   command->add_flag("--all-frames", options->all_frames, "Make every frame a place");
   command
       ->add_option("--heading-source", options->heading_source,
-                   "Headings of places: auto (ground truth when known), truth, none")
-      ->check(CLI::IsMember({"auto", "truth", "none"}));
+                   "Headings of places: auto (the visual compass along a stream; a grid "
+                   "database's own headings when it records them), compass (the visual compass "
+                   "over every frame, compass.yaml: Algorithm 1 along a stream, each grid image "
+                   "against the most similar earlier one), truth (the input's poses) or none "
+                   "(default: memory.yaml)")
+      ->check(CLI::IsMember({"auto", "compass", "truth", "none"}));
   command
       ->add_option("--colour", options->colour,
                    "Signature of a new map: luminance or per_channel (default: memory.yaml)")

@@ -63,7 +63,7 @@ inline VisualMemory grid_memory(signature::ColourMode colour = signature::Colour
   MapParameters parameters;
   parameters.signature.colour = colour;
   VisualMemory memory(parameters);
-  Explorer explorer(memory, {}, "grid", "grid_fixture.hpp");
+  Explorer explorer(memory, {}, "grid", "grid_fixture.hpp", FrameOrder::kUnordered);
   for (const io::Frame& frame : grid_frames()) explorer.add_place(frame);
   return memory;
 }

@@ -6,8 +6,11 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "omninav/compass/resample.hpp"
+#include "omninav/core/angles.hpp"
 #include "omninav/core/config.hpp"
 #include "omninav/core/errors.hpp"
+#include "omninav/core/panorama.hpp"
 #include "omninav/signature/dissimilarity.hpp"
 #include "omninav/signature/motion.hpp"
 #include "omninav/signature/phase_heading.hpp"
@@ -19,7 +22,7 @@ void load_exploration_params(const ConfigReader& section, ExplorationParams& par
   section.read("every_n_frames", params.every_n_frames, 0, 1000000);
   section.read("every_m", params.every_m, 0.0, 1000.0);
   section.read("thumbnail_width_px", params.thumbnail_width_px, 8, 4096);
-  section.read("heading_source", params.heading_source, {"auto", "truth", "none"});
+  section.read("heading_source", params.heading_source, {"auto", "compass", "truth", "none"});
   section.read("motion_components", params.motion_components, 0, 4096);
 }
 
@@ -47,15 +50,21 @@ std::string utc_now() {
 }  // namespace
 
 Explorer::Explorer(VisualMemory& memory, ExplorationParams params, std::string input,
-                   std::string description)
-    : memory_(memory), params_(std::move(params)), extractor_(memory.parameters().signature) {
+                   std::string description, FrameOrder order)
+    : memory_(memory),
+      params_(std::move(params)),
+      extractor_(memory.parameters().signature),
+      order_(order) {
   Run run;
   run.id = 0;
   for (const Run& r : memory_.runs()) run.id = std::max(run.id, r.id + 1);
   run.input = std::move(input);
   run.description = std::move(description);
   run.started_utc = utc_now();
-  run.heading_source = params_.heading_source == "auto" ? "none" : params_.heading_source;
+  // "auto" is settled by the first frame (track_heading); until then a stream's choice.
+  heading_source_ = params_.heading_source;
+  run.heading_source = heading_source_ == "auto" ? "compass" : heading_source_;
+  places_before_run_ = memory_.place_count();
   memory_.runs().push_back(run);
   run_index_ = memory_.runs().size() - 1;
 }
@@ -66,6 +75,7 @@ const Run& Explorer::run() const {
 
 std::optional<PlaceIndex> Explorer::add(const io::Frame& frame) {
   const signature::Signature signature = extractor_.compute(frame.image, frame.source);
+  track_heading(frame, signature);
   ++frames_;
   memory_.runs()[run_index_].frames = frames_;
   ++frames_since_place_;
@@ -97,10 +107,94 @@ std::optional<PlaceIndex> Explorer::add(const io::Frame& frame) {
 
 PlaceIndex Explorer::add_place(const io::Frame& frame) {
   const signature::Signature signature = extractor_.compute(frame.image, frame.source);
+  track_heading(frame, signature);
   ++frames_;
   memory_.runs()[run_index_].frames = frames_;
   previous_pose_ = frame.truth;
   return make_place(frame, signature);
+}
+
+void Explorer::track_heading(const io::Frame& frame, const signature::Signature& signature) {
+  if (heading_source_ == "auto") {
+    heading_source_ = order_ == FrameOrder::kUnordered && frame.truth ? "truth" : "compass";
+    memory_.runs()[run_index_].heading_source = heading_source_;
+  }
+  if (heading_source_ != "compass") return;
+  cv::Mat panorama = frame.image;
+  if (params_.compass_width_px && *params_.compass_width_px != panorama.cols) {
+    panorama = compass::resample_columns(panorama, *params_.compass_width_px);
+  }
+  if (order_ == FrameOrder::kUnordered) {
+    if (!place_matcher_) {
+      place_matcher_ = std::make_unique<compass::PairMatcher>(params_.compass.matcher);
+    }
+    compass_heading_rad_ = run_place_panoramas_.empty()
+                               ? initial_heading(frame, signature)
+                               : heading_from_nearest_place(panorama, signature);
+    run_place_panoramas_.push_back(panorama);
+    return;
+  }
+  const compass::CompassFrame compass_frame(panorama, frame.index, frame.source);
+  if (!compass_) {
+    compass_ = std::make_unique<compass::VisualCompass>(params_.compass,
+                                                        initial_heading(frame, signature));
+  }
+  compass_heading_rad_ = compass_->push(compass_frame).heading_rad;
+}
+
+double Explorer::heading_from_nearest_place(const cv::Mat& panorama,
+                                            const signature::Signature& signature) const {
+  // This run's earlier places, by the full-signature dissimilarity: a linear scan per image,
+  // O(n^2) over a grid of n images, seconds for thousands, next to reading them. (Averaging the
+  // readings through the 3-6 most similar places instead was no better: the errors are biases
+  // shared by neighbours, not noise.)
+  std::size_t nearest = 0;
+  double nearest_dissimilarity = 0.0;
+  for (std::size_t k = 0; k < run_place_panoramas_.size(); ++k) {
+    const double d = signature::dissimilarity(memory_.place(places_before_run_ + k).signature,
+                                              signature, -1, memory_.parameters().weights);
+    if (k == 0 || d < nearest_dissimilarity) {
+      nearest = k;
+      nearest_dissimilarity = d;
+    }
+  }
+  const Place& place = memory_.place(places_before_run_ + nearest);
+  const double turn_rad = signature::relative_heading(place.signature, signature).turn_rad;
+  // The step's direction seen from the second image, brought to its front (see the header).
+  const signature::MotionEstimate motion = signature::estimate_motion(place.signature, signature);
+  const int width = panorama.cols;
+  const int roll_px = motion.valid ? static_cast<int>(std::lround(shift_px_of_rotation(
+                                         motion.bearing_rad - turn_rad, width)))
+                                   : 0;
+  const compass::CompassFrame first(roll_columns(run_place_panoramas_[nearest], roll_px));
+  const compass::CompassFrame second(roll_columns(panorama, roll_px));
+  const compass::PairMatch match = place_matcher_->match(
+      first, second, static_cast<int>(std::lround(-shift_px_of_rotation(turn_rad, width))));
+  return *place.heading_rad + match.rotation_rad;
+}
+
+double Explorer::initial_heading(const io::Frame& frame,
+                                 const signature::Signature& signature) const {
+  // The earlier runs' place most like this frame, by the full-signature dissimilarity: a
+  // linear scan, done once per run.
+  std::optional<PlaceIndex> nearest;
+  double nearest_dissimilarity = 0.0;
+  for (PlaceIndex i = 0; i < places_before_run_; ++i) {
+    const Place& place = memory_.place(i);
+    if (!place.heading_rad) continue;
+    const double d =
+        signature::dissimilarity(place.signature, signature, -1, memory_.parameters().weights);
+    if (!nearest || d < nearest_dissimilarity) {
+      nearest = i;
+      nearest_dissimilarity = d;
+    }
+  }
+  if (nearest) {
+    const Place& place = memory_.place(*nearest);
+    return wrap_angle(*place.heading_rad +
+                      signature::relative_heading(place.signature, signature).turn_rad);
+  }
+  return frame.truth ? frame.truth->heading_rad : 0.0;
 }
 
 PlaceIndex Explorer::make_place(const io::Frame& frame, const signature::Signature& signature) {
@@ -111,14 +205,16 @@ PlaceIndex Explorer::make_place(const io::Frame& frame, const signature::Signatu
   place.run = memory_.runs()[run_index_].id;
   place.time_s = frame.time_s;
   place.truth = frame.truth;
-  if (params_.heading_source == "truth" && !frame.truth) {
-    throw UsageError(frame.source +
-                     ": heading_source is 'truth' but this frame has no ground-truth pose");
+  if (heading_source_ == "truth" && !frame.truth) {
+    throw UsageError(frame.source + ": headings come from the input's poses (heading_source " +
+                     params_.heading_source + ") but this frame has none");
   }
-  if (params_.heading_source != "none" && frame.truth) {
+  if (heading_source_ == "truth") {
     place.heading_rad = frame.truth->heading_rad;
     place.heading_source = HeadingSource::kTruth;
-    memory_.runs()[run_index_].heading_source = "truth";
+  } else if (heading_source_ == "compass") {
+    place.heading_rad = wrap_angle(compass_heading_rad_);
+    place.heading_source = HeadingSource::kCompass;
   }
   if (params_.thumbnail_width_px > 0) {
     place.thumbnail_png = make_thumbnail(frame.image, params_.thumbnail_width_px);
