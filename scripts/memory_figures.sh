@@ -7,7 +7,7 @@
 #     components m, and under an exposure change with raw and normalised magnitudes;
 #   - figures like Figs. 8-10 for three queries.
 # Everything is rendered and written under OUT (default: BUILD/memory_figures); nothing goes
-# into the source tree. A few minutes on one core.
+# into the source tree. About 30 minutes on one core, most of it rendering three rooms.
 #
 # Usage: scripts/memory_figures.sh [BUILD_DIR] [OUT_DIR]
 set -euo pipefail
