@@ -1,46 +1,20 @@
 // The command line end to end, run in-process: exit status, messages and files written.
 #include "cli.hpp"
 
-#include <gtest/gtest.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
 
+#include "command_line_test.hpp"
 #include "omninav/core/angles.hpp"
 #include "omninav/io/sequence.hpp"
 #include "omninav/memory/map_file.hpp"
 #include "omninav/omni/unwrap.hpp"
-#include "support/shared_data.hpp"
 
 namespace omninav::cli {
 namespace {
 
-class CommandLine : public ::testing::Test {
- protected:
-  void SetUp() override {
-    folder_ = std::filesystem::temp_directory_path() /
-              ("omninav_cli_" + std::to_string(::getpid()) + "_" +
-               ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    std::filesystem::remove_all(folder_);
-    std::filesystem::create_directories(folder_);
-  }
-  void TearDown() override { std::filesystem::remove_all(folder_); }
-
-  // Runs omninav with `args`; returns the exit status and keeps what it printed to stderr.
-  int run_omninav(std::vector<std::string> args) {
-    args.insert(args.begin(), {"--config-dir", config_dir_.string()});
-    ::testing::internal::CaptureStderr();
-    const int status = run(args);
-    errors_ = ::testing::internal::GetCapturedStderr();
-    return status;
-  }
-
-  std::filesystem::path folder_;
-  std::filesystem::path config_dir_ = omninav::testing::config_dir();
-  std::string errors_;
-};
+using CommandLine = CommandLineTest;
 
 TEST_F(CommandLine, RenderWritesADatabaseWithExactGroundTruth) {
   const std::filesystem::path out = folder_ / "run";
@@ -128,9 +102,9 @@ TEST_F(CommandLine, DemoWritesItsReport) {
   const memory::VisualMemory memory = memory::load_map(map);
   EXPECT_EQ(memory.place_count(), 57u);
   EXPECT_TRUE(memory.all_have_lattice());
-  for (const char* file : {"exploration/contact_sheet.png", "lattice.png", "localisation.csv",
-                           "localisation_0000.png", "route.png", "navigation/steps.csv",
-                           "navigation/path.png", "trials/trials.csv"}) {
+  for (const char* file :
+       {"exploration/contact_sheet.png", "lattice.png", "localisation.csv", "localisation_0000.png",
+        "route.png", "navigation/steps.csv", "navigation/path.png", "trials/trials.csv"}) {
     EXPECT_TRUE(std::filesystem::exists(report / file)) << file;
   }
 }

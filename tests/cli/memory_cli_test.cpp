@@ -1,47 +1,23 @@
 // omninav explore, localise and export end to end, in-process: exit status, messages, and
 // output checked against the rendered images' ground truth (not against the commands' own
 // scoring), on a small grid of the built-in room.
-#include <gtest/gtest.h>
-#include <unistd.h>
-
 #include <cmath>
 #include <fstream>
 #include <regex>
 #include <sstream>
 
-#include "cli.hpp"
+#include "command_line_test.hpp"
 #include "omninav/core/angles.hpp"
-#include "omninav/core/parse.hpp"
 #include "omninav/io/sequence.hpp"
 #include "omninav/memory/map_file.hpp"
-#include "support/shared_data.hpp"
 
 namespace omninav::cli {
 namespace {
 
 constexpr double kSpacing_m = 0.3;
 
-class ExploreLocaliseExport : public ::testing::Test {
+class ExploreLocaliseExport : public CommandLineTest {
  protected:
-  void SetUp() override {
-    folder_ = std::filesystem::temp_directory_path() /
-              ("omninav_memory_cli_" + std::to_string(::getpid()) + "_" +
-               ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    std::filesystem::remove_all(folder_);
-    std::filesystem::create_directories(folder_);
-  }
-  void TearDown() override { std::filesystem::remove_all(folder_); }
-
-  int run_omninav(std::vector<std::string> args) {
-    args.insert(args.begin(), {"--config-dir", omninav::testing::config_dir().string()});
-    ::testing::internal::CaptureStdout();
-    ::testing::internal::CaptureStderr();
-    const int status = run(args);
-    output_ = ::testing::internal::GetCapturedStdout();
-    errors_ = ::testing::internal::GetCapturedStderr();
-    return status;
-  }
-
   // A 6 × 5 grid at 30 cm explored into a map, and queries rendered along a line between its
   // points at a heading that is not the grid's (the line's direction, 33.7°).
   void make_map_and_queries() {
@@ -62,18 +38,9 @@ class ExploreLocaliseExport : public ::testing::Test {
     query_frames_ = io::read_all(*io::open_sequence(queries_));
   }
 
-  std::filesystem::path folder_, map_, queries_;
+  std::filesystem::path map_, queries_;
   std::vector<io::Frame> query_frames_;
-  std::string output_, errors_;
 };
-
-std::vector<std::vector<std::string>> csv_rows(const std::string& text) {
-  std::vector<std::vector<std::string>> rows;
-  std::istringstream lines(text);
-  std::string line;
-  while (std::getline(lines, line)) rows.push_back(split(line, ','));
-  return rows;
-}
 
 std::size_t column(const std::vector<std::string>& header, const std::string& name) {
   const auto found = std::find(header.begin(), header.end(), name);

@@ -2,45 +2,21 @@
 // checked against the rendered grid's ground truth. The maps' lattices are set from the
 // places' ground truth by the fixture (libs/lattice is tested on its own), so that these tests
 // check planning and navigation whatever the lattice's accuracy.
-#include <gtest/gtest.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
 #include <sstream>
 
-#include "cli.hpp"
-#include "omninav/core/parse.hpp"
+#include "command_line_test.hpp"
 #include "omninav/io/sequence.hpp"
 #include "omninav/memory/map_file.hpp"
-#include "support/shared_data.hpp"
 
 namespace omninav::cli {
 namespace {
 
-class RouteAndNavigate : public ::testing::Test {
+class RouteAndNavigate : public CommandLineTest {
  protected:
-  void SetUp() override {
-    folder_ = std::filesystem::temp_directory_path() /
-              ("omninav_route_" + std::to_string(::getpid()) + "_" +
-               ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    std::filesystem::remove_all(folder_);
-    std::filesystem::create_directories(folder_);
-  }
-  void TearDown() override { std::filesystem::remove_all(folder_); }
-
-  int run_omninav(std::vector<std::string> args) {
-    args.insert(args.begin(), {"--config-dir", omninav::testing::config_dir().string()});
-    ::testing::internal::CaptureStdout();
-    ::testing::internal::CaptureStderr();
-    const int status = run(args);
-    output_ = ::testing::internal::GetCapturedStdout();
-    errors_ = ::testing::internal::GetCapturedStderr();
-    return status;
-  }
-
   // A 6 × 5 grid at 30 cm rendered into a BoB database and explored into a map.
   void make_map() {
     grid_ = folder_ / "grid";
@@ -77,18 +53,9 @@ class RouteAndNavigate : public ::testing::Test {
     throw std::runtime_error("no grid frame there");
   }
 
-  std::filesystem::path folder_, grid_, map_;
+  std::filesystem::path grid_, map_;
   std::vector<io::Frame> frames_;
-  std::string output_, errors_;
 };
-
-std::vector<std::vector<std::string>> csv_rows(const std::string& text) {
-  std::vector<std::vector<std::string>> rows;
-  std::istringstream lines(text);
-  std::string line;
-  while (std::getline(lines, line)) rows.push_back(split(line, ','));
-  return rows;
-}
 
 TEST_F(RouteAndNavigate, RouteGoesFromTheCurrentPlaceToTheGoalsOverNeighbours) {
   make_map();
