@@ -144,21 +144,12 @@ void Explorer::track_heading(const io::Frame& frame, const signature::Signature&
 
 double Explorer::heading_from_nearest_place(const cv::Mat& panorama,
                                             const signature::Signature& signature) const {
-  // This run's earlier places, by the full-signature dissimilarity: a linear scan per image,
-  // O(n^2) over a grid of n images, seconds for thousands, next to reading them. (Averaging the
-  // readings through the 3-6 most similar places instead was no better: the errors are biases
-  // shared by neighbours, not noise.)
-  std::size_t nearest = 0;
-  double nearest_dissimilarity = 0.0;
-  for (std::size_t k = 0; k < run_place_panoramas_.size(); ++k) {
-    const double d = signature::dissimilarity(memory_.place(places_before_run_ + k).signature,
-                                              signature, -1, memory_.parameters().weights);
-    if (k == 0 || d < nearest_dissimilarity) {
-      nearest = k;
-      nearest_dissimilarity = d;
-    }
-  }
-  const Place& place = memory_.place(places_before_run_ + nearest);
+  // (Averaging the readings through the 3-6 most similar places instead was no better: the
+  // errors are biases shared by neighbours, not noise.) Every place of this run so far has a
+  // heading: each got one here.
+  const PlaceIndex nearest = *most_similar_place(signature, places_before_run_,
+                                                 places_before_run_ + run_place_panoramas_.size());
+  const Place& place = memory_.place(nearest);
   const double turn_rad = signature::relative_heading(place.signature, signature).turn_rad;
   // The step's direction seen from the second image, brought to its front (see the header).
   const signature::MotionEstimate motion = signature::estimate_motion(place.signature, signature);
@@ -166,7 +157,8 @@ double Explorer::heading_from_nearest_place(const cv::Mat& panorama,
   const int roll_px = motion.valid ? static_cast<int>(std::lround(shift_px_of_rotation(
                                          motion.bearing_rad - turn_rad, width)))
                                    : 0;
-  const compass::CompassFrame first(roll_columns(run_place_panoramas_[nearest], roll_px));
+  const compass::CompassFrame first(
+      roll_columns(run_place_panoramas_[nearest - places_before_run_], roll_px));
   const compass::CompassFrame second(roll_columns(panorama, roll_px));
   const compass::PairMatch match = place_matcher_->match(
       first, second, static_cast<int>(std::lround(-shift_px_of_rotation(turn_rad, width))));
@@ -175,11 +167,23 @@ double Explorer::heading_from_nearest_place(const cv::Mat& panorama,
 
 double Explorer::initial_heading(const io::Frame& frame,
                                  const signature::Signature& signature) const {
-  // The earlier runs' place most like this frame, by the full-signature dissimilarity: a
-  // linear scan, done once per run.
+  const std::optional<PlaceIndex> nearest = most_similar_place(signature, 0, places_before_run_);
+  if (nearest) {
+    const Place& place = memory_.place(*nearest);
+    return wrap_angle(*place.heading_rad +
+                      signature::relative_heading(place.signature, signature).turn_rad);
+  }
+  return frame.truth ? frame.truth->heading_rad : 0.0;
+}
+
+std::optional<PlaceIndex> Explorer::most_similar_place(const signature::Signature& signature,
+                                                       PlaceIndex begin, PlaceIndex end) const {
+  // By the full-signature dissimilarity, a linear scan: once per run for the gauge, once per
+  // image of a grid database (O(n^2) over n images, seconds for thousands, next to reading
+  // them).
   std::optional<PlaceIndex> nearest;
   double nearest_dissimilarity = 0.0;
-  for (PlaceIndex i = 0; i < places_before_run_; ++i) {
+  for (PlaceIndex i = begin; i < end; ++i) {
     const Place& place = memory_.place(i);
     if (!place.heading_rad) continue;
     const double d =
@@ -189,12 +193,7 @@ double Explorer::initial_heading(const io::Frame& frame,
       nearest_dissimilarity = d;
     }
   }
-  if (nearest) {
-    const Place& place = memory_.place(*nearest);
-    return wrap_angle(*place.heading_rad +
-                      signature::relative_heading(place.signature, signature).turn_rad);
-  }
-  return frame.truth ? frame.truth->heading_rad : 0.0;
+  return nearest;
 }
 
 PlaceIndex Explorer::make_place(const io::Frame& frame, const signature::Signature& signature) {

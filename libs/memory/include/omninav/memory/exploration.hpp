@@ -116,6 +116,9 @@ class Explorer {
   void track_heading(const io::Frame& frame, const signature::Signature& signature);
   double heading_from_nearest_place(const cv::Mat& panorama,
                                     const signature::Signature& signature) const;
+  // The place among [begin, end) that has a heading and is most like `signature`, if any.
+  std::optional<PlaceIndex> most_similar_place(const signature::Signature& signature,
+                                               PlaceIndex begin, PlaceIndex end) const;
   // Where the compass starts for the run's first frame (the gauge, see above).
   double initial_heading(const io::Frame& frame, const signature::Signature& signature) const;
   PlaceIndex make_place(const io::Frame& frame, const signature::Signature& signature);
