@@ -1,7 +1,8 @@
 // The visual memory's speed and size (issue 4 §4). Targets on one core: ≤ 20 µs per 360×45
 // signature; ≤ 10 ms per query at 100,000 places.
 // Run: build/bin/signature_bench   (one core: taskset -c 1 build/bin/signature_bench; the
-// signature alone: --benchmark_filter=signature_time --benchmark_repetitions=5)
+// signature alone: --benchmark_filter=signature_time --benchmark_repetitions=5; the motion fit,
+// fast and line by line: --benchmark_filter=motion)
 #include <benchmark/benchmark.h>
 #include <unistd.h>
 
@@ -14,10 +15,15 @@
 #include "../../libs/signature/src/fast_math.hpp"
 #include "../../libs/signature/src/low_frequency_dft.hpp"
 #include "../../libs/signature/src/panorama_lines.hpp"
+#include "../../libs/signature/src/warp_fit.hpp"
+#include "../signature/direct_warp_fit.hpp"
+#include "../signature/rendered_room.hpp"
 #include "../signature/synthetic_signatures.hpp"
 #include "omninav/memory/exploration.hpp"
 #include "omninav/memory/map_file.hpp"
 #include "omninav/signature/hierarchy.hpp"
+#include "omninav/signature/motion.hpp"
+#include "omninav/signature/phase_heading.hpp"
 #include "omninav/signature/signature.hpp"
 #include "omninav/sim/renderer.hpp"
 #include "omninav/sim/room.hpp"
@@ -188,6 +194,69 @@ BENCHMARK_CAPTURE(query_time, pruned_per_channel, false, 3)
     ->Arg(10000)
     ->Arg(100000)
     ->Unit(benchmark::kMillisecond);
+
+// The motion between two places (motion.hpp) on 16 pairs of rendered 360×45 places 5-45 cm
+// apart with turns, m = 15: estimate_motion() and, as its baseline in the same run, the same
+// fit evaluated line by line (the tests' oracle, as estimate_motion() was before
+// warp_fit.hpp's identity); one evaluation of the m = 15 fit each way; and the phase heading
+// that estimate_motion() starts from, the part of it that is not the fit.
+const std::vector<std::pair<signature::Signature, signature::Signature>>& motion_pairs() {
+  static const auto pairs = [] {
+    std::vector<std::pair<signature::Signature, signature::Signature>> made;
+    std::mt19937 random(11);
+    std::uniform_real_distribution<double> x(1.0, 5.0), y(1.0, 4.0), angle(-180.0, 180.0),
+        turn(-30.0, 30.0), step(0.05, 0.45);
+    signature::SignatureExtractor extractor({15, ColourMode::kLuminance});
+    while (made.size() < 16) {
+      const double x0 = x(random), y0 = y(random), direction = deg_to_rad(angle(random));
+      const double d = step(random), h0 = angle(random);
+      const double x1 = x0 + d * std::cos(direction), y1 = y0 + d * std::sin(direction);
+      if (!signature::testing::room().is_free(x0, y0, 0.2) ||
+          !signature::testing::room().is_free(x1, y1, 0.2)) {
+        continue;
+      }
+      made.emplace_back(extractor.compute(signature::testing::render(x0, y0, h0)),
+                        extractor.compute(signature::testing::render(x1, y1, h0 + turn(random))));
+    }
+    return made;
+  }();
+  return pairs;
+}
+
+void motion_estimate(benchmark::State& state, bool line_by_line) {
+  const auto& pairs = motion_pairs();
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const auto& [from, to] = pairs[i++ % pairs.size()];
+    benchmark::DoNotOptimize(line_by_line ? signature::testing::direct_estimate_motion(from, to, 15)
+                                          : signature::estimate_motion(from, to));
+  }
+}
+BENCHMARK_CAPTURE(motion_estimate, fast, false)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(motion_estimate, line_by_line, true)->Unit(benchmark::kMicrosecond);
+
+void motion_evaluation(benchmark::State& state, bool line_by_line) {
+  const auto& [from, to] = motion_pairs().front();
+  const signature::detail::LineSums sums(from, to, 15);
+  const signature::detail::WarpFit fast(sums, 15);
+  const signature::testing::DirectWarpFit direct(from, to, 15);
+  const signature::detail::WarpObjective& objective =
+      line_by_line ? static_cast<const signature::detail::WarpObjective&>(direct) : fast;
+  const Eigen::Vector3d p(signature::relative_heading(from, to).turn_rad, -0.05, 0.03);
+  for (auto _ : state) benchmark::DoNotOptimize(objective.evaluate(p));
+}
+BENCHMARK_CAPTURE(motion_evaluation, fast, false)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(motion_evaluation, line_by_line, true)->Unit(benchmark::kMicrosecond);
+
+void motion_phase_heading(benchmark::State& state) {
+  const auto& pairs = motion_pairs();
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const auto& [from, to] = pairs[i++ % pairs.size()];
+    benchmark::DoNotOptimize(signature::relative_heading(from, to));
+  }
+}
+BENCHMARK(motion_phase_heading)->Unit(benchmark::kMicrosecond);
 
 // Bytes per place in memory (VisualMemory: signature, thumbnail, graph; plus the search index)
 // and on disk (the .vmem file), for a map of rendered places.
