@@ -2,7 +2,7 @@
 // signature; ≤ 10 ms per query at 100,000 places.
 // Run: build/bin/signature_bench   (one core: taskset -c 1 build/bin/signature_bench; the
 // signature alone: --benchmark_filter=signature_time --benchmark_repetitions=5; the motion fit,
-// fast and line by line: --benchmark_filter=motion)
+// fast and line by line, and the phase heading it starts from: --benchmark_filter=motion)
 #include <benchmark/benchmark.h>
 #include <unistd.h>
 
@@ -16,6 +16,7 @@
 #include "../../libs/signature/src/low_frequency_dft.hpp"
 #include "../../libs/signature/src/panorama_lines.hpp"
 #include "../../libs/signature/src/warp_fit.hpp"
+#include "../signature/direct_phase_heading.hpp"
 #include "../signature/direct_warp_fit.hpp"
 #include "../signature/rendered_room.hpp"
 #include "../signature/synthetic_signatures.hpp"
@@ -248,15 +249,19 @@ void motion_evaluation(benchmark::State& state, bool line_by_line) {
 BENCHMARK_CAPTURE(motion_evaluation, fast, false)->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(motion_evaluation, line_by_line, true)->Unit(benchmark::kMicrosecond);
 
-void motion_phase_heading(benchmark::State& state) {
+// The phase heading and, as its baseline in the same run, the computation it replaced (one
+// std::polar per coefficient and per term of the correlation; the tests' oracle).
+void motion_phase_heading(benchmark::State& state, bool direct) {
   const auto& pairs = motion_pairs();
   std::size_t i = 0;
   for (auto _ : state) {
     const auto& [from, to] = pairs[i++ % pairs.size()];
-    benchmark::DoNotOptimize(signature::relative_heading(from, to));
+    benchmark::DoNotOptimize(direct ? signature::testing::direct_relative_heading(from, to)
+                                    : signature::relative_heading(from, to));
   }
 }
-BENCHMARK(motion_phase_heading)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(motion_phase_heading, fast, false)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(motion_phase_heading, direct, true)->Unit(benchmark::kMicrosecond);
 
 // Bytes per place in memory (VisualMemory: signature, thumbnail, graph; plus the search index)
 // and on disk (the .vmem file), for a map of rendered places.
