@@ -26,6 +26,16 @@ TEST(SpringResidual, ZeroAtRestLengthAndSignedOffIt) {
   EXPECT_NEAR(spring_residual(4.0, 0.25, a, b), 0.5 * spring_residual(4.0, 1.0, a, b), 1e-12);
 }
 
+TEST(SpringResidual, AnAtLeastSpringPushesButNeverPulls) {
+  const double a[2] = {1.0, 2.0};
+  const double b[2] = {4.0, 6.0};  // 5 m apart
+  double residual = 1.0;
+  SpringResidual(4.0, 1.0, true)(a, b, &residual);  // stretched past rest: no force
+  EXPECT_EQ(residual, 0.0);
+  SpringResidual(6.0, 1.0, true)(a, b, &residual);  // compressed: pushes like a spring
+  EXPECT_NEAR(residual, spring_residual(6.0, 1.0, a, b), 1e-12);
+}
+
 std::array<double, 2> motion_residual(double direction, double length, const double* from,
                                       const double* to) {
   std::array<double, 2> residual{};

@@ -122,6 +122,28 @@ TEST(SpringLattice, NegligibleSpringsAreDroppedAndCounted) {
   EXPECT_LT(rmse_in_spacing(result.positions, truth), 1e-3);
 }
 
+TEST(SpringLattice, SaturatedSpringsThatOnlyPushDoNotCollapseTheLattice) {
+  // Beyond a short range a dissimilarity saturates: every far pair reads about the same short
+  // length (here 0.5 m, whatever the truth). Two-sided, those springs pull the grid together;
+  // as lower bounds (at_least) they are all satisfied by the true layout and leave it alone.
+  const std::vector<Eigen::Vector2d> truth = zigzag_grid(10, 8, kSpacing);
+  std::vector<SpringMeasurement> springs = springs_from(truth, 0.45, 0.0, 1);
+  const std::size_t near = springs.size();
+  for (int a = 0; a < static_cast<int>(truth.size()); ++a) {
+    for (int b = a + 1; b < static_cast<int>(truth.size()); ++b) {
+      if ((truth[a] - truth[b]).norm() > 0.45) springs.push_back({a, b, 0.5});
+    }
+  }
+  LatticeParams params;
+  params.correlation_range_m = 0.9;
+  const int count = static_cast<int>(truth.size());
+  const LatticeResult pulled = solve_lattice(count, springs, {}, params);
+  for (std::size_t i = near; i < springs.size(); ++i) springs[i].at_least = true;
+  const LatticeResult pushed = solve_lattice(count, springs, {}, params);
+  EXPECT_GT(rmse_in_spacing(pulled.positions, truth), 1.0);   // measured 1.75: collapsed
+  EXPECT_LT(rmse_in_spacing(pushed.positions, truth), 1e-3);  // measured 5e-9
+}
+
 TEST(SpringLattice, BadInputIsAClearError) {
   EXPECT_THROW(solve_lattice(0, {}, {}), UsageError);
   EXPECT_THROW(solve_lattice(3, {{0, 5, 1.0}}, {}), UsageError);

@@ -59,11 +59,13 @@ void load_organise_params(const ConfigReader& section, OrganiseParams& params) {
   section.read("step_m", params.step_m, 0.0, 100.0);
   section.read("neighbours", params.neighbours, 1, 1000);
   section.read("range_fraction", params.range_fraction, 0.1, 0.99);
+  section.read("at_least_beyond_steps", params.at_least_beyond_steps, 1.0, 1000.0);
   section.read("motion_constraints", params.motion_constraints);
   section.read("motion_neighbours", params.motion_neighbours, 0, 100);
   section.read("step_likeness", params.step_likeness, 1.0, 10.0);
   section.read("motion_direction_stddev_deg", params.motion_direction_stddev_deg, 0.1, 90.0);
   section.read("motion_length_stddev", params.motion_length_stddev, 0.01, 10.0);
+  section.read("neighbour_motion_length_stddev", params.neighbour_motion_length_stddev, 0.01, 10.0);
   section.read("min_stiffness", params.lattice.min_stiffness, 1e-9, 0.5);
   section.read("loss_scale_m", params.lattice.loss_scale_m, 1e-4, 100.0);
   section.read("motion_loss_scale", params.lattice.motion_loss_scale, 0.01, 100.0);
@@ -137,12 +139,12 @@ std::vector<MotionMeasurement> measure_motions(const memory::VisualMemory& memor
   const std::vector<std::optional<double>> headings = lattice_headings(memory);
   std::vector<MotionMeasurement> motions;
   std::set<std::pair<int, int>> measured;
-  const auto add = [&](int a, int b, double length_m) {
+  const auto add = [&](int a, int b, double length_m, double length_stddev) {
     if (!measured.insert({std::min(a, b), std::max(a, b)}).second) return;
     const std::optional<double> direction = motion_direction(memory, headings, a, b);
     if (!direction) return;
     motions.push_back({a, b, *direction, length_m, deg_to_rad(params.motion_direction_stddev_deg),
-                       params.motion_length_stddev * length_m});
+                       length_stddev * length_m});
   };
   // Consecutive places first: the exploration's step is their length, when they look one step
   // apart (a grid database's row ends, or a gap in a run, are not steps).
@@ -150,12 +152,13 @@ std::vector<MotionMeasurement> measure_motions(const memory::VisualMemory& memor
     const int a = static_cast<int>(edge.from), b = static_cast<int>(edge.to);
     if (calibration.distance_m(a, b, dissimilarity(a, b)) <=
         params.step_likeness * calibration.step_m) {
-      add(a, b, calibration.step_m);
+      add(a, b, calibration.step_m, params.motion_length_stddev);
     }
   }
   for (int a = 0; a < static_cast<int>(ranking.size()); ++a) {
     for (const SimilarPlace& similar : first(ranking[a], params.motion_neighbours)) {
-      add(a, similar.place, calibration.distance_m(a, similar.place, similar.dissimilarity));
+      add(a, similar.place, calibration.distance_m(a, similar.place, similar.dissimilarity),
+          params.neighbour_motion_length_stddev);
     }
   }
   return motions;
@@ -175,13 +178,16 @@ OrganiseResult organise(memory::VisualMemory& memory, const OrganiseParams& para
       dissimilarity.most_similar(std::max({1, params.neighbours, params.motion_neighbours}));
   calibrate(memory, dissimilarity, ranking, params, calibration);
 
-  // Springs (Eq. 4): each place to its most similar places, once per pair.
+  // Springs (Eq. 4): each place to its most similar places, once per pair; those beyond the
+  // range where the calibrated distance follows the truth only push.
   std::set<std::pair<int, int>> sprung;
   for (int a = 0; a < count; ++a) {
     for (const SimilarPlace& similar : first(ranking[a], params.neighbours)) {
       const int b = similar.place;
       if (sprung.insert({std::min(a, b), std::max(a, b)}).second) {
-        result.springs.push_back({a, b, calibration.distance_m(a, b, similar.dissimilarity)});
+        const double length_m = calibration.distance_m(a, b, similar.dissimilarity);
+        result.springs.push_back(
+            {a, b, length_m, length_m > params.at_least_beyond_steps * calibration.step_m});
       }
     }
   }

@@ -20,8 +20,12 @@ struct OrganiseParams {
   // from the map (the exploration's spacing policy, note "exploration.every_m"); a value given
   // here (by the user) wins over the map's.
   double step_m = 0.0;
-  int neighbours = 24;             // springs per place: its most similar places
-  double range_fraction = 0.8;     // x₁ where dissimilarity reaches this share of its plateau
+  int neighbours = 8;           // springs per place: its most similar places
+  double range_fraction = 0.4;  // x₁ where dissimilarity reaches this share of its plateau
+  // Springs longer than this many steps only push (SpringMeasurement::at_least): measured on
+  // rendered grids, the calibrated distance follows the truth up to about one step and then
+  // saturates (pairs 0.6 m apart read 0.43-0.47 m, pairs 3 m apart 0.45-0.60 m).
+  double at_least_beyond_steps = 1.2;
   bool motion_constraints = true;  // motions measured from the phases (§3.4)
   int motion_neighbours = 3;       // motions to each place's most similar places, besides the
                                    // consecutive ones
@@ -29,7 +33,11 @@ struct OrganiseParams {
                                    // dissimilarity is at most this many local steps
   double motion_direction_stddev_deg = 11.5;  // of a motion's measured direction
   double motion_length_stddev = 0.3;          // of a motion's length, as a share of it
-  LatticeParams lattice;                      // correlation_range_m is set by the calibration
+  // The same for motions to most similar places, whose length is the calibrated distance: it
+  // saturates beyond about one step (two steps read as 1.4-1.6), so their direction is what
+  // they contribute and their length is held loosely.
+  double neighbour_motion_length_stddev = 1.0;
+  LatticeParams lattice;  // correlation_range_m is set by the calibration
 };
 
 // Reads the `organise:` section of lattice.yaml.

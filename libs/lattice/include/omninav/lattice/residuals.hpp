@@ -14,8 +14,9 @@ namespace omninav::lattice {
 // distance estimated from their similarity. Residual: √K · (|p_a − p_b| − rest_length).
 class SpringResidual {
  public:
-  SpringResidual(double rest_length_m, double stiffness)
-      : rest_length_m_(rest_length_m), sqrt_stiffness_(std::sqrt(stiffness)) {}
+  // at_least: a one-sided spring (SpringMeasurement::at_least), zero once stretched past rest.
+  SpringResidual(double rest_length_m, double stiffness, bool at_least = false)
+      : rest_length_m_(rest_length_m), sqrt_stiffness_(std::sqrt(stiffness)), at_least_(at_least) {}
 
   template <typename T>
   bool operator()(const T* const a, const T* const b, T* residual) const {
@@ -23,18 +24,21 @@ class SpringResidual {
     const T dy = a[1] - b[1];
     // The squared length is nudged off zero: the derivative of √ at 0 is infinite.
     const T length = ceres::sqrt(dx * dx + dy * dy + T(1e-12));
-    residual[0] = T(sqrt_stiffness_) * (length - T(rest_length_m_));
+    const T stretch = length - T(rest_length_m_);
+    residual[0] = at_least_ && stretch > T(0) ? T(0) : T(sqrt_stiffness_) * stretch;
     return true;
   }
 
-  static ceres::CostFunction* Create(double rest_length_m, double stiffness) {
+  static ceres::CostFunction* Create(double rest_length_m, double stiffness,
+                                     bool at_least = false) {
     return new ceres::AutoDiffCostFunction<SpringResidual, 1, 2, 2>(
-        new SpringResidual(rest_length_m, stiffness));
+        new SpringResidual(rest_length_m, stiffness, at_least));
   }
 
  private:
   const double rest_length_m_;
   const double sqrt_stiffness_;
+  const bool at_least_;
 };
 
 // A motion between two places measured from the Fourier phases (001_5bb151a4e28490b4.txt

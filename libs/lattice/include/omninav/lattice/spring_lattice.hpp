@@ -15,6 +15,9 @@ struct SpringMeasurement {
   int a = 0;
   int b = 0;
   double length_m = 0.0;
+  // The length is only a lower bound: the places are at least this far apart (a dissimilarity
+  // on the plateau of Fig. 7 says "far", not how far). Such a spring pushes, never pulls.
+  bool at_least = false;
 };
 
 // The motion from place `from` to place `to`: its direction in the lattice frame (the frame of
