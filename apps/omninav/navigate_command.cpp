@@ -43,16 +43,20 @@ Pose2 parse_start(const std::string& text) {
           deg_to_rad(parse_double(fields[2], "--start heading"))};
 }
 
-// The lattice frame turns with the first place's heading (lattice::lattice_headings): a heading
-// in it plus that heading is a heading in the world, when the map stores one.
-void write_steps_csv(const navigation::NavigationResult& result, double lattice_to_world_rad,
-                     const std::filesystem::path& file) {
-  std::ofstream csv(file);
-  if (!csv) throw InputError(file.string() + ": cannot write");
-  csv << "step,x_m,y_m,heading_deg,place,similarity,dissimilarity_per_value,heading_estimate_deg,"
-         "heading_error_deg,turn_deg,jump\n";
+// Trials that drive more than this many times the straight line get a picture of their path.
+constexpr double kDetourRatio = 2.0;
+
+constexpr const char* kStepColumns =
+    "step,x_m,y_m,heading_deg,place,similarity,dissimilarity_per_value,heading_estimate_deg,"
+    "heading_error_deg,turn_deg,jump";
+
+// One row per step, each after `prefix` (the trial's columns, or nothing). The lattice frame
+// turns with the first place's heading (lattice::lattice_headings): a heading in it plus that
+// heading is a heading in the world, when the map stores one.
+void write_step_rows(std::ostream& csv, const std::string& prefix,
+                     const navigation::NavigationResult& result, double lattice_to_world_rad) {
   for (const navigation::NavigationStep& step : result.steps) {
-    csv << step.index << ',' << step.truth.x_m << ',' << step.truth.y_m << ','
+    csv << prefix << step.index << ',' << step.truth.x_m << ',' << step.truth.y_m << ','
         << rad_to_deg(step.truth.heading_rad) << ',' << step.match.place << ','
         << step.match.similarity << ',' << step.match.dissimilarity_per_value << ','
         << rad_to_deg(step.heading_estimate_rad) << ','
@@ -62,31 +66,44 @@ void write_steps_csv(const navigation::NavigationResult& result, double lattice_
   }
 }
 
-void write_trials_csv(const std::vector<navigation::TrialOutcome>& outcomes,
-                      const std::filesystem::path& file) {
+std::ofstream open_csv(const std::filesystem::path& file, const std::string& header) {
   std::ofstream csv(file);
   if (!csv) throw InputError(file.string() + ": cannot write");
-  csv << "trial,start_x_m,start_y_m,start_heading_deg,goal_x_m,goal_y_m,goal_heading_deg,"
-         "goal_place,stopped_at_goal,reached,final_error_m,path_m,straight_m,path_ratio,steps,"
-         "jumps\n";
+  csv << header << '\n';
+  return csv;
+}
+
+// trials.csv, one row per trial, and steps.csv, every step of every trial.
+void write_trials_csv(const std::vector<navigation::TrialOutcome>& outcomes,
+                      double lattice_to_world_rad, const std::filesystem::path& folder) {
+  std::ofstream trials = open_csv(
+      folder / "trials.csv",
+      "trial,start_x_m,start_y_m,start_heading_deg,goal_x_m,goal_y_m,goal_heading_deg,goal_place,"
+      "stopped_at_goal,reached,final_error_m,path_m,straight_m,path_ratio,steps,jumps,sidesteps,"
+      "replans,loops,homing_steps");
+  std::ofstream steps = open_csv(folder / "steps.csv", std::string("trial,") + kStepColumns);
   for (std::size_t i = 0; i < outcomes.size(); ++i) {
     const navigation::TrialOutcome& o = outcomes[i];
-    csv << i << ',' << o.trial.start.x_m << ',' << o.trial.start.y_m << ','
-        << rad_to_deg(o.trial.start.heading_rad) << ',' << o.trial.goal.x_m << ','
-        << o.trial.goal.y_m << ',' << rad_to_deg(o.trial.goal.heading_rad) << ',' << o.goal_place
-        << ',' << (o.stopped_at_goal ? 1 : 0) << ',' << (o.reached ? 1 : 0) << ','
-        << o.final_error_m << ',' << o.path_m << ',' << o.straight_m << ','
-        << o.path_m / o.straight_m << ',' << o.steps << ',' << o.jumps << '\n';
+    const navigation::NavigationResult& r = o.result;
+    trials << i << ',' << o.trial.start.x_m << ',' << o.trial.start.y_m << ','
+           << rad_to_deg(o.trial.start.heading_rad) << ',' << o.trial.goal.x_m << ','
+           << o.trial.goal.y_m << ',' << rad_to_deg(o.trial.goal.heading_rad) << ',' << o.goal_place
+           << ',' << (o.stopped_at_goal ? 1 : 0) << ',' << (o.reached ? 1 : 0) << ','
+           << o.final_error_m << ',' << r.path_length_m << ',' << o.straight_m << ','
+           << r.path_length_m / o.straight_m << ',' << r.steps.size() << ',' << r.jumps << ','
+           << r.sidesteps << ',' << r.replans << ',' << r.loops << ',' << r.homing_steps << '\n';
+    write_step_rows(steps, std::to_string(i) + ",", r, lattice_to_world_rad);
   }
 }
 
 // path.png: the places matched, in order, over the lattice; beside it the robot's true path
-// over the room's furniture (rendered worlds) or the grid's images (databases) and the places'
-// true positions when the map has them.
+// over the room's furniture (rendered worlds) or the grid's images (databases), the places'
+// true positions when the map has them, and the goal pose when known (trials).
 void draw_path(const navigation::NavigationResult& result,
                const std::vector<navigation::PlaceNode>& places, int goal,
                const memory::VisualMemory& memory, const std::vector<sim::FloorBox>& obstacles,
-               const std::vector<cv::Point2d>& grid, const std::filesystem::path& file) {
+               const std::vector<cv::Point2d>& grid, const std::optional<cv::Point2d>& goal_pose,
+               const std::filesystem::path& file) {
   eval::PointsPlot lattice_path("The route over the lattice (places matched, in order)", "x", "y");
   std::vector<cv::Point2d> lattice_points, matched, truth_path;
   for (const navigation::PlaceNode& place : places)
@@ -119,6 +136,7 @@ void draw_path(const navigation::NavigationResult& result,
     room_path.add_points("goal place", {true_places[goal]});
   }
   room_path.add_points("start", {truth_path.front()});
+  if (goal_pose) room_path.add_points("goal pose", {*goal_pose});
   cv::Mat picture;
   cv::hconcat(lattice_path.render(), room_path.render(), picture);
   eval::save_png(picture, file);
@@ -166,7 +184,17 @@ void evaluate_trials(const NavigateOptions& options, const memory::VisualMemory&
       navigation::homing_scale(memory, places), navigation.route, navigation.navigator,
       navigation.robot, navigation.trials.goal_radius_spacings * spacing_m);
   std::filesystem::create_directories(options.out);
-  write_trials_csv(outcomes, options.out / "trials.csv");
+  write_trials_csv(outcomes, memory.place(0).heading_rad.value_or(0.0), options.out);
+  // The trials worth a look: those that missed their goal and those that drove the long way.
+  for (std::size_t i = 0; i < outcomes.size(); ++i) {
+    const navigation::TrialOutcome& o = outcomes[i];
+    if (o.result.steps.empty()) continue;  // the goal image matched no place: nothing driven
+    if (!o.reached || o.result.path_length_m > kDetourRatio * o.straight_m) {
+      draw_path(o.result, places, o.goal_place, memory, world.obstacles, {},
+                cv::Point2d(o.trial.goal.x_m, o.trial.goal.y_m),
+                options.out / ("trial_" + std::to_string(i) + ".png"));
+    }
+  }
   std::cout << navigation::summarise(outcomes).text() << " (seed " << options.seed
             << "; reached: stopped within " << std::fixed << std::setprecision(2)
             << navigation.trials.goal_radius_spacings * spacing_m
@@ -231,9 +259,10 @@ void run_navigate(const GlobalOptions& global, const NavigateOptions& options) {
   const navigation::NavigationResult& result = run.result;
 
   std::filesystem::create_directories(options.out);
-  write_steps_csv(result, memory.place(0).heading_rad.value_or(0.0), options.out / "steps.csv");
+  std::ofstream steps = open_csv(options.out / "steps.csv", kStepColumns);
+  write_step_rows(steps, "", result, memory.place(0).heading_rad.value_or(0.0));
   draw_path(result, places, run.goal.place, memory,
-            world ? world->obstacles : std::vector<sim::FloorBox>{}, grid,
+            world ? world->obstacles : std::vector<sim::FloorBox>{}, grid, std::nullopt,
             options.out / "path.png");
   std::cout << std::fixed << std::setprecision(2) << (result.reached ? "reached" : "did not reach")
             << " the goal (place " << run.goal.place << ") in " << result.steps.size() << " steps, "
@@ -256,7 +285,9 @@ void add_navigate_command(CLI::App& app, const GlobalOptions& global) {
       "matched, heading estimate and error) and path.png. With --trials N: N seeded random "
       "start and goal pairs in the mapped area, clear of furniture, each goal image rendered at "
       "its pose; prints the share reached and the path over the straight line, writes "
-      "trials.csv (needs a map with ground truth).");
+      "trials.csv, steps.csv (every step of every trial) and trial_<i>.png for each trial that "
+      "missed its goal or drove more than twice the straight line (needs a map with ground "
+      "truth).");
   command->add_option("map", options->map, "An organised map (.vmem)")
       ->required()
       ->check(CLI::ExistingFile);
@@ -274,7 +305,10 @@ void add_navigate_command(CLI::App& app, const GlobalOptions& global) {
       "The robot's true start: x_m,y_m,heading_deg (on a grid: the nearest grid image)");
   CLI::Option* goal = command->add_option("--goal", options->goal, "The goal image (a panorama)")
                           ->check(CLI::ExistingFile);
-  command->add_option("--out", options->out, "Folder for steps.csv and path.png (or trials.csv)")
+  command
+      ->add_option(
+          "--out", options->out,
+          "Folder for steps.csv and path.png (with --trials: trials.csv, steps.csv, trial_<i>.png)")
       ->required();
   command->add_option("--max-steps", options->max_steps, "Step budget (default: navigation.yaml)")
       ->check(CLI::Range(1, 100000));

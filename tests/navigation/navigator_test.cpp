@@ -2,9 +2,13 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 
 #include "omninav/core/angles.hpp"
+#include "omninav/core/config.hpp"
+#include "omninav/core/errors.hpp"
 #include "omninav/navigation/robot_worlds.hpp"
 #include "omninav/sim/room.hpp"
 
@@ -99,11 +103,19 @@ TEST_F(OracleNavigation, GivesUpWhenTheBudgetIsSpent) {
   EXPECT_EQ(result.steps.size(), 3u);
 }
 
-// A world of its own behind the navigator's interface: a point robot on a plane, with or
-// without a wall stub (x 0.4..0.6 m, y below 0.6 m) that the lattice knows nothing of.
+// A box on the floor of a PointWorld.
+struct Box {
+  double min_x, max_x, min_y, max_y;
+};
+
+// A wall stub (x 0.4..0.6 m, y below 0.6 m).
+constexpr Box kStub{0.4, 0.6, -1e9, 0.6};
+
+// A world of its own behind the navigator's interface: a point robot on a plane, among boxes
+// that the lattice knows nothing of.
 class PointWorld : public NavigationWorld {
  public:
-  explicit PointWorld(bool wall) : wall_(wall) {}
+  explicit PointWorld(std::vector<Box> boxes = {}) : boxes_(std::move(boxes)) {}
   cv::Mat view(int) override { return {}; }
   double move(double turn_rad, double distance_m) override {
     pose_.heading_rad = wrap_angle(pose_.heading_rad + turn_rad);
@@ -111,7 +123,10 @@ class PointWorld : public NavigationWorld {
     for (; driven + 0.01 <= distance_m + 1e-9; driven += 0.01) {
       const double x = pose_.x_m + 0.01 * std::cos(pose_.heading_rad);
       const double y = pose_.y_m + 0.01 * std::sin(pose_.heading_rad);
-      if (wall_ && x > 0.4 && x < 0.6 && y < 0.6) break;
+      const auto inside = [x, y](const Box& b) {
+        return x > b.min_x && x < b.max_x && y > b.min_y && y < b.max_y;
+      };
+      if (std::any_of(boxes_.begin(), boxes_.end(), inside)) break;
       pose_.x_m = x;
       pose_.y_m = y;
     }
@@ -120,14 +135,16 @@ class PointWorld : public NavigationWorld {
   CameraPose truth() const override { return pose_; }
 
  private:
-  const bool wall_;
+  const std::vector<Box> boxes_;
   CameraPose pose_{0.0, 0.0, 1.0, 0.0, 0.0, 0.0};
 };
 
 // The place whose true position (`truth`, not the lattice) is nearest to the robot, all places
-// facing +x; `world` must outlive the localiser.
-Localiser point_oracle(const PointWorld& world, std::vector<Eigen::Vector2d> truth) {
-  return [&world, truth](const cv::Mat&) {
+// facing +x; with `position`, the robot's true position as the localiser's estimate (the
+// lattice must then be the truth). `world` must outlive the localiser.
+Localiser point_oracle(const PointWorld& world, std::vector<Eigen::Vector2d> truth,
+                       bool position = false) {
+  return [&world, truth, position](const cv::Mat&) {
     PlaceMatch match;
     double best = 1e9;
     const Eigen::Vector2d at(world.truth().x_m, world.truth().y_m);
@@ -139,6 +156,7 @@ Localiser point_oracle(const PointWorld& world, std::vector<Eigen::Vector2d> tru
     }
     match.similarity = 1000.0;
     match.heading_in_place_rad = world.truth().heading_rad;
+    if (position) match.position = at;
     return match;
   };
 }
@@ -152,7 +170,7 @@ TEST(Navigator, ReplansWithoutALinkThatFurnitureBlocks) {
   }
   const RoutePlan plan = plan_to_goal(places, lattice_neighbours(places, 1.5), 2);
   ASSERT_EQ(plan.next[0], 1);
-  PointWorld world(true);
+  PointWorld world({kStub});
   std::vector<Eigen::Vector2d> truth;
   for (const PlaceNode& place : places) truth.push_back(place.position_m);
   const Localiser oracle = point_oracle(world, truth);
@@ -183,13 +201,13 @@ TEST(Navigator, LeavesALoopBetweenPlacesByPlanningWithoutTheLink) {
 
   NavigatorParams params;
   params.loop_entries = 0;
-  PointWorld looping(false);
+  PointWorld looping;
   const NavigationResult lost =
       navigate(looping, places, plan, point_oracle(looping, truth), params);
   EXPECT_FALSE(lost.reached);
 
   params.loop_entries = 3;
-  PointWorld world(false);
+  PointWorld world;
   const NavigationResult result = navigate(world, places, plan, point_oracle(world, truth), params);
   ASSERT_TRUE(result.reached) << result.steps.size() << " steps";
   EXPECT_GE(result.loops, 1);
@@ -197,49 +215,199 @@ TEST(Navigator, LeavesALoopBetweenPlacesByPlanningWithoutTheLink) {
   EXPECT_LT(result.steps.size(), 40u);
 }
 
-// The robot stops on recognising the goal's place (§3.5), which may be a whole cell from the
-// goal pose; homing on the goal image takes it there. Here the goal image is seen as from its
-// true pose: distance and bearing exact, so the control is what is tested.
-TEST(Navigator, HomesOnTheGoalImageAfterRecognisingItsPlace) {
+// 3 × 3 places 1 m apart, all facing +x, with the route planned to place 2 at (2, 0); the goal
+// pose lies on its far side from the start at the origin. The goal image is seen as from its
+// true pose: distance and bearing exact, so that the control is what is tested.
+struct GoalBesideItsPlace {
   std::vector<PlaceNode> places;
-  for (int y = 0; y < 3; ++y) {
-    for (int x = 0; x < 3; ++x) places.push_back({Eigen::Vector2d(x, y), 0.0});
-  }
   std::vector<Eigen::Vector2d> truth;
-  for (const PlaceNode& place : places) truth.push_back(place.position_m);
-  const RoutePlan plan = plan_to_goal(places, lattice_neighbours(places, 1.5), 2);
-  // The goal pose lies on the far side of place 2 at (2, 0) from the start at the origin.
-  const Eigen::Vector2d goal(2.4, 0.3);
-  const auto homing_for = [&goal](const PointWorld& world) -> GoalHoming {
-    return [&world, &goal](const cv::Mat&) {
+  RoutePlan plan;
+  Eigen::Vector2d goal{2.4, 0.3};
+
+  GoalBesideItsPlace() {
+    for (int y = 0; y < 3; ++y) {
+      for (int x = 0; x < 3; ++x) places.push_back({Eigen::Vector2d(x, y), 0.0});
+    }
+    for (const PlaceNode& place : places) truth.push_back(place.position_m);
+    plan = plan_to_goal(places, lattice_neighbours(places, 1.5), 2);
+  }
+  NavigationResult run(PointWorld& world, const NavigatorParams& params) const {
+    const GoalHoming exact = [&world, goal = goal](const cv::Mat&) {
       const CameraPose at = world.truth();
       const Eigen::Vector2d to = goal - Eigen::Vector2d(at.x_m, at.y_m);
       return GoalCue{to.norm(), signed_difference(std::atan2(to.y(), to.x()), at.heading_rad),
                      to.norm() > 0.01};
     };
-  };
-  const auto miss_m = [&goal](const PointWorld& world) {
+    return navigate(world, places, plan, point_oracle(world, truth), params, exact);
+  }
+  double miss_m(const PointWorld& world) const {
     return std::hypot(world.truth().x_m - goal.x(), world.truth().y_m - goal.y());
-  };
+  }
+};
 
+// The robot stops on recognising the goal's place (§3.5), which may be a whole cell from the
+// goal pose; homing on the goal image takes it there.
+TEST(Navigator, HomesOnTheGoalImageAfterRecognisingItsPlace) {
+  const GoalBesideItsPlace scene;
   NavigatorParams params;
   params.home_on_goal_image = false;
-  PointWorld stopping(false);
-  const NavigationResult stopped =
-      navigate(stopping, places, plan, point_oracle(stopping, truth), params, homing_for(stopping));
+  PointWorld stopping;
+  const NavigationResult stopped = scene.run(stopping, params);
   ASSERT_TRUE(stopped.reached);
-  EXPECT_GT(miss_m(stopping), 0.6);  // entered place 2's cell at x ≈ 1.5 m
+  EXPECT_GT(scene.miss_m(stopping), 0.6);  // entered place 2's cell at x ≈ 1.5 m
 
   params.home_on_goal_image = true;
-  PointWorld world(false);
-  const NavigationResult result =
-      navigate(world, places, plan, point_oracle(world, truth), params, homing_for(world));
+  PointWorld world;
+  const NavigationResult result = scene.run(world, params);
   ASSERT_TRUE(result.reached);
-  EXPECT_LE(miss_m(world), params.homing_stop_m + 1e-9);
+  EXPECT_LE(scene.miss_m(world), params.homing_stop_m + 1e-9);
   EXPECT_GT(result.homing_steps, 0);
   EXPECT_LE(result.homing_steps, params.homing_max_steps);
   // Homing goes straight at the goal: no longer than the way from where the robot stopped.
-  EXPECT_LT(result.path_length_m, stopped.path_length_m + miss_m(stopping) + 1e-6);
+  EXPECT_LT(result.path_length_m, stopped.path_length_m + scene.miss_m(stopping) + 1e-6);
+}
+
+// The goal lies beyond the corner of a box (x 1.9..2.0 m, y below 0.15 m) that stands across
+// the straight line from where the robot recognises the goal's place: homing sidesteps round
+// the corner as the navigator does on its way, instead of stopping at the box. The robot meets
+// the box's face 2 cm below the corner: only the third sidestep, 90° left, leads up past it.
+TEST(Navigator, HomingSidestepsRoundACornerBeforeTheGoal) {
+  const GoalBesideItsPlace scene;
+  const std::vector<Box> corner{{1.9, 2.0, -1e9, 0.15}};
+  NavigatorParams params;
+  params.sidestep_deg = 45.0;
+  params.homing_max_steps = 20;
+  PointWorld world(corner);
+  const NavigationResult result = scene.run(world, params);
+  ASSERT_TRUE(result.reached);
+  EXPECT_GE(result.sidesteps, 1);
+  EXPECT_LE(scene.miss_m(world), params.homing_stop_m + 1e-9);
+
+  params.sidesteps = 0;
+  PointWorld stopping(corner);
+  ASSERT_TRUE(scene.run(stopping, params).reached);
+  EXPECT_GT(scene.miss_m(stopping), 0.4);  // stopped at the box
+  EXPECT_LT(stopping.truth().x_m, 1.9);
+}
+
+// A dead end the lattice knows nothing of: the robot stands in a pocket open only to the west
+// (boxes 0.05 m above, below and east of it) and its only link, east to the goal, is blocked.
+// With no route left it escapes: 60° either side of the plan are blocked too, so the turns
+// widen until one leads out.
+TEST(Navigator, EscapesADeadEndByWideningItsTurns) {
+  const std::vector<PlaceNode> places{{{0, 0}, 0.0}, {{1, 0}, 0.0}};
+  const RoutePlan plan = plan_to_goal(places, {{0, 1}}, 1);
+  PointWorld world({{-1.0, 0.5, 0.05, 0.5}, {-1.0, 0.5, -0.5, -0.05}, {0.05, 0.5, -0.5, 0.5}});
+  NavigatorParams params;
+  params.max_steps = 40;
+  const NavigationResult result =
+      navigate(world, places, plan, point_oracle(world, {{0, 0}, {1, 0}}), params);
+  double westmost_m = 0.0;
+  for (const NavigationStep& step : result.steps) westmost_m = std::min(westmost_m, step.truth.x_m);
+  EXPECT_LT(westmost_m, -0.3);
+}
+
+// A robot beside its places runs along furniture and grazes it (here its directions are 4°
+// off towards a table edge, as a distorted lattice makes them). Truth: two rows of places 1 m
+// apart, y = 0 and y = 1, x = 0..4; the table's edge runs 0.1 m below the lower row from
+// x = 0.5 to 3.5 m; the lattice is the truth turned by −4°. The goal is place 4 at (4, 0).
+TEST(Navigator, SlidesPastFurnitureItGrazesInsteadOfDroppingLinks) {
+  std::vector<Eigen::Vector2d> truth;
+  std::vector<PlaceNode> places;
+  const Eigen::Rotation2Dd distortion(deg_to_rad(-4.0));
+  for (int y = 0; y < 2; ++y) {
+    for (int x = 0; x < 5; ++x) {
+      truth.emplace_back(x, y);
+      places.push_back({distortion * truth.back(), 0.0});
+    }
+  }
+  const RoutePlan plan = plan_to_goal(places, lattice_neighbours(places, 1.5), 4);
+  const std::vector<Box> table{{0.5, 3.5, -1.0, -0.1}};
+
+  NavigatorParams params;
+  params.look_ahead_links = 0;  // the places' own directions, 4° off
+  PointWorld sliding(table);
+  const NavigationResult slid =
+      navigate(sliding, places, plan, point_oracle(sliding, truth), params);
+  ASSERT_TRUE(slid.reached) << slid.steps.size() << " steps";
+  EXPECT_GE(slid.sidesteps, 1);  // it did graze the table...
+  EXPECT_EQ(slid.replans, 0);    // ... and turned a little away each time
+  // Hardly longer than straight along x to where it stopped (the goal's place recognised).
+  EXPECT_LT(slid.path_length_m, 1.05 * sliding.truth().x_m);
+
+  // Without sidesteps (the loop before them) each graze drops a link of the plan.
+  params.sidesteps = 0;
+  PointWorld dropping(table);
+  const NavigationResult dropped =
+      navigate(dropping, places, plan, point_oracle(dropping, truth), params);
+  ASSERT_TRUE(dropped.reached) << dropped.steps.size() << " steps";
+  EXPECT_GE(dropped.replans, 1);
+}
+
+// The route zig-zags: places 1 m apart along x, every other one 0.45 m up, linked in a chain.
+// Following each place's direction the robot zig-zags with it; looking ahead it drives the
+// straight line to the goal (8, 0).
+TEST(Navigator, LookAheadDrivesStraightWhereTheRouteZigZags) {
+  std::vector<Eigen::Vector2d> truth;
+  std::vector<PlaceNode> places;
+  std::vector<Edge> chain;
+  for (int x = 0; x < 9; ++x) {
+    truth.emplace_back(x, x % 2 == 1 ? 0.45 : 0.0);
+    places.push_back({truth.back(), 0.0});
+    if (x > 0) chain.emplace_back(x - 1, x);
+  }
+  const RoutePlan plan = plan_to_goal(places, chain, 8);
+  const auto run = [&](int links, double& widest_m) {
+    NavigatorParams params;
+    params.look_ahead_links = links;
+    PointWorld world;
+    const NavigationResult result =
+        navigate(world, places, plan, point_oracle(world, truth, true), params);
+    EXPECT_TRUE(result.reached) << links << " links";
+    widest_m = 0.0;
+    for (const NavigationStep& step : result.steps) widest_m = std::max(widest_m, step.truth.y_m);
+    // Stopped where the goal place is the nearest: past x = 7.5 m.
+    EXPECT_GT(world.truth().x_m, 7.4) << links << " links";
+    return result.path_length_m / world.truth().x_m;
+  };
+  double widest_place_by_place_m = 0.0, widest_looking_ahead_m = 0.0;
+  const double place_by_place = run(0, widest_place_by_place_m);
+  const double looking_ahead = run(6, widest_looking_ahead_m);
+  EXPECT_GT(place_by_place, 1.05);
+  EXPECT_GT(widest_place_by_place_m, 0.3);
+  EXPECT_LT(looking_ahead, 1.02);
+  EXPECT_LT(widest_looking_ahead_m, 0.1);
+}
+
+TEST(Navigator, ReadsItsParametersAndRejectsSidestepsPastHalfATurn) {
+  NavigatorParams params;
+  load_navigator_params(ConfigReader::from_string("navigator:\n  look_ahead_links: 3\n"
+                                                  "  look_ahead_tolerance_spacings: 0.7\n"
+                                                  "  sidesteps: 6\n  sidestep_deg: 60\n",
+                                                  "navigation.yaml")
+                            .section("navigator"),
+                        params);
+  EXPECT_EQ(params.look_ahead_links, 3);
+  EXPECT_DOUBLE_EQ(params.look_ahead_tolerance_spacings, 0.7);
+  EXPECT_EQ(params.sidesteps, 6);
+  EXPECT_DOUBLE_EQ(params.sidestep_deg, 60.0);
+  const auto error_of = [](const std::string& yaml) -> std::string {
+    NavigatorParams ignored;
+    try {
+      load_navigator_params(ConfigReader::from_string(yaml, "navigation.yaml").section("navigator"),
+                            ignored);
+    } catch (const ConfigError& error) {
+      return error.what();
+    }
+    return "";
+  };
+  // Seven sidesteps of 60°: the last turns 240° from the plan.
+  const std::string past = error_of("navigator:\n  sidesteps: 7\n  sidestep_deg: 60\n");
+  EXPECT_NE(past.find("'navigator.sidesteps' (7)"), std::string::npos) << past;
+  EXPECT_NE(past.find("turn the last sidestep 240 degrees"), std::string::npos) << past;
+  EXPECT_NE(error_of("navigator:\n  look_ahead_links: -1\n").find("look_ahead_links"),
+            std::string::npos);
+  EXPECT_NE(error_of("navigator:\n  sidestep_deg: 0\n").find("sidestep_deg"), std::string::npos);
 }
 
 }  // namespace

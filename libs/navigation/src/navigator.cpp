@@ -4,14 +4,25 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <sstream>
 
 #include "omninav/core/angles.hpp"
 #include "omninav/core/config.hpp"
+#include "omninav/core/errors.hpp"
 
 namespace omninav::navigation {
 namespace {
 
 constexpr int kEscapeSteps = 3;
+
+// What homing compares its first view with: a goal infinitely far.
+constexpr GoalCue kNoCue{std::numeric_limits<double>::infinity(), 0.0, true};
+
+// The turn from the planned direction of the `sidestep`th try after a block (0: none): left by
+// one step of `step_rad`, right by one, left by two, right by two, ... (sidesteps and escapes)
+double sidestep_turn_rad(int sidestep, double step_rad) {
+  return (sidestep % 2 == 1 ? 1.0 : -1.0) * ((sidestep + 1) / 2) * step_rad;
+}
 
 // Drops the link from `place` to its next place from `plan`'s graph and plans again from the
 // goal; keeps the new plan when `place` still reaches the goal (returns true), else leaves
@@ -37,12 +48,25 @@ void load_navigator_params(const ConfigReader& section, NavigatorParams& params)
   section.read("goal_similarity", params.goal_similarity, 0.0, 1000.0);
   section.read("goal_confirmations", params.goal_confirmations, 1, 100);
   section.read("unstick_turn_deg", params.unstick_turn_deg, 0.0, 180.0);
-  section.read("aim_at_next_place", params.aim_at_next_place);
+  section.read("look_ahead_links", params.look_ahead_links, 0, 1000);
+  section.read("look_ahead_tolerance_spacings", params.look_ahead_tolerance_spacings, 0.0, 10.0);
+  section.read("sidesteps", params.sidesteps, 0, 16);
+  section.read("sidestep_deg", params.sidestep_deg, 1.0, 90.0);
   section.read("loop_entries", params.loop_entries, 0, 100000);
   section.read("home_on_goal_image", params.home_on_goal_image);
   section.read("homing_step_m", params.homing_step_m, 0.01, 5.0);
   section.read("homing_stop_m", params.homing_stop_m, 0.0, 5.0);
   section.read("homing_max_steps", params.homing_max_steps, 0, 100000);
+  // The last sidestep turns farthest: past 180° it would repeat an earlier direction.
+  const double widest_deg = ((params.sidesteps + 1) / 2) * params.sidestep_deg;
+  if (widest_deg > 180.0) {
+    std::ostringstream message;
+    message << section.source_name() << ": keys 'navigator.sidesteps' (" << params.sidesteps
+            << ") and 'navigator.sidestep_deg' (" << params.sidestep_deg
+            << ") turn the last sidestep " << widest_deg
+            << " degrees from the plan, more than 180: give fewer sidesteps or smaller ones";
+    throw ConfigError(message.str());
+  }
 }
 
 NavigationResult navigate(NavigationWorld& world, const std::vector<PlaceNode>& places,
@@ -52,14 +76,19 @@ NavigationResult navigate(NavigationWorld& world, const std::vector<PlaceNode>& 
   RoutePlan plan = initial_plan;
   int expected = -1;  // the place the plan said we would reach next
   int goal_matches = 0;
-  // Escaping an obstacle when replanning finds no other route: drive a few steps at an angle
-  // from the planned direction, turning the other way each time the robot is blocked again,
-  // then follow the plan again.
+  // Blocked: first the sidesteps (params.sidesteps), counted here; then the link is dropped and
+  // the plan made again; when no route is left round it, escape: drive a few steps at an angle
+  // from the planned direction, then follow the plan again. Blocked again while escaping, the
+  // robot tries the next escape turn: the other side, then wider (a robot in a corner between
+  // two boxes is blocked both ways at unstick_turn_deg), round to the first after 180°.
+  int sidestep = 0;
   int escape_steps_left = 0;
-  // Aiming at the next place from the position estimate is left off for a few steps after a
-  // block: the estimate that led into the obstacle would lead into it again.
-  int steps_since_block = kEscapeSteps + 1;
-  int escape_side = 1;
+  int escape_turn = 0;
+  // Links the robot could not drive along: the look-ahead keeps its straight lines away.
+  std::vector<Edge> blocked;
+  const double look_ahead_tolerance_m =
+      params.look_ahead_links > 1 ? params.look_ahead_tolerance_spacings * lattice_spacing(places)
+                                  : 0.0;
   std::vector<int> entries(places.size(), 0);  // times each place was entered (loops)
   // Homing on the goal image: the cue of the last view, once the goal place was recognised.
   std::optional<GoalCue> homing_from;
@@ -99,7 +128,8 @@ NavigationResult navigate(NavigationWorld& world, const std::vector<PlaceNode>& 
           }
           // The goal place is recognised: from here on, home on the goal image (no view to
           // compare this first one with yet).
-          homing_from = GoalCue{std::numeric_limits<double>::infinity(), 0.0, true};
+          homing_from = kNoCue;
+          sidestep = 0;
         }
       } else {
         goal_matches = 0;
@@ -118,18 +148,27 @@ NavigationResult navigate(NavigationWorld& world, const std::vector<PlaceNode>& 
         result.reached = true;
         return result;
       }
-      step.turn_rad = cue.bearing_rad;
+      step.turn_rad =
+          cue.bearing_rad + sidestep_turn_rad(sidestep, deg_to_rad(params.sidestep_deg));
       const double distance_m = std::min(cue.distance_m, params.homing_step_m);
       const double driven = world.move(step.turn_rad, distance_m);
       result.path_length_m += driven;
       ++result.homing_steps;
       result.steps.push_back(step);
-      // Blocked (the goal lies beside furniture): this is as near as the robot gets.
-      if (driven < 0.5 * distance_m) {
+      if (driven >= 0.5 * distance_m) {
+        // After a sidestep the goal may well seem farther: the next view starts afresh.
+        homing_from = sidestep == 0 ? cue : kNoCue;
+        sidestep = 0;
+      } else if (sidestep < params.sidesteps) {
+        // Blocked: the goal lies beyond a corner of furniture. Sidestep as on the way, and
+        // judge the next view against the last one that moved (this one saw the same).
+        ++sidestep;
+        ++result.sidesteps;
+      } else {
+        // Blocked every way: this is as near as the robot gets.
         result.reached = true;
         return result;
       }
-      homing_from = cue;
       continue;
     }
 
@@ -146,9 +185,12 @@ NavigationResult navigate(NavigationWorld& world, const std::vector<PlaceNode>& 
     double direction_in_place = plan.direction_in_place_rad[place];
     if (place == plan.goal || !plan.reaches_goal(place)) {
       direction_in_place = step.match.heading_in_place_rad;
-    } else if (params.aim_at_next_place && step.match.position &&
-               steps_since_block > kEscapeSteps) {
-      const Eigen::Vector2d to = places[plan.next[place]].position_m - *step.match.position;
+    } else if (params.look_ahead_links > 0 && step.match.position && sidestep == 0) {
+      // Sidesteps turn from the place's own direction instead: the line ahead led into the
+      // obstacle, and turning from the place's next link measured better (docs/navigation.md).
+      const int target = look_ahead_place(places, plan, place, params.look_ahead_links,
+                                          look_ahead_tolerance_m, blocked);
+      const Eigen::Vector2d to = places[target].position_m - *step.match.position;
       if (to.norm() > 1e-9) {
         direction_in_place =
             signed_difference(std::atan2(to.y(), to.x()), places[place].heading_rad);
@@ -156,16 +198,24 @@ NavigationResult navigate(NavigationWorld& world, const std::vector<PlaceNode>& 
     }
     const bool escaping = escape_steps_left > 0;
     if (escaping) {
-      direction_in_place += escape_side * deg_to_rad(params.unstick_turn_deg);
+      direction_in_place += sidestep_turn_rad(escape_turn, deg_to_rad(params.unstick_turn_deg));
       --escape_steps_left;
+    } else {
+      direction_in_place += sidestep_turn_rad(sidestep, deg_to_rad(params.sidestep_deg));
+      result.sidesteps += sidestep > 0 ? 1 : 0;
     }
     step.turn_rad = signed_difference(direction_in_place, step.match.heading_in_place_rad);
     const double driven = world.move(step.turn_rad, params.step_m);
-    ++steps_since_block;
-    if (driven < 0.5 * params.step_m) {
-      steps_since_block = 0;
+    if (driven >= 0.5 * params.step_m) {
+      sidestep = 0;
+    } else if (!escaping && sidestep < params.sidesteps) {
+      ++sidestep;
+    } else {
+      sidestep = 0;
+      if (!escaping && plan.next[place] >= 0) blocked.emplace_back(place, plan.next[place]);
       if (escaping || !replan_without_link(places, place, plan)) {
-        escape_side = -escape_side;
+        escape_turn = escaping ? escape_turn + 1 : 1;
+        if (((escape_turn + 1) / 2) * params.unstick_turn_deg > 180.0) escape_turn = 1;
         escape_steps_left = kEscapeSteps;
       } else {
         ++result.replans;

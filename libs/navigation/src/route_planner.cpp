@@ -1,5 +1,6 @@
 #include "omninav/navigation/route_planner.hpp"
 
+#include <algorithm>
 #include <boost/graph/adjacency_list.hpp>
 #include <boost/graph/dijkstra_shortest_paths.hpp>
 #include <cmath>
@@ -22,6 +23,15 @@ void require_place(int place, std::size_t count, const char* what) {
     throw UsageError(std::string("route: ") + what + " " + std::to_string(place) +
                      " is not one of the " + std::to_string(count) + " places");
   }
+}
+
+// The distance from `point` to the segment from `a` to `b`.
+double distance_to_segment(const Eigen::Vector2d& point, const Eigen::Vector2d& a,
+                           const Eigen::Vector2d& b) {
+  const Eigen::Vector2d ab = b - a;
+  const double length2 = ab.squaredNorm();
+  const double t = length2 > 0.0 ? std::clamp((point - a).dot(ab) / length2, 0.0, 1.0) : 0.0;
+  return (a + t * ab - point).norm();
 }
 
 }  // namespace
@@ -97,6 +107,27 @@ RoutePlan plan_to_goal(const std::vector<PlaceNode>& places, const std::vector<E
         signed_difference(plan.direction_rad[place], places[place].heading_rad);
   }
   return plan;
+}
+
+int look_ahead_place(const std::vector<PlaceNode>& places, const RoutePlan& plan, int place,
+                     int links, double tolerance_m, const std::vector<Edge>& blocked) {
+  const std::vector<int> route = plan.route_from(place);
+  if (route.size() < 2) return place;
+  const Eigen::Vector2d from = places[place].position_m;
+  const auto clear = [&](const Eigen::Vector2d& to, std::size_t skipped) {
+    for (std::size_t i = 1; i <= skipped; ++i) {
+      if (distance_to_segment(places[route[i]].position_m, from, to) > tolerance_m) return false;
+    }
+    for (const auto& [a, b] : blocked) {
+      const Eigen::Vector2d middle = 0.5 * (places[a].position_m + places[b].position_m);
+      if (distance_to_segment(middle, from, to) <= tolerance_m) return false;
+    }
+    return true;
+  };
+  std::size_t ahead = 1;
+  const std::size_t last = std::min(route.size() - 1, static_cast<std::size_t>(std::max(links, 1)));
+  while (ahead < last && clear(places[route[ahead + 1]].position_m, ahead)) ++ahead;
+  return route[ahead];
 }
 
 RoutePlan plan_over_lattice(const std::vector<PlaceNode>& places, const RouteParams& params,

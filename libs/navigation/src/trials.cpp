@@ -103,14 +103,12 @@ std::vector<TrialOutcome> run_trials(const std::vector<Trial>& trials, const sim
     sim::VirtualRobot virtual_robot(world, start, noise);
     RenderedWorld rendered(virtual_robot, renderer);
     try {
-      const GoalRun run = navigate_to_image(rendered, renderer.render(goal),
-                                            "trial " + std::to_string(i) + "'s goal", places,
-                                            localise, match_limit, homing, route, navigator);
+      GoalRun run = navigate_to_image(rendered, renderer.render(goal),
+                                      "trial " + std::to_string(i) + "'s goal", places, localise,
+                                      match_limit, homing, route, navigator);
       outcome.goal_place = run.goal.place;
       outcome.stopped_at_goal = run.result.reached;
-      outcome.path_m = run.result.path_length_m;
-      outcome.steps = static_cast<int>(run.result.steps.size());
-      outcome.jumps = run.result.jumps;
+      outcome.result = std::move(run.result);
     } catch (const InputError&) {
       // The goal image matched no place: the trial fails, the others go on.
     }
@@ -131,8 +129,8 @@ TrialSummary summarise(const std::vector<TrialOutcome>& outcomes) {
   for (const TrialOutcome& outcome : outcomes) {
     if (!outcome.reached) continue;
     ++summary.reached;
-    ratios.push_back(outcome.path_m / outcome.straight_m);
-    steps += outcome.steps;
+    ratios.push_back(outcome.result.path_length_m / outcome.straight_m);
+    steps += static_cast<double>(outcome.result.steps.size());
   }
   if (summary.trials > 0) summary.reached_share = double(summary.reached) / summary.trials;
   if (!ratios.empty()) {

@@ -6,11 +6,14 @@
 // than the one expected (the paper's O4/O5 case: the lattice is distorted), it simply follows
 // the new place's direction; the jump is recorded. When the robot cannot drive along a place's
 // direction (furniture the lattice knows nothing of, met because the robot stands beside the
-// place rather than on it), that link of the memory graph is dropped and the plan is made again
-// from the goal without it; only when no route is left does the robot try escape turns.
-// Two more things go beyond the paper (docs/navigation.md has the measurements): a place the
-// robot keeps coming back to gets the same treatment as a blocked link, and once the goal's
-// place is recognised the robot homes on the goal image itself (homing.hpp).
+// place rather than on it), it first turns a little aside (sidesteps), and when that fails too
+// that link of the memory graph is dropped and the plan is made again from the goal without
+// it; only when no route is left does the robot try escape turns.
+// More goes beyond the paper (docs/navigation.md has the measurements): the robot aims from
+// its position estimate at a place several links ahead where the lattice says the straight
+// line follows the route (look_ahead_place, route_planner.hpp), a place the robot keeps coming
+// back to gets the same treatment as a blocked link, and once the goal's place is recognised
+// the robot homes on the goal image itself (homing.hpp).
 
 #include <functional>
 #include <opencv2/core.hpp>
@@ -54,14 +57,24 @@ struct NavigatorParams {
   int max_steps = 300;             // budget; the run fails when it is spent
   double goal_similarity = 0.0;    // the goal place must match with at least this similarity
   int goal_confirmations = 1;      // consecutive goal matches needed to stop
-  double unstick_turn_deg = 60.0;  // turn tried when the robot did not move (blocked)
-  // Beyond §3.5, which follows the matched place's direction: head from the localiser's
-  // position estimate towards the place's next place, so that a robot beside the place does
-  // not run parallel to the route. Off by default: over 100 trials on a truth-lattice map of
-  // the room it shortened paths (mean 1.66 → 1.46 × the straight line, seed 1) but reached
-  // fewer goals with seed 2 (90%), and a short run on a 180-column map oscillated
-  // (/tmp/notes/issue5-nav.md). Off, or without an estimate, the place's direction is followed.
-  bool aim_at_next_place = false;
+  double unstick_turn_deg = 60.0;  // turn tried when no route is left round a blocked link
+  // Beyond §3.5, which follows the matched place's direction (from the place to its next
+  // place): aim from the localiser's position estimate at look_ahead_place(...,
+  // look_ahead_links, look_ahead_tolerance_spacings × the lattice spacing, the links found
+  // blocked), a place up to that many links along the route that a straight line reaches
+  // (route_planner.hpp). The robot then drives the straight line instead of zig-zagging from
+  // place to place, and a robot beside a place does not run parallel to the route. 0, or
+  // without a position estimate: the place's direction; 1: the next place, from the estimate.
+  int look_ahead_links = 6;
+  double look_ahead_tolerance_spacings = 0.5;
+  // Beyond §3.5: blocked, the robot tries directions turned alternately left and right of the
+  // place's direction (not the look-ahead's, which led into the obstacle), by sidestep_deg,
+  // then 2 × sidestep_deg, ..., sidesteps of them, before the link is dropped from the plan. Most
+  // blocks are grazing contacts: the robot stands beside its place, not on it, and runs along
+  // furniture; turning a little away slides it past, where dropping the link sent it round the
+  // furniture (docs/navigation.md).
+  int sidesteps = 4;
+  double sidestep_deg = 25.0;
   // Beyond §3.5: a place entered this many times in one run means the robot goes round in
   // circles (the directions of neighbouring places lead into each other where the lattice is
   // distorted): its link to its next place is dropped and the plan made again, as for a blocked
@@ -108,6 +121,7 @@ struct NavigationResult {
   std::vector<NavigationStep> steps;
   double path_length_m = 0.0;  // distance the robot drove
   int jumps = 0;
+  int sidesteps = 0;     // moves turned aside after a block
   int replans = 0;       // links of the memory graph found blocked, and the plan made without them
   int loops = 0;         // places entered loop_entries times, and the plan made without their link
   int homing_steps = 0;  // steps taken towards the goal image after recognising its place

@@ -72,4 +72,15 @@ RoutePlan plan_to_goal(const std::vector<PlaceNode>& places, const std::vector<E
 RoutePlan plan_over_lattice(const std::vector<PlaceNode>& places, const RouteParams& params,
                             int goal);
 
+// String pulling on the lattice (beyond §3.5, whose robot heads for the next place): the
+// farthest of the next `links` places of the route from `place` that a straight line from
+// `place` reaches without leaving the route, by the lattice alone. The line must pass within
+// `tolerance_m` of every place of the route it skips (a route bends round furniture, which
+// leaves a hole in the lattice: a line that cuts the bend would cross it), and farther than
+// `tolerance_m` from the middle of every link in `blocked` (where the robot met furniture the
+// lattice does not show). The next place when no farther one qualifies, `place` itself at the
+// goal or without a route.
+int look_ahead_place(const std::vector<PlaceNode>& places, const RoutePlan& plan, int place,
+                     int links, double tolerance_m, const std::vector<Edge>& blocked);
+
 }  // namespace omninav::navigation

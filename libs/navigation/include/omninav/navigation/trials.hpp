@@ -74,10 +74,8 @@ struct TrialOutcome {
   bool stopped_at_goal = false;  // the navigator recognised the goal place and stopped
   bool reached = false;          // ... and truly stands within the goal radius
   double final_error_m = 0.0;    // from where the robot stopped to the goal pose (truth)
-  double path_m = 0.0;           // distance driven
   double straight_m = 0.0;       // from start to goal, straight
-  int steps = 0;
-  int jumps = 0;
+  NavigationResult result;       // the run, step by step (empty when the goal matched no place)
 };
 
 // Runs every trial: the goal image rendered at the goal pose, a fresh virtual robot at the
