@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "../../libs/signature/src/fast_math.hpp"
 #include "direct_warp_fit.hpp"
 #include "omninav/core/angles.hpp"
 #include "omninav/core/errors.hpp"

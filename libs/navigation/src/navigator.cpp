@@ -18,10 +18,11 @@ constexpr int kEscapeSteps = 3;
 // What homing compares its first view with: a goal infinitely far.
 constexpr GoalCue kNoCue{std::numeric_limits<double>::infinity(), 0.0, true};
 
-// The turn from the planned direction of the `sidestep`th try after a block (0: none): left by
-// one step of `step_rad`, right by one, left by two, right by two, ... (sidesteps and escapes)
-double sidestep_turn_rad(int sidestep, double step_rad) {
-  return (sidestep % 2 == 1 ? 1.0 : -1.0) * ((sidestep + 1) / 2) * step_rad;
+// The turn from the planned direction of the `sidestep`th try after a block (0: none), in the
+// unit of `step`: left by one step, right by one, left by two, right by two, ... (sidesteps
+// and escapes)
+double sidestep_turn(int sidestep, double step) {
+  return (sidestep % 2 == 1 ? 1.0 : -1.0) * ((sidestep + 1) / 2) * step;
 }
 
 // Drops the link from `place` to its next place from `plan`'s graph and plans again from the
@@ -58,7 +59,7 @@ void load_navigator_params(const ConfigReader& section, NavigatorParams& params)
   section.read("homing_stop_m", params.homing_stop_m, 0.0, 5.0);
   section.read("homing_max_steps", params.homing_max_steps, 0, 100000);
   // The last sidestep turns farthest: past 180° it would repeat an earlier direction.
-  const double widest_deg = ((params.sidesteps + 1) / 2) * params.sidestep_deg;
+  const double widest_deg = std::abs(sidestep_turn(params.sidesteps, params.sidestep_deg));
   if (widest_deg > 180.0) {
     std::ostringstream message;
     message << section.source_name() << ": keys 'navigator.sidesteps' (" << params.sidesteps
@@ -148,8 +149,7 @@ NavigationResult navigate(NavigationWorld& world, const std::vector<PlaceNode>& 
         result.reached = true;
         return result;
       }
-      step.turn_rad =
-          cue.bearing_rad + sidestep_turn_rad(sidestep, deg_to_rad(params.sidestep_deg));
+      step.turn_rad = cue.bearing_rad + sidestep_turn(sidestep, deg_to_rad(params.sidestep_deg));
       const double distance_m = std::min(cue.distance_m, params.homing_step_m);
       const double driven = world.move(step.turn_rad, distance_m);
       result.path_length_m += driven;
@@ -198,10 +198,10 @@ NavigationResult navigate(NavigationWorld& world, const std::vector<PlaceNode>& 
     }
     const bool escaping = escape_steps_left > 0;
     if (escaping) {
-      direction_in_place += sidestep_turn_rad(escape_turn, deg_to_rad(params.unstick_turn_deg));
+      direction_in_place += sidestep_turn(escape_turn, deg_to_rad(params.unstick_turn_deg));
       --escape_steps_left;
     } else {
-      direction_in_place += sidestep_turn_rad(sidestep, deg_to_rad(params.sidestep_deg));
+      direction_in_place += sidestep_turn(sidestep, deg_to_rad(params.sidestep_deg));
       result.sidesteps += sidestep > 0 ? 1 : 0;
     }
     step.turn_rad = signed_difference(direction_in_place, step.match.heading_in_place_rad);
@@ -215,7 +215,7 @@ NavigationResult navigate(NavigationWorld& world, const std::vector<PlaceNode>& 
       if (!escaping && plan.next[place] >= 0) blocked.emplace_back(place, plan.next[place]);
       if (escaping || !replan_without_link(places, place, plan)) {
         escape_turn = escaping ? escape_turn + 1 : 1;
-        if (((escape_turn + 1) / 2) * params.unstick_turn_deg > 180.0) escape_turn = 1;
+        if (std::abs(sidestep_turn(escape_turn, params.unstick_turn_deg)) > 180.0) escape_turn = 1;
         escape_steps_left = kEscapeSteps;
       } else {
         ++result.replans;

@@ -10,7 +10,6 @@
 #include <utility>
 
 #include "omninav/core/angles.hpp"
-#include "omninav/core/errors.hpp"
 #include "omninav/signature/phase_heading.hpp"
 #include "warp_fit.hpp"
 
@@ -117,17 +116,7 @@ MotionEstimate fit_motion(const Signature& from, const Signature& to, int m,
 }  // namespace detail
 
 MotionEstimate estimate_motion(const Signature& from, const Signature& to, int components) {
-  if (!from.same_layout(to)) {
-    throw UsageError("cannot estimate motion between signatures of different layouts (" +
-                     std::to_string(from.lines()) + " and " + std::to_string(to.lines()) +
-                     " lines)");
-  }
-  const int m = components < 0 ? std::min(from.components, to.components) : components;
-  if (m < 2 || m > from.components || m > to.components) {
-    throw UsageError("motion estimation needs 2.." +
-                     std::to_string(std::min(from.components, to.components)) +
-                     " components, got " + std::to_string(m));
-  }
+  const int m = pair_components(from, to, components, "estimate motion");
   const detail::LineSums sums(from, to, m);
   return detail::fit_motion(from, to, m, [&sums](int stage_m) {
     return std::make_unique<detail::WarpFit>(sums, stage_m);

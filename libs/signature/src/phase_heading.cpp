@@ -6,9 +6,8 @@
 #include <complex>
 #include <vector>
 
+#include "fast_math.hpp"
 #include "omninav/core/angles.hpp"
-#include "omninav/core/errors.hpp"
-#include "warp_fit.hpp"
 
 namespace omninav::signature {
 namespace {
@@ -99,17 +98,7 @@ std::vector<double> correlation_on_grid(const CrossPower& cross, int steps) {
 }  // namespace
 
 PhaseHeading relative_heading(const Signature& from, const Signature& to, int components) {
-  if (!from.same_layout(to)) {
-    throw UsageError("cannot take the heading between signatures of different layouts (" +
-                     std::to_string(from.lines()) + " and " + std::to_string(to.lines()) +
-                     " lines)");
-  }
-  const int m = components < 0 ? std::min(from.components, to.components) : components;
-  if (m < 2 || m > from.components || m > to.components) {
-    throw UsageError("the phase heading needs 2.." +
-                     std::to_string(std::min(from.components, to.components)) +
-                     " components, got " + std::to_string(m));
-  }
+  const int m = pair_components(from, to, components, "take the heading");
   // Cross-power per component and the normaliser Σ |F||F'|, straight from the stored magnitudes
   // and phases: F'·conj(F) = |F||F'|·e^{i(φ' − φ)}, one sincos per pair. In batches of whole
   // lines (or of a line's components, for m > kBatch) for the vectorised sin_cos, small enough to

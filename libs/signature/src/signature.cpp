@@ -34,6 +34,21 @@ void load_signature_params(const ConfigReader& section, SignatureParams& params)
   section.read("normalise_brightness", params.normalise_brightness);
 }
 
+int pair_components(const Signature& a, const Signature& b, int components,
+                    const std::string& what) {
+  if (!a.same_layout(b)) {
+    throw UsageError("cannot " + what + " between signatures of different layouts (" +
+                     std::to_string(a.lines()) + " and " + std::to_string(b.lines()) + " lines)");
+  }
+  const int held = std::min(a.components, b.components);
+  const int m = components < 0 ? held : components;
+  if (m < 2 || m > held) {
+    throw UsageError("cannot " + what + " on " + std::to_string(m) + " components: 2.." +
+                     std::to_string(held) + " possible");
+  }
+  return m;
+}
+
 Signature Signature::truncated(int m) const {
   if (m < 1 || m > components) {
     throw UsageError("cannot truncate a signature of " + std::to_string(components) +

@@ -51,14 +51,6 @@
 
 namespace omninav::signature::detail {
 
-// sin_x[i] = sin x[i] and cos_x[i] = cos x[i] within 2.2e-16 of the C library's for
-// |x| ≤ 10⁵ (measured 1.1e-16, motion_test.cpp); the fit's angles stay within a few π. Vectorised,
-// the same doubles on every instruction set: the C library's sincos, one call per value, took
-// a fifth of estimate_motion()'s time. Written here (fdlibm's reduction and polynomials) because
-// glibc's vector variants (libmvec) are only called under -ffast-math, which this project does
-// not use: it would let the compiler reorder the sums that tests compare bit for bit.
-void sin_cos(const double* x, std::size_t n, double* sin_x, double* cos_x);
-
 // The column angles a fit on m components samples: 4 per period of the highest component.
 inline int warp_samples(int m) {
   return std::max(16, 4 * m);

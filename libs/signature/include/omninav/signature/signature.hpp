@@ -81,6 +81,12 @@ struct Signature {
   }
 };
 
+// The components a pairwise measurement of `a` and `b` works on: `components`, or all that both
+// hold when it is −1. Throws UsageError naming the measurement (`what`, e.g. "estimate motion")
+// when the layouts differ or fewer than 2 or more than both hold are asked for.
+int pair_components(const Signature& a, const Signature& b, int components,
+                    const std::string& what);
+
 // How an extractor computes the components. Both give the same signature to float precision
 // (tests/signature/fast_path_test.cpp: every coefficient within 1e-3 grey levels, plus the
 // polynomial atan2's 1e-5 rad); kFast is the one to use.
