@@ -88,7 +88,8 @@ void add_render_command(CLI::App& app, const GlobalOptions& global) {
           "  circle (cx, cy, radius_m, turns, speed_m_s)\n"
           "  walk (x, y, heading_deg, steps, step_m, turn_deg, seed)\n"
           "  grid (x0, y0, nx, ny, spacing_m, heading_deg)\n"
-          "  zigzag (x0, y0, x1, y1, rows, speed_m_s)\n"
+          "  zigzag (x0, y0, x1, y1, rows, speed_m_s, turn_rate_deg_s: turns on the spot at "
+          "corners)\n"
           "  csv (path: columns x_m, y_m, heading_deg[, time_s, z_m, pitch_deg, roll_deg])\n"
           "and every kind takes fps, z_m, pitch_noise_deg, roll_noise_deg, noise_seed.\n"
           "Example: line:x0=0.5,y0=2.5,x1=5.5,y1=2.5,speed_m_s=0.2,fps=5")

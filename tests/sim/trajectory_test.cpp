@@ -21,11 +21,13 @@ World empty_room() {
 
 TEST(Trajectory, RotateTurnsAtTheGivenRateOnTheSpot) {
   const World world = empty_room();
-  const Trajectory rotate = make_trajectory("rotate:turns=3,rate_deg_s=-30,fps=10,x=2,y=1.5", world);
+  const Trajectory rotate =
+      make_trajectory("rotate:turns=3,rate_deg_s=-30,fps=10,x=2,y=1.5", world);
   ASSERT_EQ(rotate.poses.size(), 361u);  // 3 turns at 30°/s is 36 s, 10 frames a second, + start
   for (std::size_t i = 1; i < rotate.poses.size(); ++i) {
-    EXPECT_NEAR(signed_difference(rotate.poses[i].pose.heading_rad, rotate.poses[i - 1].pose.heading_rad),
-                deg_to_rad(-3.0), 1e-9);
+    EXPECT_NEAR(
+        signed_difference(rotate.poses[i].pose.heading_rad, rotate.poses[i - 1].pose.heading_rad),
+        deg_to_rad(-3.0), 1e-9);
     EXPECT_NEAR(rotate.poses[i].time_s - rotate.poses[i - 1].time_s, 0.1, 1e-12);
   }
   EXPECT_DOUBLE_EQ(rotate.poses.back().pose.x_m, 2.0);
@@ -40,8 +42,9 @@ TEST(Trajectory, LineMovesAtTheGivenSpeedFacingForward) {
   for (std::size_t i = 1; i < line.poses.size(); ++i) {
     const auto& a = line.poses[i - 1].pose;
     const auto& b = line.poses[i].pose;
-    EXPECT_NEAR(std::hypot(b.x_m - a.x_m, b.y_m - a.y_m) / (line.poses[i].time_s - line.poses[i - 1].time_s), 0.5,
-                1e-9);
+    EXPECT_NEAR(std::hypot(b.x_m - a.x_m, b.y_m - a.y_m) /
+                    (line.poses[i].time_s - line.poses[i - 1].time_s),
+                0.5, 1e-9);
     EXPECT_NEAR(b.heading_rad, heading, 1e-12);
   }
   // Frames come at fixed times, so the walk stops at the last frame before the far end.
@@ -50,6 +53,37 @@ TEST(Trajectory, LineMovesAtTheGivenSpeedFacingForward) {
     EXPECT_NEAR(pose.pose.y_m, 1.0 + 0.5 * pose.time_s * std::sin(heading), 1e-9);
   }
   EXPECT_NEAR(line.length_m(), std::hypot(3.0, 2.0), 0.5 / 5);
+}
+
+TEST(Trajectory, ZigZagTurnsOnTheSpotAtItsCorners) {
+  const World world = empty_room();
+  // Rows 1 m apart, 2 m long, at 0.5 m/s and 5 fps: 0.1 m a frame; 90°/s turns 18° a frame.
+  const Trajectory zigzag = make_trajectory(
+      "zigzag:x0=1,y0=1,x1=3,y1=3,rows=3,speed_m_s=0.5,fps=5,turn_rate_deg_s=90", world);
+  int turning = 0;
+  for (std::size_t i = 1; i < zigzag.poses.size(); ++i) {
+    const auto& a = zigzag.poses[i - 1].pose;
+    const auto& b = zigzag.poses[i].pose;
+    const double moved = std::hypot(b.x_m - a.x_m, b.y_m - a.y_m);
+    const double turned = std::fabs(signed_difference(b.heading_rad, a.heading_rad));
+    // A frame either moves along the heading or turns on the spot, never both, and never faster.
+    EXPECT_LE(moved, 0.1 + 1e-9) << i;
+    EXPECT_LE(turned, deg_to_rad(18.0) + 1e-9) << i;
+    if (turned > 1e-12) {
+      ++turning;
+      EXPECT_NEAR(moved, 0.0, 1e-12) << i;
+    } else if (moved > 1e-12) {
+      EXPECT_NEAR(std::atan2(b.y_m - a.y_m, b.x_m - a.x_m), b.heading_rad, 1e-9) << i;
+    }
+  }
+  // Four corners of 90° at 18° a frame.
+  EXPECT_EQ(turning, 4 * 5);
+  EXPECT_NEAR(zigzag.length_m(), 3 * 2.0 + 2 * 1.0, 0.1);
+  // turn_rate_deg_s = 0: the heading jumps at the corners, between two frames.
+  const Trajectory sudden = make_trajectory(
+      "zigzag:x0=1,y0=1,x1=3,y1=3,rows=3,speed_m_s=0.5,fps=5,turn_rate_deg_s=0", world);
+  EXPECT_EQ(zigzag.poses.size() - sudden.poses.size(), 4u * 5u);
+  EXPECT_THROW(make_trajectory("zigzag:turn_rate_deg_s=-1", world), UsageError);
 }
 
 TEST(Trajectory, CircleStaysOnItsRadiusWithTangentHeading) {
@@ -74,9 +108,11 @@ TEST(Trajectory, GridCarriesIndicesAndSkipsFurniture) {
   EXPECT_NEAR(grid.poses[13].pose.y_m, 0.5 + 1 * 0.3, 1e-12);
 
   const World furnished = make_room({});
-  const Trajectory sparse = make_trajectory("grid:x0=0.3,y0=0.3,nx=18,ny=15,spacing_m=0.3", furnished);
+  const Trajectory sparse =
+      make_trajectory("grid:x0=0.3,y0=0.3,nx=18,ny=15,spacing_m=0.3", furnished);
   EXPECT_LT(sparse.poses.size(), 18u * 15u);
-  for (const TimedPose& pose : sparse.poses) EXPECT_TRUE(furnished.is_free(pose.pose.x_m, pose.pose.y_m));
+  for (const TimedPose& pose : sparse.poses)
+    EXPECT_TRUE(furnished.is_free(pose.pose.x_m, pose.pose.y_m));
 }
 
 TEST(Trajectory, WalkAvoidsFurnitureAndIsSeeded) {
@@ -104,7 +140,8 @@ TEST(Trajectory, BumpyRunsTiltWithTheRequestedSpread) {
 }
 
 TEST(Trajectory, ReadsPosesFromCsv) {
-  const std::filesystem::path file = std::filesystem::temp_directory_path() / "omninav_trajectory.csv";
+  const std::filesystem::path file =
+      std::filesystem::temp_directory_path() / "omninav_trajectory.csv";
   std::ofstream(file) << "heading_deg,x_m,y_m,z_m\n90,1,2,0.5\n-90,1.5,2,0.5\n";
   const Trajectory csv = make_trajectory("csv:path=" + file.string() + ",fps=4", empty_room());
   ASSERT_EQ(csv.poses.size(), 2u);
@@ -119,7 +156,8 @@ TEST(Trajectory, ReadsPosesFromCsv) {
     make_trajectory("csv:path=" + file.string(), empty_room());
     FAIL();
   } catch (const InputError& error) {
-    EXPECT_NE(std::string(error.what()).find(file.string() + ":2"), std::string::npos) << error.what();
+    EXPECT_NE(std::string(error.what()).find(file.string() + ":2"), std::string::npos)
+        << error.what();
   }
   std::filesystem::remove(file);
 }

@@ -64,26 +64,37 @@ void require_positive(double value, const std::string& key, const std::string& s
   if (!(value > 0.0)) throw UsageError("trajectory '" + spec + "': " + key + " must be positive");
 }
 
-// Poses every 1/fps s along a polyline walked at `speed_m_s`, heading along the motion.
+// Along the polyline at speed_m_s, facing along each leg; at each corner the robot turns on the
+// spot at turn_rate_rad_s at most (frames keep coming while it turns, so that a visual compass
+// can follow), or at once when the rate is 0.
 void walk_polyline(const std::vector<cv::Point2d>& points, double speed_m_s, double fps,
-                   std::vector<TimedPose>& poses) {
+                   double turn_rate_rad_s, std::vector<TimedPose>& poses) {
   const double step_m = speed_m_s / fps;
   double time_s = 0.0;
+  const auto add = [&](const cv::Point2d& at, double heading) {
+    TimedPose pose;
+    pose.time_s = time_s;
+    pose.pose.x_m = at.x;
+    pose.pose.y_m = at.y;
+    pose.pose.heading_rad = heading;
+    poses.push_back(pose);
+    time_s += 1.0 / fps;
+  };
   for (std::size_t leg = 0; leg + 1 < points.size(); ++leg) {
     const cv::Point2d from = points[leg], to = points[leg + 1];
     const double length = cv::norm(to - from);
     const double heading = std::atan2(to.y - from.y, to.x - from.x);
+    if (leg > 0 && turn_rate_rad_s > 0.0) {
+      const double previous = poses.back().pose.heading_rad;
+      const double turn = signed_difference(heading, previous);
+      const int frames =
+          static_cast<int>(std::ceil(std::abs(turn) / (turn_rate_rad_s / fps) - 1e-9));
+      for (int k = 0; k < frames; ++k) add(from, wrap_angle(previous + turn * k / frames));
+    }
     const int steps = std::max(1, static_cast<int>(std::floor(length / step_m + 1e-9)));
     const bool last_leg = leg + 2 == points.size();
     for (int i = 0; i < steps + (last_leg ? 1 : 0); ++i) {
-      const double along = std::min(length, i * step_m);
-      TimedPose pose;
-      pose.time_s = time_s;
-      pose.pose.x_m = from.x + (to.x - from.x) * along / length;
-      pose.pose.y_m = from.y + (to.y - from.y) * along / length;
-      pose.pose.heading_rad = heading;
-      poses.push_back(pose);
-      time_s += 1.0 / fps;
+      add(from + (to - from) * (std::min(length, i * step_m) / length), heading);
     }
   }
 }
@@ -192,6 +203,9 @@ Trajectory make_trajectory(const std::string& spec, const World& world) {
         args.number("y1", trajectory.kind == "line" ? centre_y : world.floor.max_y_m - margin);
     const double speed = args.number("speed_m_s", 0.2);
     require_positive(speed, "speed_m_s", spec);
+    const double turn_rate = deg_to_rad(args.number("turn_rate_deg_s", 90.0));
+    if (turn_rate < 0.0)
+      throw UsageError("trajectory '" + spec + "': turn_rate_deg_s must not be negative");
     std::vector<cv::Point2d> points{{x0, y0}, {x1, y1}};
     if (trajectory.kind == "zigzag") {
       const int rows = static_cast<int>(args.number("rows", 4));
@@ -206,7 +220,7 @@ Trajectory make_trajectory(const std::string& spec, const World& world) {
     if (cv::norm(points.back() - points.front()) == 0.0 && points.size() == 2) {
       throw UsageError("trajectory '" + spec + "': the line has zero length");
     }
-    walk_polyline(points, speed, fps, poses);
+    walk_polyline(points, speed, fps, turn_rate, poses);
   } else if (trajectory.kind == "circle") {
     const double cx = args.number("cx", centre_x), cy = args.number("cy", centre_y);
     const double radius = args.number("radius_m", 1.0);

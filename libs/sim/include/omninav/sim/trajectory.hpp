@@ -10,7 +10,10 @@
 //                           turns away from walls and furniture
 //   grid    grid sweep:     x0, y0, nx (10), ny (8), spacing_m (0.3), heading_deg (0); points
 //                           inside furniture are left out (their grid index is skipped)
-//   zigzag  boustrophedon:  x0, y0, x1, y1, rows (4), spacing_m (0.6 between places along rows)
+//   zigzag  boustrophedon:  x0, y0, x1, y1, rows (4), speed_m_s (0.2): rows from y0 to y1, each
+//                           from x0 to x1 and back, joined at the ends
+//           line and zigzag also take turn_rate_deg_s (90): at a corner the robot turns on the
+//                           spot at this rate, frames still coming (0: turns between two frames)
 //   csv     from a file:    path; columns x_m, y_m, heading_deg (required), time_s, z_m,
 //                           pitch_deg, roll_deg (optional)
 //
