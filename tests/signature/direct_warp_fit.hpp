@@ -9,6 +9,7 @@
 #include <complex>
 #include <cstddef>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "../../libs/signature/src/warp_fit.hpp"
@@ -101,9 +102,11 @@ class DirectWarpFit final : public detail::WarpObjective {
 };
 
 // estimate_motion() as it was: the same stages, each evaluated line by line.
-inline MotionEstimate direct_estimate_motion(const Signature& from, const Signature& to, int m) {
+inline MotionEstimate direct_estimate_motion(const Signature& from, const Signature& to, int m,
+                                             std::optional<double> known_turn_rad = std::nullopt) {
   return detail::fit_motion(
-      from, to, m, [&](int stage_m) { return std::make_unique<DirectWarpFit>(from, to, stage_m); });
+      from, to, m, [&](int stage_m) { return std::make_unique<DirectWarpFit>(from, to, stage_m); },
+      known_turn_rad);
 }
 
 }  // namespace omninav::signature::testing

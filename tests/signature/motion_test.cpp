@@ -6,8 +6,10 @@
 #include <cmath>
 #include <iostream>
 #include <limits>
+#include <optional>
 #include <random>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "../../libs/signature/src/fast_math.hpp"
@@ -56,21 +58,32 @@ TEST(Motion, ForwardSidewaysAndBackwardSteps) {
   }
 }
 
-TEST(Motion, RandomShortStepsWithTurns) {
-  std::mt19937 random(11);
+// `count` steps of `min_m`..`max_m` in random directions from random free poses of the room,
+// turning by up to ±`max_turn_deg` (both poses 0.2 m clear of furniture).
+std::vector<Pair> random_steps(unsigned seed, std::size_t count, double min_m, double max_m,
+                               double max_turn_deg) {
+  std::mt19937 random(seed);
   std::uniform_real_distribution<double> x(1.0, 5.0), y(1.0, 4.0), angle(-180.0, 180.0),
-      turn(-30.0, 30.0), step(0.2, 0.4);
+      turn(-max_turn_deg, max_turn_deg), step(min_m, max_m);
   const sim::World& world = testing::room();
-  std::vector<double> errors;
-  int valid = 0;
-  while (errors.size() < 40) {
+  std::vector<Pair> steps;
+  while (steps.size() < count) {
     const double x0 = x(random), y0 = y(random), direction = deg_to_rad(angle(random));
     const double d = step(random);
-    const Pair pair{
-        x0, y0, angle(random), x0 + d * std::cos(direction), y0 + d * std::sin(direction), 0.0};
-    Pair turned = pair;
-    turned.h1_deg = pair.h0_deg + turn(random);
-    if (!world.is_free(pair.x0, pair.y0, 0.2) || !world.is_free(pair.x1, pair.y1, 0.2)) continue;
+    Pair pair{x0, y0, angle(random), x0 + d * std::cos(direction), y0 + d * std::sin(direction),
+              0.0};
+    pair.h1_deg = pair.h0_deg + turn(random);
+    if (world.is_free(pair.x0, pair.y0, 0.2) && world.is_free(pair.x1, pair.y1, 0.2)) {
+      steps.push_back(pair);
+    }
+  }
+  return steps;
+}
+
+TEST(Motion, RandomShortStepsWithTurns) {
+  std::vector<double> errors;
+  int valid = 0;
+  for (const Pair& turned : random_steps(11, 40, 0.2, 0.4, 30.0)) {
     const MotionEstimate m = estimate(turned);
     if (m.valid) ++valid;
     errors.push_back(
@@ -86,6 +99,41 @@ TEST(Motion, RandomShortStepsWithTurns) {
   // Measured 7.6° and 14.5° (seed 11); the paper reports about 10% (§3.4).
   EXPECT_LT(median, 12.0);
   EXPECT_LT(p90, 25.0);
+}
+
+TEST(Motion, AKnownTurnGivesBetterBearings) {
+  // Steps up to 60 cm with turns, as between a lattice's neighbours: the same pairs fitted with
+  // the turn free and with the true turn given (motion.hpp, "Known turn").
+  SignatureExtractor extractor({15, ColourMode::kLuminance});
+  std::vector<double> free_errors, known_errors;
+  for (const Pair& turned : random_steps(23, 60, 0.2, 0.6, 60.0)) {
+    const Signature from = extractor.compute(render(turned.x0, turned.y0, turned.h0_deg));
+    const Signature to = extractor.compute(render(turned.x1, turned.y1, turned.h1_deg));
+    const double true_turn = deg_to_rad(turned.h1_deg - turned.h0_deg);
+    const MotionEstimate free_fit = estimate_motion(from, to);
+    const MotionEstimate known_fit = estimate_motion(from, to, -1, true_turn);
+    EXPECT_NEAR(signed_difference(known_fit.turn_rad, true_turn), 0.0, 1e-12);
+    const auto error = [&](const MotionEstimate& m) {
+      return std::fabs(signed_difference_deg(rad_to_deg(m.bearing_rad), turned.bearing_deg()));
+    };
+    free_errors.push_back(error(free_fit));
+    known_errors.push_back(error(known_fit));
+  }
+  const auto summary = [](std::vector<double> errors) {
+    std::sort(errors.begin(), errors.end());
+    const auto beyond_30 =
+        std::count_if(errors.begin(), errors.end(), [](double e) { return e > 30.0; });
+    return std::tuple{errors[errors.size() / 2], errors[errors.size() * 9 / 10], beyond_30};
+  };
+  const auto [free_median, free_p90, free_wrong] = summary(free_errors);
+  const auto [known_median, known_p90, known_wrong] = summary(known_errors);
+  std::cout << "bearing error over " << free_errors.size() << " steps, turn free / known: median "
+            << free_median << " / " << known_median << " deg, 90th percentile " << free_p90 << " / "
+            << known_p90 << " deg, beyond 30 deg " << free_wrong << " / " << known_wrong << "\n";
+  EXPECT_LE(known_median, free_median + 1.0);
+  EXPECT_LE(known_p90, free_p90);
+  EXPECT_LE(known_wrong, free_wrong);
+  EXPECT_LT(known_p90, 25.0);
 }
 
 TEST(Motion, RefusesMismatchedSignatures) {
@@ -218,25 +266,35 @@ TEST(Motion, EstimatesEqualTheLineByLineFit) {
   double worst_turn = 0.0, worst_parallax = 0.0;
   for (const SignaturePair& pair : pairs) {
     for (int m : {3, 6, 15}) {
-      const MotionEstimate fast = estimate_motion(pair.from, pair.to, m);
-      const MotionEstimate direct = testing::direct_estimate_motion(pair.from, pair.to, m);
-      const std::string where = pair.name + ", m = " + std::to_string(m);
-      const double turn_error = std::fabs(signed_difference(fast.turn_rad, direct.turn_rad));
-      const double parallax_error = (parallax(fast) - parallax(direct)).norm();
-      EXPECT_LT(turn_error, 1e-7) << where;
-      EXPECT_LT(parallax_error, 1e-7) << where;
-      EXPECT_NEAR(fast.parallax_rad, direct.parallax_rad, 1e-7) << where;
-      EXPECT_LT(
-          std::fabs(signed_difference(fast.bearing_rad, direct.bearing_rad)) * direct.parallax_rad,
-          1e-7)
-          << where;
-      EXPECT_NEAR(fast.bearing_stddev_rad, direct.bearing_stddev_rad,
-                  1e-3 * direct.bearing_stddev_rad)
-          << where;
-      EXPECT_NEAR(fast.residual, direct.residual, 1e-7) << where;
-      EXPECT_EQ(fast.valid, direct.valid) << where;
-      worst_turn = std::max(worst_turn, turn_error);
-      worst_parallax = std::max(worst_parallax, parallax_error);
+      // Free, and with the turn held at a value near the phases' (the known-turn fit).
+      const double near_turn = relative_heading(pair.from, pair.to, m).turn_rad + 0.05;
+      for (const std::optional<double> known_turn :
+           {std::optional<double>(), std::optional(near_turn)}) {
+        const MotionEstimate fast = estimate_motion(pair.from, pair.to, m, known_turn);
+        const MotionEstimate direct =
+            testing::direct_estimate_motion(pair.from, pair.to, m, known_turn);
+        const std::string where =
+            pair.name + ", m = " + std::to_string(m) + (known_turn ? ", turn known" : "");
+        if (known_turn) {
+          EXPECT_EQ(fast.turn_rad, wrap_angle(*known_turn)) << where;
+        }
+        const double turn_error = std::fabs(signed_difference(fast.turn_rad, direct.turn_rad));
+        const double parallax_error = (parallax(fast) - parallax(direct)).norm();
+        EXPECT_LT(turn_error, 1e-7) << where;
+        EXPECT_LT(parallax_error, 1e-7) << where;
+        EXPECT_NEAR(fast.parallax_rad, direct.parallax_rad, 1e-7) << where;
+        EXPECT_LT(std::fabs(signed_difference(fast.bearing_rad, direct.bearing_rad)) *
+                      direct.parallax_rad,
+                  1e-7)
+            << where;
+        EXPECT_NEAR(fast.bearing_stddev_rad, direct.bearing_stddev_rad,
+                    1e-3 * direct.bearing_stddev_rad)
+            << where;
+        EXPECT_NEAR(fast.residual, direct.residual, 1e-7) << where;
+        EXPECT_EQ(fast.valid, direct.valid) << where;
+        worst_turn = std::max(worst_turn, turn_error);
+        worst_parallax = std::max(worst_parallax, parallax_error);
+      }
     }
   }
   std::cout << "fast vs line-by-line fit, worst differences: turn " << worst_turn << " rad, (b, c) "

@@ -44,6 +44,7 @@
 #include <cstddef>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "omninav/signature/motion.hpp"
@@ -75,7 +76,8 @@ class WarpObjective {
 // passes WarpFit; the tests pass the line-by-line evaluation to compare the two.
 using ObjectiveFactory = std::function<std::unique_ptr<WarpObjective>(int m)>;
 MotionEstimate fit_motion(const Signature& from, const Signature& to, int m,
-                          const ObjectiveFactory& objective);
+                          const ObjectiveFactory& objective,
+                          std::optional<double> known_turn = std::nullopt);
 
 // The sums over lines of products of the components 1..m−1 of `to` (a + ib) and `from`
 // (p + iq), once per pair of signatures: each stage's WarpFit takes its corner.

@@ -20,6 +20,17 @@
 // guesses of (b, c), on components 1..3 first, then 1..7, then all: the coarse fit cannot
 // alias, the fine one is precise. Only the phases and magnitudes of the two signatures are
 // used, so edges of a stored map can be re-estimated without the images.
+//
+// Known turn. When the heading change between the two views is known (both places have
+// headings, from the visual compass or a database), τ is held at it and only (b, c) are
+// fitted. A free τ can trade turn for translation and settle on a wrong pair of both, and a
+// fit that cannot explain the known turn shows it in its residual instead. Measured on five
+// rendered maps (30 cm grids, 60 cm zig-zags; headings from the truth), over the pairs of
+// places truly within 0.9 m, each place with its 3 most similar: bearings more than 30° off
+// fell from 41 of 1,054 pairs to 9, the 90th percentile of the error on the two grids
+// round furniture from 20-25° to 13-16°, the median from 5.3-7.1° to 5.1-5.9°.
+
+#include <optional>
 
 #include "omninav/signature/signature.hpp"
 
@@ -29,8 +40,8 @@ struct MotionEstimate {
   // Direction of travel from `from` to `to`, seen from `from`: counter-clockwise from its
   // front, radians in (−π, π]. Meaningless when !valid.
   double bearing_rad = 0.0;
-  double turn_rad = 0.0;      // τ, the heading change the fit found (cf. relative_heading)
-  double parallax_rad = 0.0;  // ρ = d/r: how far things abeam moved, radians
+  double turn_rad = 0.0;                   // τ, the heading change the fit found (or was given)
+  double parallax_rad = 0.0;               // ρ = d/r: how far things abeam moved, radians
   double bearing_stddev_rad = kNoBearing;  // from the fit's covariance; large: don't trust it
   double residual = 1.0;                   // rms residual / rms signal after the fit, 0..~1.4
   bool valid = false;                      // ρ is at least 3 standard deviations from 0
@@ -38,8 +49,10 @@ struct MotionEstimate {
   static constexpr double kNoBearing = 3.141592653589793;
 };
 
-// Uses components up to `components` (−1: all both signatures hold; at least 2). Throws
+// Uses components up to `components` (−1: all both signatures hold; at least 2), and holds the
+// turn at `known_turn_rad` (heading at `to` minus heading at `from`) when given. Throws
 // UsageError when the signatures differ in lines.
-MotionEstimate estimate_motion(const Signature& from, const Signature& to, int components = -1);
+MotionEstimate estimate_motion(const Signature& from, const Signature& to, int components = -1,
+                               std::optional<double> known_turn_rad = std::nullopt);
 
 }  // namespace omninav::signature
