@@ -66,7 +66,26 @@ TEST(Exploration, EveryNFramesAndEveryMetres) {
     Explorer explorer(memory, only(0.0, 0, 0.3), "route", "test");
     for (const io::Frame& f : route_frames()) explorer.add(f);
     EXPECT_EQ(place_frames(memory), (std::vector<int>{0, 6, 12, 18, 24, 30, 36, 42, 48, 54}));
+    // The spacing is the map's scale for the lattice.
+    EXPECT_EQ(memory.notes().at("exploration.every_m"), "0.3");
   }
+}
+
+TEST(Exploration, AStreamsEdgesAreStepsAGridDatabasesAreListed) {
+  VisualMemory stream;
+  Explorer along(stream, only(0.0, 10, 0.0), "route", "test");
+  for (const io::Frame& f : route_frames()) along.add(f);
+  VisualMemory grid;
+  Explorer listed(grid, {}, "grid", "test", FrameOrder::kUnordered);
+  for (int i = 0; i < 3; ++i) listed.add_place(testing::grid_frames()[i]);
+  ASSERT_EQ(stream.edge_count(), 5u);
+  ASSERT_EQ(grid.edge_count(), 2u);
+  for (const VisualMemory::EdgeRef& edge : stream.edges())
+    EXPECT_EQ(edge.edge->kind, EdgeKind::kSequence);
+  for (const VisualMemory::EdgeRef& edge : grid.edges())
+    EXPECT_EQ(edge.edge->kind, EdgeKind::kListed);
+  // No every_m rule, no scale noted.
+  EXPECT_EQ(stream.notes().count("exploration.every_m"), 0u);
 }
 
 TEST(Exploration, DissimilarityThresholdSpacesPlacesByChangeOfView) {

@@ -121,6 +121,7 @@ void expect_same(const VisualMemory& a, const VisualMemory& b) {
   for (std::size_t i = 0; i < ea.size(); ++i) {
     EXPECT_EQ(ea[i].from, eb[i].from);
     EXPECT_EQ(ea[i].to, eb[i].to);
+    EXPECT_EQ(ea[i].edge->kind, eb[i].edge->kind);
     EXPECT_EQ(ea[i].edge->dissimilarity, eb[i].edge->dissimilarity);
     EXPECT_EQ(ea[i].edge->relative_heading_rad, eb[i].edge->relative_heading_rad);
     EXPECT_EQ(ea[i].edge->motion_bearing_rad, eb[i].edge->motion_bearing_rad);
@@ -190,6 +191,45 @@ TEST_F(MapFileTest, ExploringAgainAppendsToTheMap) {
   EXPECT_EQ(again.runs().size(), 2u);
   EXPECT_EQ(again.edge_count(), 9u + 6u);  // each run's chain; runs are not joined
   expect_same(grown, again);
+}
+
+TEST_F(MapFileTest, EdgeKindsRoundTripAndVersionOneMapsStillRead) {
+  const fs::path file = dir_ / "kinds.vmem";
+  VisualMemory memory = synthetic_memory(4);
+  Edge listed;
+  listed.kind = EdgeKind::kListed;
+  memory.add_edge(3, 0, listed);
+  save_map(memory, file);
+  const VisualMemory loaded = load_map(file);
+  const auto edges = loaded.edges();
+  ASSERT_EQ(edges.size(), 4u);
+  EXPECT_EQ(edges[0].edge->kind, EdgeKind::kSequence);
+  EXPECT_EQ(edges[3].edge->kind, EdgeKind::kListed);
+
+  // A map written by schema 1 (every edge `sequence`, even a grid database's) reads its edges
+  // as listed; exploring into it marks it with this schema, whose edge kinds a version-1 reader
+  // would not know.
+  const fs::path old = dir_ / "old.vmem";
+  VisualMemory version_one = synthetic_memory(5);
+  save_map(version_one, old);
+  sql(old, "UPDATE schema_version SET version = 1, written_by = 'omninav 0.1.0'");
+  VisualMemory read_old = load_map(old);
+  for (const VisualMemory::EdgeRef& edge : read_old.edges())
+    EXPECT_EQ(edge.edge->kind, EdgeKind::kListed);
+  VisualMemory grown = synthetic_memory(3, 50, 2, std::move(read_old));
+  save_map(grown, old);
+  const VisualMemory grown_read = load_map(old);
+  EXPECT_EQ(grown_read.edges().front().edge->kind, EdgeKind::kListed);   // from version 1
+  EXPECT_EQ(grown_read.edges().back().edge->kind, EdgeKind::kSequence);  // new, version 2
+  sqlite3* db = nullptr;
+  ASSERT_EQ(sqlite3_open(old.c_str(), &db), SQLITE_OK);
+  sqlite3_stmt* version = nullptr;
+  ASSERT_EQ(sqlite3_prepare_v2(db, "SELECT version FROM schema_version", -1, &version, nullptr),
+            SQLITE_OK);
+  ASSERT_EQ(sqlite3_step(version), SQLITE_ROW);
+  EXPECT_EQ(sqlite3_column_int(version, 0), kMapSchemaVersion);
+  sqlite3_finalize(version);
+  sqlite3_close(db);
 }
 
 TEST_F(MapFileTest, AppendingRefusesAMapChangedOnDiskOrMadeDifferently) {
@@ -328,7 +368,9 @@ TEST_F(MapFileTest, EachBadFileGivesItsError) {
   sql(newer, "UPDATE schema_version SET version = 7, written_by = 'omninav 9.0'");
   const std::string newer_error = load_error(newer);
   EXPECT_NE(newer_error.find("schema version 7"), std::string::npos) << newer_error;
-  EXPECT_NE(newer_error.find("reads up to version 1"), std::string::npos) << newer_error;
+  EXPECT_NE(newer_error.find("reads up to version " + std::to_string(kMapSchemaVersion)),
+            std::string::npos)
+      << newer_error;
 
   const fs::path short_blob = dir_ / "blob.vmem";
   VisualMemory memory2 = synthetic_memory(5);

@@ -5,6 +5,7 @@
 #include <ctime>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <sstream>
 
 #include "omninav/compass/resample.hpp"
 #include "omninav/core/angles.hpp"
@@ -93,6 +94,10 @@ std::optional<PlaceIndex> Explorer::add(const io::Frame& frame) {
   if (!new_place && params_.every_m > 0.0 && frame.truth &&
       metres_since_place_ >= params_.every_m * (1.0 - 1e-9)) {
     new_place = true;
+    // The map's scale, for the lattice (lattice/organise.hpp): consecutive places every_m apart.
+    std::ostringstream every_m;
+    every_m << params_.every_m;
+    memory_.set_note("exploration.every_m", every_m.str());
   }
   if (!new_place && params_.new_place_dissimilarity > 0.0) {
     const signature::Signature& last = memory_.place(*last_place_).signature;
@@ -224,7 +229,7 @@ PlaceIndex Explorer::make_place(const io::Frame& frame, const signature::Signatu
     const signature::Signature& from = memory_.place(*last_place_).signature;
     const signature::Signature& to = memory_.place(index).signature;
     Edge edge;
-    edge.kind = EdgeKind::kSequence;
+    edge.kind = order_ == FrameOrder::kUnordered ? EdgeKind::kListed : EdgeKind::kSequence;
     edge.dissimilarity = signature::dissimilarity(from, to, -1, memory_.parameters().weights);
     const signature::PhaseHeading heading = signature::relative_heading(from, to);
     edge.relative_heading_rad = heading.turn_rad;

@@ -47,7 +47,8 @@ std::vector<float> floats_from_le_bytes(const void* data, std::size_t bytes) {
 
 namespace {
 
-// Schema version 1. maps/README.md documents every table and column; keep the two in step.
+// Schema version 2 (kMapSchemaVersion). maps/README.md documents every table and column; keep
+// the two in step.
 constexpr const char* kSchema = R"sql(
 CREATE TABLE schema_version (
   version INTEGER NOT NULL,
@@ -125,8 +126,9 @@ std::map<std::string, std::string> parameter_rows(const VisualMemory& memory) {
   return rows;
 }
 
-// Opens an existing map and checks that it is one this build can read.
-void check_map(Database& db) {
+// Opens an existing map and checks that it is one this build can read; returns its schema
+// version.
+std::int64_t check_map(Database& db) {
   const std::filesystem::path& file = db.file();
   Statement app = db.prepare("PRAGMA application_id");
   app.step();
@@ -151,6 +153,7 @@ void check_map(Database& db) {
                      std::to_string(kMapSchemaVersion) + ": update omninav to read it");
   }
   if (v < 1) throw InputError(corrupt(file, "schema version " + std::to_string(v)));
+  return v;
 }
 
 std::int64_t count_rows(Database& db, const std::string& table) {
@@ -296,7 +299,7 @@ void write_new(VisualMemory& memory, const std::filesystem::path& file,
 
 void append(VisualMemory& memory, const std::filesystem::path& file, const SaveOptions& options) {
   Database db(file, Database::Mode::kReadWrite);
-  check_map(db);
+  const std::int64_t version = check_map(db);
   db.exec("PRAGMA journal_mode = DELETE");
   db.exec("PRAGMA synchronous = FULL");
   db.exec("PRAGMA foreign_keys = ON");
@@ -323,6 +326,13 @@ void append(VisualMemory& memory, const std::filesystem::path& file, const SaveO
       }
     }
     write_parameters(db, memory);
+    // Version 1 to 2: the old edges become what load_map reads them as, and the new edges may
+    // be of a kind a version-1 reader does not know.
+    if (version < 2) db.exec("UPDATE edges SET kind = 'listed'");
+    db.prepare("UPDATE schema_version SET version = ?, written_by = ?")
+        .bind(1, kMapSchemaVersion)
+        .bind(2, std::string(OMNINAV_VERSION_STRING))
+        .run();
     insert_runs(db, memory, persisted.runs);
     insert_places(db, memory, persisted.places, options);
     insert_edges(db, memory, persisted.edges);
@@ -390,7 +400,7 @@ VisualMemory load_map(const std::filesystem::path& file) {
   // to its previous state when opened, which a read-only connection cannot do.
   const bool writable = ::access(file.c_str(), W_OK) == 0;
   Database db(file, writable ? Database::Mode::kReadWrite : Database::Mode::kReadOnly);
-  check_map(db);
+  const std::int64_t version = check_map(db);
   db.exec("BEGIN");  // one consistent snapshot
 
   std::map<std::string, std::string> parameters;
@@ -486,6 +496,9 @@ VisualMemory load_map(const std::filesystem::path& file) {
       Edge edge;
       try {
         edge.kind = edge_kind_from_string(rows.text(2));
+        // Version 1 called every edge a sequence, also between a grid database's images; read
+        // as listed, such an edge is one step only where the two images look it.
+        if (version < 2) edge.kind = EdgeKind::kListed;
       } catch (const InputError& e) {
         throw InputError(corrupt(file, e.what()));
       }

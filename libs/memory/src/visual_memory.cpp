@@ -23,13 +23,14 @@ HeadingSource heading_source_from_string(const std::string& text) {
   throw InputError("heading source '" + text + "' is not one of: none, truth, compass");
 }
 
-std::string to_string(EdgeKind /*kind*/) {
-  return "sequence";
+std::string to_string(EdgeKind kind) {
+  return kind == EdgeKind::kListed ? "listed" : "sequence";
 }
 
 EdgeKind edge_kind_from_string(const std::string& text) {
   if (text == "sequence") return EdgeKind::kSequence;
-  throw InputError("edge kind '" + text + "' is not one of: sequence");
+  if (text == "listed") return EdgeKind::kListed;
+  throw InputError("edge kind '" + text + "' is not one of: sequence, listed");
 }
 
 VisualMemory::VisualMemory(MapParameters parameters) : parameters_(std::move(parameters)) {}

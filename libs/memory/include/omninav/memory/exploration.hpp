@@ -5,9 +5,11 @@
 //   - its dissimilarity to the last place, per compared value, reaches
 //     new_place_dissimilarity (the view has changed enough), or
 //   - every_n_frames frames have passed since the last place, or
-//   - every_m metres were travelled since the last place (only when the input has poses);
+//   - every_m metres were travelled since the last place (only when the input has poses; the
+//     map then notes exploration.every_m, the scale the lattice takes by default);
 // (each rule off when its value is 0). Each new place gets an edge from the previous place of
-// the run with their relative heading (phases, Eq. 1) and direction of motion (§3.4).
+// the run with their relative heading (phases, Eq. 1) and direction of motion (§3.4): of kind
+// sequence along a stream, listed for an unordered input (visual_memory.hpp).
 //
 // Headings. heading_source "auto" (the default) is "compass" for a stream and, for an unordered
 // input (a grid database) that records its images' headings, "truth": the database's own

@@ -46,7 +46,9 @@ struct Place {
 };
 
 enum class EdgeKind {
-  kSequence,  // the robot went from one place to the next during exploration
+  kSequence,  // the robot went from one place to the next during exploration (a stream)
+  kListed,    // the next image of an unordered input (a grid database): listed after the
+              // previous one, taken anywhere (a raster's row ends jump metres)
 };
 std::string to_string(EdgeKind kind);
 EdgeKind edge_kind_from_string(const std::string& text);
