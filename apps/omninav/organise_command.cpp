@@ -48,7 +48,10 @@ void run_organise(const GlobalOptions& global, const OrganiseOptions& options) {
   if (evaluation) {
     std::cout << "  vs truth: RMSE after Procrustes " << evaluation->rmse.all << " spacings ("
               << evaluation->rmse.interior << " interior, " << evaluation->rmse.boundary
-              << " boundary; spacing " << evaluation->spacing_m << " m)\n";
+              << " boundary; spacing " << evaluation->spacing_m << " m)\n"
+              << "  folds:    " << evaluation->folded.size() << " of "
+              << evaluation->neighbour_triangles
+              << " triangles of true neighbours turned over in the lattice\n";
   }
   const std::filesystem::path picture =
       options.picture.empty() ? std::filesystem::path(options.map).replace_extension(".lattice.png")

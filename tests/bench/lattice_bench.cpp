@@ -15,7 +15,7 @@
 #include "omninav/lattice/lattice_report.hpp"
 #include "omninav/lattice/organise.hpp"
 #include "omninav/sim/room.hpp"
-#include "support/rendered_grid_map.hpp"
+#include "support/rendered_map.hpp"
 
 namespace {
 

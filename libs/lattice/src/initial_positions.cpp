@@ -11,6 +11,7 @@
 #include "motion_blocks.hpp"
 #include "omninav/core/errors.hpp"
 #include "omninav/lattice/spring_lattice.hpp"
+#include "place_sets.hpp"
 
 namespace omninav::lattice {
 namespace {
@@ -103,14 +104,22 @@ std::vector<Eigen::Vector2d> initial_positions(int place_count,
                                                const std::vector<SpringMeasurement>& springs,
                                                const std::vector<MotionMeasurement>& motions) {
   if (place_count == 1) return {Eigen::Vector2d::Zero()};
-  std::vector<Eigen::Vector2d> positions = dead_reckoning(place_count, motions);
+  // The steps, and the other motions across the stretches the steps join.
+  detail::PlaceSets stretches(place_count);
+  for (const MotionMeasurement& motion : motions) {
+    if (motion.step) stretches.join(motion.from, motion.to);
+  }
+  std::vector<MotionMeasurement> start;
+  for (const MotionMeasurement& motion : motions) {
+    if (motion.step || !stretches.joined(motion.from, motion.to)) start.push_back(motion);
+  }
+  std::vector<Eigen::Vector2d> positions = dead_reckoning(place_count, start);
   if (positions.empty()) return classical_mds(place_count, springs);
   // Dead reckoning follows one tree of motions and carries each one's error to every place
-  // beyond it. All motions together, without a robust loss, are a linear least-squares problem
-  // (MotionResidual is linear in the positions): its one minimum averages the errors out, and
-  // is a start from which the robust problem does not fall into a fold.
+  // beyond it. The motions together, without a robust loss, are a linear least-squares problem
+  // (MotionResidual is linear in the positions): its one minimum averages the errors out.
   ceres::Problem problem;
-  detail::add_motion_blocks(problem, motions, positions, nullptr);
+  detail::add_motion_blocks(problem, start, positions, nullptr);
   problem.SetParameterBlockConstant(positions[0].data());
   ceres::Solver::Options options;
   options.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;

@@ -1,7 +1,11 @@
 #include "omninav/lattice/lattice_report.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <map>
 #include <opencv2/imgproc.hpp>
+#include <set>
+#include <utility>
 
 #include "omninav/eval/plot.hpp"
 #include "omninav/lattice/stiffness.hpp"
@@ -10,6 +14,14 @@
 namespace omninav::lattice {
 namespace {
 
+// Twice the signed area of a triangle: positive when its corners go counter-clockwise.
+double signed_area(const std::vector<Eigen::Vector2d>& points,
+                   const std::array<std::size_t, 3>& triangle) {
+  const Eigen::Vector2d u = points[triangle[1]] - points[triangle[0]];
+  const Eigen::Vector2d v = points[triangle[2]] - points[triangle[0]];
+  return u.x() * v.y() - u.y() * v.x();
+}
+
 std::vector<Eigen::Vector2d> lattice_points(const memory::VisualMemory& memory) {
   std::vector<Eigen::Vector2d> points;
   for (std::size_t i = 0; i < memory.place_count(); ++i) {
@@ -17,6 +29,45 @@ std::vector<Eigen::Vector2d> lattice_points(const memory::VisualMemory& memory) 
     points.emplace_back(p.x, p.y);
   }
   return points;
+}
+
+// The triangles of the truth's Delaunay triangulation (OpenCV's Subdiv2D) whose sides are all
+// at most `longest_side` long, as place indices in counter-clockwise order.
+std::vector<std::array<std::size_t, 3>> neighbour_triangles(
+    const std::vector<Eigen::Vector2d>& truth, double longest_side) {
+  std::map<std::pair<float, float>, std::size_t> index_of;
+  std::vector<cv::Point2f> points;
+  for (std::size_t i = 0; i < truth.size(); ++i) {
+    points.emplace_back(static_cast<float>(truth[i].x()), static_cast<float>(truth[i].y()));
+    index_of.emplace(std::pair{points.back().x, points.back().y}, i);
+  }
+  // Subdiv2D wants every point strictly inside its (integer) rectangle.
+  const cv::Rect bounds = cv::boundingRect(points);
+  cv::Subdiv2D subdivision(
+      cv::Rect(bounds.x - 1, bounds.y - 1, bounds.width + 3, bounds.height + 3));
+  subdivision.insert(points);
+  std::vector<cv::Vec6f> corners;
+  subdivision.getTriangleList(corners);
+  std::vector<std::array<std::size_t, 3>> triangles;
+  for (const cv::Vec6f& c : corners) {
+    std::array<std::size_t, 3> triangle{};
+    bool known = true;
+    for (int k = 0; k < 3; ++k) {
+      const auto found = index_of.find({c[2 * k], c[2 * k + 1]});
+      known = known && found != index_of.end();
+      if (known) triangle[k] = found->second;
+    }
+    if (!known) continue;  // a corner of Subdiv2D's outer triangle
+    bool short_sides = true;
+    for (int k = 0; k < 3; ++k) {
+      short_sides =
+          short_sides && (truth[triangle[k]] - truth[triangle[(k + 1) % 3]]).norm() <= longest_side;
+    }
+    if (!short_sides) continue;
+    if (signed_area(truth, triangle) < 0.0) std::swap(triangle[1], triangle[2]);
+    triangles.push_back(triangle);
+  }
+  return triangles;
 }
 
 }  // namespace
@@ -47,6 +98,13 @@ std::optional<LatticeEvaluation> evaluate_against_truth(const memory::VisualMemo
   evaluation.aligned = aligned.aligned;
   evaluation.rmse = eval::split_rmse_in_spacing(aligned.aligned, truth, evaluation.boundary,
                                                 evaluation.spacing_m);
+  const std::vector<std::array<std::size_t, 3>> triangles =
+      neighbour_triangles(truth, 1.5 * evaluation.spacing_m);
+  evaluation.neighbour_triangles = static_cast<int>(triangles.size());
+  for (const std::array<std::size_t, 3>& triangle : triangles) {
+    // Turned over, or flattened to a line (a lattice collapsed onto itself).
+    if (signed_area(evaluation.aligned, triangle) <= 0.0) evaluation.folded.push_back(triangle);
+  }
   return evaluation;
 }
 
@@ -73,7 +131,7 @@ cv::Mat lattice_picture(const memory::VisualMemory& memory, const OrganiseResult
   lattice.add_points("places", places);
   cv::Mat picture = lattice.render();
   if (evaluation) {
-    eval::PointsPlot truth("Truth (blue) and the aligned lattice (orange)", "x (m)", "y (m)");
+    eval::PointsPlot truth("Truth and the aligned lattice", "x (m)", "y (m)");
     std::vector<cv::Point2d> true_points, aligned_points;
     for (std::size_t i = 0; i < memory.place_count(); ++i) {
       true_points.emplace_back(memory.place(i).truth->x_m, memory.place(i).truth->y_m);
@@ -82,6 +140,12 @@ cv::Mat lattice_picture(const memory::VisualMemory& memory, const OrganiseResult
     }
     truth.add_points("truth", true_points);
     truth.add_points("lattice, aligned", aligned_points);
+    std::set<std::size_t> folded;
+    for (const std::array<std::size_t, 3>& triangle : evaluation->folded)
+      folded.insert(triangle.begin(), triangle.end());
+    std::vector<cv::Point2d> folded_points;
+    for (std::size_t place : folded) folded_points.push_back(aligned_points[place]);
+    if (!folded_points.empty()) truth.add_points("in a fold (lattice)", folded_points);
     cv::hconcat(picture, truth.render(), picture);
   }
   return picture;

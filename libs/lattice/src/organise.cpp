@@ -6,6 +6,7 @@
 #include <span>
 #include <tuple>
 
+#include "motions.hpp"
 #include "omninav/core/angles.hpp"
 #include "omninav/core/config.hpp"
 #include "omninav/core/errors.hpp"
@@ -13,7 +14,6 @@
 #include "omninav/core/parse.hpp"
 #include "omninav/core/statistics.hpp"
 #include "omninav/lattice/similar_places.hpp"
-#include "omninav/signature/motion.hpp"
 
 namespace omninav::lattice {
 namespace {
@@ -63,6 +63,7 @@ void load_organise_params(const ConfigReader& section, OrganiseParams& params) {
   section.read("motion_constraints", params.motion_constraints);
   section.read("motion_neighbours", params.motion_neighbours, 0, 100);
   section.read("step_likeness", params.step_likeness, 1.0, 10.0);
+  section.read("look_alike_residual", params.look_alike_residual, 1.0, 100.0);
   section.read("motion_direction_stddev_deg", params.motion_direction_stddev_deg, 0.1, 90.0);
   section.read("motion_length_stddev", params.motion_length_stddev, 0.01, 10.0);
   section.read("neighbour_motion_length_stddev", params.neighbour_motion_length_stddev, 0.01, 10.0);
@@ -115,55 +116,6 @@ void calibrate(const memory::VisualMemory& memory, const PlaceDissimilarities& d
                                     calibration.step_dissimilarity;
 }
 
-// The motion from a to b measured both ways (from a's view, and from b's view reversed), in the
-// lattice frame; nothing when either fit fails or a place has no heading.
-std::optional<double> motion_direction(const memory::VisualMemory& memory,
-                                       const std::vector<std::optional<double>>& headings, int a,
-                                       int b) {
-  if (!headings[a] || !headings[b]) return std::nullopt;
-  const signature::MotionEstimate forward =
-      signature::estimate_motion(memory.place(a).signature, memory.place(b).signature);
-  const signature::MotionEstimate backward =
-      signature::estimate_motion(memory.place(b).signature, memory.place(a).signature);
-  if (!forward.valid || !backward.valid) return std::nullopt;
-  const double there = wrap_angle(*headings[a] + forward.bearing_rad);
-  const double back = wrap_angle(*headings[b] + backward.bearing_rad + kPi);
-  return wrap_angle(there + 0.5 * signed_difference(back, there));
-}
-
-std::vector<MotionMeasurement> measure_motions(const memory::VisualMemory& memory,
-                                               const PlaceDissimilarities& dissimilarity,
-                                               const Ranking& ranking,
-                                               const DistanceCalibration& calibration,
-                                               const OrganiseParams& params) {
-  const std::vector<std::optional<double>> headings = lattice_headings(memory);
-  std::vector<MotionMeasurement> motions;
-  std::set<std::pair<int, int>> measured;
-  const auto add = [&](int a, int b, double length_m, double length_stddev) {
-    if (!measured.insert({std::min(a, b), std::max(a, b)}).second) return;
-    const std::optional<double> direction = motion_direction(memory, headings, a, b);
-    if (!direction) return;
-    motions.push_back({a, b, *direction, length_m, deg_to_rad(params.motion_direction_stddev_deg),
-                       length_stddev * length_m});
-  };
-  // Consecutive places first: the exploration's step is their length, when they look one step
-  // apart (a grid database's row ends, or a gap in a run, are not steps).
-  for (const memory::VisualMemory::EdgeRef& edge : memory.edges()) {
-    const int a = static_cast<int>(edge.from), b = static_cast<int>(edge.to);
-    if (calibration.distance_m(a, b, dissimilarity(a, b)) <=
-        params.step_likeness * calibration.step_m) {
-      add(a, b, calibration.step_m, params.motion_length_stddev);
-    }
-  }
-  for (int a = 0; a < static_cast<int>(ranking.size()); ++a) {
-    for (const SimilarPlace& similar : first(ranking[a], params.motion_neighbours)) {
-      add(a, similar.place, calibration.distance_m(a, similar.place, similar.dissimilarity),
-          params.neighbour_motion_length_stddev);
-    }
-  }
-  return motions;
-}
-
 }  // namespace
 
 OrganiseResult organise(memory::VisualMemory& memory, const OrganiseParams& params) {
@@ -192,7 +144,11 @@ OrganiseResult organise(memory::VisualMemory& memory, const OrganiseParams& para
     }
   }
   if (params.motion_constraints) {
-    result.motions = measure_motions(memory, dissimilarity, ranking, calibration, params);
+    detail::MeasuredMotions measured =
+        detail::measure_motions(memory, dissimilarity, ranking, calibration, params);
+    result.motions = std::move(measured.motions);
+    result.look_alikes_dropped = measured.look_alikes_dropped;
+    result.motion_joins = measured.joins;
   }
 
   LatticeParams lattice = params.lattice;
@@ -205,7 +161,10 @@ OrganiseResult organise(memory::VisualMemory& memory, const OrganiseParams& para
   log_info("organise: " + std::to_string(result.lattice.springs_kept) + " of " +
            std::to_string(result.lattice.springs_given) + " springs kept (of " +
            std::to_string(result.lattice.place_pairs) + " pairs of places), " +
-           std::to_string(result.motions.size()) + " motions; " + result.lattice.summary);
+           std::to_string(result.motions.size()) + " motions (" +
+           std::to_string(result.look_alikes_dropped) + " look-alikes dropped, " +
+           std::to_string(result.motion_joins) + " added to join the lattice); " +
+           result.lattice.summary);
   return result;
 }
 

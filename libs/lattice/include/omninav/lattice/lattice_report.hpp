@@ -1,8 +1,10 @@
 #pragma once
 // How good a lattice is, when the map has ground truth (DESIGN.md, Evaluation: Lattice): the
 // RMSE of the places after a similarity (Procrustes) alignment to the truth, in units of the
-// reference spacing, interior and boundary places apart; and the picture of Figs. 14-17.
+// reference spacing, interior and boundary places apart; whether neighbours fold over; and the
+// picture of Figs. 14-17.
 
+#include <array>
 #include <opencv2/core.hpp>
 #include <optional>
 
@@ -17,6 +19,12 @@ struct LatticeEvaluation {
   std::vector<std::size_t>
       boundary;  // places with fewer than 8 true neighbours within 1.5 spacings
   std::vector<Eigen::Vector2d> aligned;  // the lattice aligned onto the truth
+  // Folds (issue 5: "no neighbours fold over"): the triangles of true neighbours, those of the
+  // truth's Delaunay triangulation whose sides are all at most 1.5 spacings, and those of them
+  // whose corners go round the other way in the aligned lattice (a place moved across the line
+  // through two of its neighbours), or lie on one line.
+  int neighbour_triangles = 0;
+  std::vector<std::array<std::size_t, 3>> folded;
 };
 
 // Nothing when the places lack ground truth or lattice positions. Reflection is allowed in the

@@ -29,8 +29,12 @@ struct OrganiseParams {
   bool motion_constraints = true;  // motions measured from the phases (§3.4)
   int motion_neighbours = 3;       // motions to each place's most similar places, besides the
                                    // consecutive ones
-  double step_likeness = 1.5;      // consecutive places are one step apart when their
-                                   // dissimilarity is at most this many local steps
+  double step_likeness = 1.5;      // consecutive images of an unordered input (a grid
+                                   // database) are one step apart when their calibrated
+                                   // distance is at most this many steps (a stream's always are)
+  // A neighbour motion whose fit leaves more than this many times the map's median residual
+  // is a look-alike's and is dropped (motions.hpp).
+  double look_alike_residual = 1.5;
   double motion_direction_stddev_deg = 11.5;  // of a motion's measured direction
   double motion_length_stddev = 0.3;          // of a motion's length, as a share of it
   // The same for motions to most similar places, whose length is the calibrated distance: it
@@ -68,6 +72,8 @@ struct OrganiseResult {
   DistanceCalibration calibration;
   std::vector<SpringMeasurement> springs;  // every spring offered to the solver
   std::vector<MotionMeasurement> motions;
+  int look_alikes_dropped = 0;  // neighbour motions dropped for their fit's residual
+  int motion_joins = 0;         // motions added to join places the others left apart
   LatticeResult lattice;
 };
 
@@ -76,10 +82,10 @@ struct OrganiseResult {
 // places (phases), integrated along the exploration; none for places that cannot be reached.
 std::vector<std::optional<double>> lattice_headings(const memory::VisualMemory& memory);
 
-// Calibrates, builds the springs and the motions (directions from the phases, both ways, between
-// consecutive places that look one step apart and between each place and its most similar
-// places), solves, and stores each place's
-// lattice position (metres, lattice frame: place 0 at the origin, its heading along +x).
+// Calibrates, builds the springs and the motions (src/motions.hpp: a stream's steps, a grid
+// database's listed pairs that look one step apart, each place's most similar places but
+// look-alikes, and what joins the rest), solves, and stores each place's lattice position
+// (metres, lattice frame: place 0 at the origin, its heading along +x).
 // Throws UsageError when the scale is unknown (no step given and none in the map) or the map
 // has fewer than two places.
 OrganiseResult organise(memory::VisualMemory& memory, const OrganiseParams& params);

@@ -30,6 +30,9 @@ struct MotionMeasurement {
   double length_m = 0.0;
   double direction_stddev_rad = 0.15;  // §3.4: "uncertainty ... within 15%"
   double length_stddev_m = 0.1;
+  // Between consecutive places of a stream: the robot went from one to the other, so the two
+  // are surely near; the start is built on such steps (initial_positions).
+  bool step = false;
 };
 
 struct LatticeParams {
@@ -61,9 +64,11 @@ LatticeResult solve_lattice(int place_count, const std::vector<SpringMeasurement
                             const std::vector<MotionMeasurement>& motions,
                             const LatticeParams& params = {});
 
-// Starting positions: dead reckoning along the motions when every place after the first is
-// reached by one (a breadth-first tree from place 0), otherwise classical multidimensional scaling
-// of the shortest-path distances over the springs.
+// Starting positions, when the motions reach every place: the plain (not robust) least-squares
+// arrangement of the steps and of the other motions between places that the steps do not
+// already join (along a stream: its steps alone, so that look-alike motions cannot bend the
+// start; on a grid database, which has no steps: every motion, whose errors then average out).
+// Otherwise classical multidimensional scaling of the shortest-path distances over the springs.
 std::vector<Eigen::Vector2d> initial_positions(int place_count,
                                                const std::vector<SpringMeasurement>& springs,
                                                const std::vector<MotionMeasurement>& motions);

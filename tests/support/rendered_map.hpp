@@ -1,0 +1,65 @@
+#pragma once
+// Visual memories explored from trajectories rendered in a world, headings from the truth (so
+// that what is measured on them does not depend on the compass), as `omninav render
+// --trajectory ...` then `omninav explore` with heading_source truth:
+//   - rendered_grid_map: a grid sweep as a grid database lists it, every pose a place;
+//   - rendered_run_map: a stream (a route, a zig-zag), a place every `every_m` metres travelled.
+
+#include <string>
+#include <vector>
+
+#include "omninav/io/frame.hpp"
+#include "omninav/memory/exploration.hpp"
+#include "omninav/sim/renderer.hpp"
+#include "omninav/sim/trajectory.hpp"
+
+namespace omninav::testing {
+
+// Each pose of the trajectory rendered, with the pose as the frame's truth.
+inline std::vector<io::Frame> rendered_frames(const sim::World& world,
+                                              const sim::RenderParams& render,
+                                              const std::string& trajectory_spec,
+                                              const std::string& source) {
+  const sim::Renderer renderer(world, render);
+  const sim::Trajectory trajectory = sim::make_trajectory(trajectory_spec, world);
+  std::vector<io::Frame> frames(trajectory.poses.size());
+  for (std::size_t i = 0; i < trajectory.poses.size(); ++i) {
+    frames[i].index = static_cast<int>(i);
+    frames[i].image = renderer.render(trajectory.poses[i].pose);
+    frames[i].truth = trajectory.poses[i].pose;
+    frames[i].source = source + "#" + std::to_string(i);
+  }
+  return frames;
+}
+
+inline memory::VisualMemory rendered_grid_map(const sim::World& world,
+                                              const sim::RenderParams& render,
+                                              const std::string& grid_spec,
+                                              const std::string& description) {
+  memory::VisualMemory map{memory::MapParameters{}};
+  memory::ExplorationParams exploration;
+  exploration.heading_source = "truth";
+  memory::Explorer explorer(map, exploration, "grid", description, memory::FrameOrder::kUnordered);
+  for (const io::Frame& frame : rendered_frames(world, render, grid_spec, "grid")) {
+    explorer.add_place(frame);
+  }
+  return map;
+}
+
+inline memory::VisualMemory rendered_run_map(const sim::World& world,
+                                             const sim::RenderParams& render,
+                                             const std::string& trajectory_spec, double every_m,
+                                             const std::string& description) {
+  memory::VisualMemory map{memory::MapParameters{}};
+  memory::ExplorationParams exploration;
+  exploration.heading_source = "truth";
+  exploration.new_place_dissimilarity = 0.0;
+  exploration.every_m = every_m;
+  memory::Explorer explorer(map, exploration, "run", description, memory::FrameOrder::kStream);
+  for (const io::Frame& frame : rendered_frames(world, render, trajectory_spec, "run")) {
+    explorer.add(frame);
+  }
+  return map;
+}
+
+}  // namespace omninav::testing
