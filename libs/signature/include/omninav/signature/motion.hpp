@@ -28,7 +28,10 @@
 // rendered maps (30 cm grids, 60 cm zig-zags; headings from the truth), over the pairs of
 // places truly within 0.9 m, each place with its 3 most similar: bearings more than 30° off
 // fell from 41 of 1,054 pairs to 9, the 90th percentile of the error on the two grids
-// round furniture from 20-25° to 13-16°, the median from 5.3-7.1° to 5.1-5.9°.
+// round furniture from 20-25° to 13-16°, the median from 5.3-7.1° to 5.1-5.9°. The turn must
+// be known to a few degrees: held 5° off (Gaussian, one way of the two), the 90th percentile
+// rose to 17-30°, 10° off to 50-59°; letting the turn go free again after the held fit gives
+// back the free fit's errors.
 
 #include <optional>
 
