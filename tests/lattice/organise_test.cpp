@@ -76,34 +76,40 @@ TEST(Organise, AZigZagEverySixtyCentimetresDoesNotFold) {
   // Fig. 16: a 540 x 540 cm square walked in a zig-zag, a place every 60 cm, here in an empty
   // 7 x 7 m room (textured walls only: periodic enough that far places look alike). At 60 cm
   // two consecutive places look no nearer than places metres apart (docs/lattice.md), so only
-  // the stream's steps, and motions that are not a look-alike's, can keep the rows apart.
-  sim::RoomParams empty;
-  empty.size_x_m = 7.0;
-  empty.size_y_m = 7.0;
-  empty.furniture_count = 0;
-  const sim::World room = sim::make_room(empty);
-  sim::RenderParams render;
-  render.geometry.width_px = 360;
-  render.geometry.height_px = 45;
-  memory::VisualMemory map = testing::rendered_run_map(
-      room, render, "zigzag:x0=0.8,y0=0.8,x1=6.2,y1=6.2,rows=10,speed_m_s=0.3,fps=2", 0.6,
-      "organise_test.cpp");
-  ASSERT_EQ(map.place_count(), 100u);
-  const OrganiseResult result = organise(map, {});  // the scale from the map
-  EXPECT_EQ(result.calibration.step_source, "map: exploration.every_m");
-  EXPECT_DOUBLE_EQ(result.calibration.step_m, 0.6);
-  const auto steps = std::count_if(result.motions.begin(), result.motions.end(),
-                                   [](const MotionMeasurement& motion) { return motion.step; });
-  const std::optional<LatticeEvaluation> evaluation = evaluate_against_truth(map, false);
-  ASSERT_TRUE(evaluation);
-  std::cout << "zig-zag at 60 cm: RMSE " << evaluation->rmse.all << " spacings, "
-            << evaluation->folded.size() << " of " << evaluation->neighbour_triangles
-            << " neighbour triangles folded; " << steps << " steps, " << result.motions.size()
-            << " motions, " << result.look_alikes_dropped << " look-alikes dropped\n";
-  EXPECT_GE(steps, 90);
-  EXPECT_GT(evaluation->neighbour_triangles, 150);
-  EXPECT_EQ(evaluation->folded.size(), 0u);
-  EXPECT_LT(evaluation->rmse.all, 0.5);
+  // the stream's steps, and motions that are not a look-alike's, can keep the rows apart. In
+  // the room of seed 11, look-alikes along the first row pass the residual test and only the
+  // check against the steps drops them (1 fold without it).
+  for (const unsigned seed : {1u, 11u}) {
+    sim::RoomParams empty;
+    empty.size_x_m = 7.0;
+    empty.size_y_m = 7.0;
+    empty.furniture_count = 0;
+    empty.seed = seed;
+    const sim::World room = sim::make_room(empty);
+    sim::RenderParams render;
+    render.geometry.width_px = 360;
+    render.geometry.height_px = 45;
+    memory::VisualMemory map = testing::rendered_run_map(
+        room, render, "zigzag:x0=0.8,y0=0.8,x1=6.2,y1=6.2,rows=10,speed_m_s=0.3,fps=2", 0.6,
+        "organise_test.cpp");
+    ASSERT_EQ(map.place_count(), 100u);
+    const OrganiseResult result = organise(map, {});  // the scale from the map
+    EXPECT_EQ(result.calibration.step_source, "map: exploration.every_m");
+    EXPECT_DOUBLE_EQ(result.calibration.step_m, 0.6);
+    const auto steps = std::count_if(result.motions.begin(), result.motions.end(),
+                                     [](const MotionMeasurement& motion) { return motion.step; });
+    const std::optional<LatticeEvaluation> evaluation = evaluate_against_truth(map, false);
+    ASSERT_TRUE(evaluation);
+    std::cout << "zig-zag at 60 cm, room seed " << seed << ": RMSE " << evaluation->rmse.all
+              << " spacings, " << evaluation->folded.size() << " of "
+              << evaluation->neighbour_triangles << " neighbour triangles folded; " << steps
+              << " steps, " << result.motions.size() << " motions, " << result.look_alikes_dropped
+              << " look-alikes dropped\n";
+    EXPECT_GE(steps, 90) << seed;
+    EXPECT_GT(evaluation->neighbour_triangles, 150) << seed;
+    EXPECT_EQ(evaluation->folded.size(), 0u) << seed;
+    EXPECT_LT(evaluation->rmse.all, 0.5) << seed;
+  }
 }
 
 TEST(Organise, ClearErrors) {

@@ -1,5 +1,6 @@
 #include "motions.hpp"
 
+#include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
 #include <optional>
@@ -39,6 +40,49 @@ std::optional<std::pair<double, double>> fit_direction(
   return std::pair{wrap_angle(there + 0.5 * signed_difference(back, there)),
                    std::max(forward.residual, backward.residual)};
 }
+
+Eigen::Vector2d displacement(const MotionMeasurement& motion) {
+  return motion.length_m *
+         Eigen::Vector2d(std::cos(motion.direction_rad), std::sin(motion.direction_rad));
+}
+
+// Along a stream, the steps between two places that are few steps apart tell where one lies
+// from the other (dead reckoning, errors growing with the square root of the steps); a
+// neighbour motion between such places that disagrees with them by more than 3 standard
+// deviations is a look-alike's. Places not joined by unbroken steps, or too many steps apart,
+// are not judged.
+class StepCheck {
+ public:
+  StepCheck(const std::vector<Candidate>& candidates, int place_count, int max_steps,
+            double step_stddev_m)
+      : step_after_(place_count), max_steps_(max_steps), step_stddev_m_(step_stddev_m) {
+    for (const Candidate& candidate : candidates) {
+      const MotionMeasurement& motion = candidate.motion;
+      if (!motion.step) continue;
+      if (motion.to == motion.from + 1) step_after_[motion.from] = displacement(motion);
+      if (motion.from == motion.to + 1) step_after_[motion.to] = -displacement(motion);
+    }
+  }
+
+  bool contradicts(const MotionMeasurement& motion) const {
+    const int first = std::min(motion.from, motion.to), last = std::max(motion.from, motion.to);
+    if (motion.step || last - first > max_steps_) return false;
+    Eigen::Vector2d along_steps = Eigen::Vector2d::Zero();
+    for (int place = first; place < last; ++place) {
+      if (!step_after_[place]) return false;
+      along_steps += *step_after_[place];
+    }
+    const Eigen::Vector2d measured =
+        motion.from == first ? displacement(motion) : Eigen::Vector2d(-displacement(motion));
+    return (measured - along_steps).norm() >
+           3.0 * step_stddev_m_ * std::sqrt(static_cast<double>(last - first));
+  }
+
+ private:
+  std::vector<std::optional<Eigen::Vector2d>> step_after_;  // from place i to place i + 1
+  int max_steps_;
+  double step_stddev_m_;  // of one step's displacement
+};
 
 }  // namespace
 
@@ -91,10 +135,14 @@ MeasuredMotions measure_motions(const memory::VisualMemory& memory,
   std::vector<double> residuals;
   for (const Candidate& candidate : candidates) residuals.push_back(candidate.residual);
   const double limit = params.look_alike_residual * median(std::move(residuals));
+  const StepCheck steps(
+      candidates, static_cast<int>(ranking.size()), params.step_check_steps,
+      calibration.step_m * std::hypot(direction_stddev, params.motion_length_stddev));
   std::vector<Candidate> dropped;
   PlaceSets joined(static_cast<int>(ranking.size()));
   for (const Candidate& candidate : candidates) {
-    if (!candidate.motion.step && candidate.residual > limit) {
+    if (!candidate.motion.step &&
+        (candidate.residual > limit || steps.contradicts(candidate.motion))) {
       dropped.push_back(candidate);
     } else {
       result.motions.push_back(candidate.motion);

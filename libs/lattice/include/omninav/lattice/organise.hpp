@@ -35,6 +35,9 @@ struct OrganiseParams {
   // A neighbour motion whose fit leaves more than this many times the map's median residual
   // is a look-alike's and is dropped (motions.hpp).
   double look_alike_residual = 1.5;
+  // A neighbour motion between places of a stream at most this many steps apart that disagrees
+  // with the steps between them by more than 3 standard deviations is dropped too (0: never).
+  int step_check_steps = 10;
   double motion_direction_stddev_deg = 11.5;  // of a motion's measured direction
   double motion_length_stddev = 0.3;          // of a motion's length, as a share of it
   // The same for motions to most similar places, whose length is the calibrated distance: it
@@ -72,7 +75,7 @@ struct OrganiseResult {
   DistanceCalibration calibration;
   std::vector<SpringMeasurement> springs;  // every spring offered to the solver
   std::vector<MotionMeasurement> motions;
-  int look_alikes_dropped = 0;  // neighbour motions dropped for their fit's residual
+  int look_alikes_dropped = 0;  // neighbour motions dropped as look-alikes (src/motions.hpp)
   int motion_joins = 0;         // motions added to join places the others left apart
   LatticeResult lattice;
 };
