@@ -22,12 +22,17 @@ struct Candidate {
   double residual = 0.0;  // the worse of the two ways, MotionEstimate::residual
 };
 
+struct DirectionFit {
+  double direction_rad = 0.0;  // in the lattice frame
+  double residual = 0.0;       // the worse of the two ways, MotionEstimate::residual
+};
+
 // The direction from a to b in the lattice frame, fitted both ways (from a's view, and from
 // b's view reversed) with the turn held at the headings' difference; nothing when either fit
 // fails or a place has no heading.
-std::optional<std::pair<double, double>> fit_direction(
-    const memory::VisualMemory& memory, const std::vector<std::optional<double>>& headings, int a,
-    int b) {
+std::optional<DirectionFit> fit_direction(const memory::VisualMemory& memory,
+                                          const std::vector<std::optional<double>>& headings, int a,
+                                          int b) {
   if (!headings[a] || !headings[b]) return std::nullopt;
   const double turn = signed_difference(*headings[b], *headings[a]);
   const signature::MotionEstimate forward =
@@ -37,10 +42,11 @@ std::optional<std::pair<double, double>> fit_direction(
   if (!forward.valid || !backward.valid) return std::nullopt;
   const double there = wrap_angle(*headings[a] + forward.bearing_rad);
   const double back = wrap_angle(*headings[b] + backward.bearing_rad + kPi);
-  return std::pair{wrap_angle(there + 0.5 * signed_difference(back, there)),
-                   std::max(forward.residual, backward.residual)};
+  return DirectionFit{wrap_angle(there + 0.5 * signed_difference(back, there)),
+                      std::max(forward.residual, backward.residual)};
 }
 
+// From the motion's first place to its second, metres in the lattice frame.
 Eigen::Vector2d displacement(const MotionMeasurement& motion) {
   return motion.length_m *
          Eigen::Vector2d(std::cos(motion.direction_rad), std::sin(motion.direction_rad));
@@ -100,8 +106,9 @@ MeasuredMotions measure_motions(const memory::VisualMemory& memory,
     if (!tried.insert({std::min(a, b), std::max(a, b)}).second) return std::nullopt;
     const auto fit = fit_direction(memory, headings, a, b);
     if (!fit) return std::nullopt;
-    return Candidate{{a, b, fit->first, length_m, direction_stddev, length_stddev * length_m, step},
-                     fit->second};
+    return Candidate{
+        {a, b, fit->direction_rad, length_m, direction_stddev, length_stddev * length_m, step},
+        fit->residual};
   };
   const auto neighbour = [&](int a, int b, double pair_dissimilarity) {
     return measure(a, b, calibration.distance_m(a, b, pair_dissimilarity),
