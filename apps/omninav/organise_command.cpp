@@ -69,13 +69,14 @@ void add_organise_command(CLI::App& app, const GlobalOptions& global) {
       "Arrange the places of a visual memory into a 2-D lattice with the spring model "
       "(001_5bb151a4e28490b4.txt §3; Ceres): distances from similarity, stiff short springs, "
       "directions of motion from the phases. Stores the positions in the map, prints the "
-      "calibration and the solver's report, and draws <map>.lattice.png (with the truth beside "
-      "it and the Procrustes RMSE when the map has ground truth).");
+      "calibration and the solver's report, and draws <map>.lattice.png. When the map has ground "
+      "truth: the truth beside it, the Procrustes RMSE, and the folds (triangles of true "
+      "neighbours turned over in the lattice).");
   command->add_option("map", options->map, "The map (.vmem)")->required()->check(CLI::ExistingFile);
   command
       ->add_option("--step-m", options->step_m,
                    "Metres between consecutive places of the exploration (default: lattice.yaml, "
-                   "else the map's spacing policy)")
+                   "else the spacing the map was explored with, explore --every-m)")
       ->check(CLI::Range(0.0, 100.0));
   command->add_flag("--no-motion", options->no_motion,
                     "Springs only: no motions measured from the phases");
