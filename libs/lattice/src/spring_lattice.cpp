@@ -46,22 +46,26 @@ LatticeResult solve_lattice(int place_count, const std::vector<SpringMeasurement
     return result;
   }
 
-  ceres::Problem problem;
   // Cauchy rather than Huber: an aliased pair (two far places that look alike) gives a spring
   // that is simply wrong, and Cauchy's influence falls back towards zero for such residuals.
-  ceres::LossFunction* spring_loss = new ceres::CauchyLoss(params.loss_scale_m);
+  // The losses are ours, not the problem's: Ceres deletes only those it was given in a block,
+  // and a lattice without motions (or without springs) would leak the other.
+  ceres::CauchyLoss spring_loss(params.loss_scale_m);
+  // Motions measured between places that only look alike (a wrong neighbour) are outliers too.
+  ceres::CauchyLoss motion_loss(params.motion_loss_scale);
+  ceres::Problem::Options problem_options;
+  problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  ceres::Problem problem(problem_options);
   const double negligible = negligible_length_m(params.correlation_range_m, params.min_stiffness);
   for (const SpringMeasurement& spring : springs) {
     if (spring.a == spring.b || spring.length_m > negligible) continue;  // Eq. 5: K < min_stiffness
     const double stiffness = spring_stiffness(spring.length_m, params.correlation_range_m);
     problem.AddResidualBlock(SpringResidual::Create(spring.length_m, stiffness, spring.at_least),
-                             spring_loss, result.positions[spring.a].data(),
+                             &spring_loss, result.positions[spring.a].data(),
                              result.positions[spring.b].data());
     ++result.springs_kept;
   }
-  // Motions measured between places that only look alike (a wrong neighbour) are outliers too.
-  ceres::LossFunction* motion_loss = new ceres::CauchyLoss(params.motion_loss_scale);
-  detail::add_motion_blocks(problem, motions, result.positions, motion_loss);
+  detail::add_motion_blocks(problem, motions, result.positions, &motion_loss);
   for (int place = 0; place < place_count; ++place) {
     if (!problem.HasParameterBlock(result.positions[place].data())) {
       throw UsageError("lattice: place " + std::to_string(place) +
