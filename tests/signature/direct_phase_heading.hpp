@@ -1,17 +1,17 @@
 #pragma once
 // The oracle for relative_heading() (libs/signature/src/phase_heading.cpp): the computation as
 // it was before it was made faster, one std::polar per coefficient and per term of the
-// correlation. Used by tests/signature/phase_heading_test.cpp and tests/bench/signature_bench.cpp
-// only.
+// correlation (the first estimate from the phases' branches, which the speed-up left alone, is
+// shared: src/phase_branches.hpp). Used by tests/signature/phase_heading_test.cpp and
+// tests/bench/signature_bench.cpp only.
 
 #include <algorithm>
 #include <cmath>
 #include <complex>
-#include <string>
 #include <vector>
 
+#include "../../libs/signature/src/phase_branches.hpp"
 #include "omninav/core/angles.hpp"
-#include "omninav/core/errors.hpp"
 #include "omninav/signature/phase_heading.hpp"
 #include "omninav/signature/signature.hpp"
 
@@ -53,15 +53,7 @@ inline double polish(const std::vector<Complex>& cross, double turn) {
 inline PhaseHeading direct_relative_heading(const Signature& from, const Signature& to,
                                             int components = -1) {
   using direct::Complex;
-  if (!from.same_layout(to)) {
-    throw UsageError("cannot take the heading between signatures of different layouts");
-  }
-  const int m = components < 0 ? std::min(from.components, to.components) : components;
-  if (m < 2 || m > from.components || m > to.components) {
-    throw UsageError("the phase heading needs 2.." +
-                     std::to_string(std::min(from.components, to.components)) +
-                     " components, got " + std::to_string(m));
-  }
+  const int m = pair_components(from, to, components, "take the heading");
   std::vector<Complex> cross(static_cast<std::size_t>(m));
   double norm = 0.0;
   for (int line = 0; line < from.lines(); ++line) {
@@ -74,23 +66,8 @@ inline PhaseHeading direct_relative_heading(const Signature& from, const Signatu
   }
   if (norm <= 0.0) return {};
 
-  double turn = -std::arg(cross[1]);
-  double weight_sum = std::abs(cross[1]);
-  double weighted = turn * weight_sum;
-  for (int k = 2; k < m; ++k) {
-    const Complex p = cross[static_cast<std::size_t>(k)];
-    const double magnitude = std::abs(p);
-    if (magnitude <= 0.0) continue;
-    const double kk = static_cast<double>(k);
-    const double base = -std::arg(p) / kk;
-    const double period = kTwoPi / kk;
-    const double running = weight_sum > 0.0 ? weighted / weight_sum : turn;
-    const double candidate = base + period * std::round((running - base) / period);
-    const double weight = kk * magnitude;
-    weighted += weight * candidate;
-    weight_sum += weight;
-  }
-  turn = weight_sum > 0.0 ? weighted / weight_sum : turn;
+  double turn =
+      detail::turn_from_branches([&cross](int k) { return cross[static_cast<std::size_t>(k)]; }, m);
   turn = direct::polish(cross, turn);
   const int steps = 8 * m;
   double best_turn = turn;

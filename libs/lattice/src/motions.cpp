@@ -128,10 +128,8 @@ MeasuredMotions measure_motions(const memory::VisualMemory& memory,
     }
   }
   for (int a = 0; a < static_cast<int>(ranking.size()); ++a) {
-    const auto count =
-        std::min<std::size_t>(std::max(params.motion_neighbours, 0), ranking[a].size());
-    for (std::size_t k = 0; k < count; ++k) {
-      if (auto candidate = neighbour(a, ranking[a][k].place, ranking[a][k].dissimilarity)) {
+    for (const SimilarPlace& similar : most_similar_first(ranking[a], params.motion_neighbours)) {
+      if (auto candidate = neighbour(a, similar.place, similar.dissimilarity)) {
         candidates.push_back(*candidate);
       }
     }

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <set>
-#include <span>
 #include <tuple>
 
 #include "motions.hpp"
@@ -89,11 +88,6 @@ constexpr std::size_t kPlateauPairs = std::size_t{1} << 20;
 // (the first), the motions and the springs (the first few of each list).
 using Ranking = std::vector<std::vector<SimilarPlace>>;
 
-// The first `count` of a ranked list.
-std::span<const SimilarPlace> first(const std::vector<SimilarPlace>& ranked, int count) {
-  return {ranked.data(), std::min<std::size_t>(std::max(count, 0), ranked.size())};
-}
-
 void calibrate(const memory::VisualMemory& memory, const PlaceDissimilarities& dissimilarity,
                const Ranking& ranking, const OrganiseParams& params,
                DistanceCalibration& calibration) {
@@ -135,7 +129,7 @@ OrganiseResult organise(memory::VisualMemory& memory, const OrganiseParams& para
   // range where the calibrated distance follows the truth only push.
   std::set<std::pair<int, int>> sprung;
   for (int a = 0; a < count; ++a) {
-    for (const SimilarPlace& similar : first(ranking[a], params.neighbours)) {
+    for (const SimilarPlace& similar : most_similar_first(ranking[a], params.neighbours)) {
       const int b = similar.place;
       if (sprung.insert({std::min(a, b), std::max(a, b)}).second) {
         const double length_m = calibration.distance_m(a, b, similar.dissimilarity);

@@ -328,11 +328,13 @@ void append(VisualMemory& memory, const std::filesystem::path& file, const SaveO
     write_parameters(db, memory);
     // Version 1 to 2: the old edges become what load_map reads them as, and the new edges may
     // be of a kind a version-1 reader does not know.
-    if (version < 2) db.exec("UPDATE edges SET kind = 'listed'");
-    db.prepare("UPDATE schema_version SET version = ?, written_by = ?")
-        .bind(1, kMapSchemaVersion)
-        .bind(2, std::string(OMNINAV_VERSION_STRING))
-        .run();
+    if (version < 2) {
+      db.exec("UPDATE edges SET kind = 'listed'");
+      db.prepare("UPDATE schema_version SET version = ?, written_by = ?")
+          .bind(1, kMapSchemaVersion)
+          .bind(2, std::string(OMNINAV_VERSION_STRING))
+          .run();
+    }
     insert_runs(db, memory, persisted.runs);
     insert_places(db, memory, persisted.places, options);
     insert_edges(db, memory, persisted.edges);

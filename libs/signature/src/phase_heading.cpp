@@ -8,6 +8,7 @@
 
 #include "fast_math.hpp"
 #include "omninav/core/angles.hpp"
+#include "phase_branches.hpp"
 
 namespace omninav::signature {
 namespace {
@@ -152,25 +153,8 @@ PhaseHeading relative_heading(const Signature& from, const Signature& to, int co
                                 cross.im[static_cast<std::size_t>(k)]);
   };
 
-  // 1. Coarse, from k = 1.
-  double turn = -std::arg(at(1));
-  double weight_sum = std::abs(at(1));
-  double weighted = turn * weight_sum;
-  // 2. Refined with k = 2..m−1, each on the branch nearest the running estimate.
-  for (int k = 2; k < m; ++k) {
-    const std::complex<double> p = at(k);
-    const double magnitude = std::abs(p);
-    if (magnitude <= 0.0) continue;
-    const double kk = static_cast<double>(k);
-    const double base = -std::arg(p) / kk;
-    const double period = kTwoPi / kk;
-    const double running = weight_sum > 0.0 ? weighted / weight_sum : turn;
-    const double candidate = base + period * std::round((running - base) / period);
-    const double weight = kk * magnitude;
-    weighted += weight * candidate;
-    weight_sum += weight;
-  }
-  turn = weight_sum > 0.0 ? weighted / weight_sum : turn;
+  // 1-2. From the phases of k = 1, refined with k = 2..m−1.
+  double turn = detail::turn_from_branches(at, m);
   // 3. Polished on the correlation.
   turn = polish(cross, turn);
   double value = correlation_at(cross, turn).value;

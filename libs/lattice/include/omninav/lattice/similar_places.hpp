@@ -15,7 +15,9 @@
 // 24th most similar place is as unlike it as most of the map, so bounds rarely exclude a pair.
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <cstddef>
+#include <span>
 #include <vector>
 
 #include "omninav/memory/visual_memory.hpp"
@@ -26,6 +28,13 @@ struct SimilarPlace {
   int place = 0;
   double dissimilarity = 0.0;
 };
+
+// The first `count` places of a most-similar-first list (all of it when shorter, none for
+// count ≤ 0).
+inline std::span<const SimilarPlace> most_similar_first(const std::vector<SimilarPlace>& ranked,
+                                                        int count) {
+  return {ranked.data(), std::min<std::size_t>(std::max(count, 0), ranked.size())};
+}
 
 class PlaceDissimilarities {
  public:
