@@ -24,9 +24,23 @@ struct CameraConfig {
 // <config_dir>/camera.yaml: sections panorama and unwrap.
 CameraConfig load_camera_config(const std::filesystem::path& config_dir);
 
-// <config_dir>/worlds.yaml: sections room, obj and render; the render geometry is `panorama`.
+// <config_dir>/worlds.yaml: sections room, house, field, office, obj and render; the render
+// geometry is `panorama`.
 sim::WorldsConfig load_worlds_config(const std::filesystem::path& config_dir,
                                      const PanoramaGeometry& panorama);
+
+// The help of a --world option, the same in every command that renders.
+inline constexpr const char* kWorldOptionHelp =
+    "A world family, with optional keys overriding worlds.yaml: family[:key=value,...], "
+    "or a Wavefront .obj file. Families:\n"
+    "  room (size_x_m, size_y_m 3-12, height_m, boxes 0-20, walls plain|textured, seed)\n"
+    "  house (rooms 2-10, room_min_m, room_max_m, corridor_width_m, door_width_m, height_m, "
+    "furniture, seed): rooms of different looks joined by doorways and a corridor\n"
+    "  field (size_m, tussocks, grass_min_m, grass_max_m, bushes, trees, "
+    "horizon trees|hills|none, seed): grass tussocks, bushes, trees, hills and sky\n"
+    "  office (rows, desks_per_row, desk_pitch_m, row_pitch_m, column_every, height_m, "
+    "clutter 0-1, seed): identical desks at a regular pitch\n"
+    "Example: room:seed=3,size_x_m=9,boxes=12,walls=plain (docs/worlds.md lists every key)";
 
 // <config_dir>/compass.yaml: sections distance, minimiser, phase, subpixel, sampling,
 // confidence and input (libs/compass/.../compass_config.hpp).
