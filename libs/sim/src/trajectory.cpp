@@ -187,6 +187,15 @@ std::vector<TimedPose> wander(SpecArguments& args, const World& world, const std
                      "': turn_rate_deg_s, wobble_deg and clearance_m must not be negative");
   }
   require_positive(wobble_period, "wobble_period_s", spec);
+  if (x == centre_x && y == centre_y) {  // the default start: the free point nearest the centre
+    for (int ring = 1; ring < 400 && !world.is_free(x, y, clearance); ++ring) {
+      for (int k = 0; k < 8 * ring && !world.is_free(x, y, clearance); ++k) {
+        const double angle = kTwoPi * k / (8 * ring);
+        x = centre_x + 0.05 * ring * std::cos(angle);
+        y = centre_y + 0.05 * ring * std::sin(angle);
+      }
+    }
+  }
   if (!world.is_free(x, y, clearance)) {
     log_warning("trajectory '" + spec + "': the start is closer than clearance_m to an obstacle");
   }
@@ -200,22 +209,12 @@ std::vector<TimedPose> wander(SpecArguments& args, const World& world, const std
   std::vector<TimedPose> poses;
   for (int frame = 0; frame < frames; ++frame) {
     const double time = frame / fps;
-    poses.push_back(
-        {time,
-         {x, y, 0.0, wrap_angle(travel + wobble_amplitude * std::sin(wobble_phase)), 0.0, 0.0},
-         {}});
     if (time >= next_change_s) {  // a new turn: mostly gentle, sometimes sharp
       const double sign = rng.uniform(0, 2) == 0 ? -1.0 : 1.0;
       turn_rate = sign * mean_turn_rate * -std::log(1.0 - rng.uniform(0.0, 1.0));
       next_change_s = time + rng.uniform(0.5, 3.0);
     }
-    const double previous_phase = wobble_phase;
-    wobble_phase += wobble_rate / fps;
-    if (std::floor(wobble_phase / kTwoPi) != std::floor(previous_phase / kTwoPi)) {
-      wobble_amplitude = wobble * rng.uniform(0.7, 1.3);  // each cycle a little different
-      wobble_rate = kTwoPi / (wobble_period * rng.uniform(0.7, 1.3));
-    }
-    travel = wrap_angle(travel + turn_rate / fps);
+    if (frame > 0) travel = wrap_angle(travel + turn_rate / fps);
     // Steer away from what lies ahead: the smallest turn, either way, that leaves the path
     // ahead free; stand and turn when none does.
     const auto clear = [&](double direction) {
@@ -238,6 +237,17 @@ std::vector<TimedPose> wander(SpecArguments& args, const World& world, const std
           break;
         }
       }
+    }
+    // The body faces the direction it is about to travel in, give or take the wobble.
+    poses.push_back(
+        {time,
+         {x, y, 0.0, wrap_angle(travel + wobble_amplitude * std::sin(wobble_phase)), 0.0, 0.0},
+         {}});
+    const double previous_phase = wobble_phase;
+    wobble_phase += wobble_rate / fps;
+    if (std::floor(wobble_phase / kTwoPi) != std::floor(previous_phase / kTwoPi)) {
+      wobble_amplitude = wobble * rng.uniform(0.7, 1.3);  // each cycle a little different
+      wobble_rate = kTwoPi / (wobble_period * rng.uniform(0.7, 1.3));
     }
     if (moving) {
       x += step * std::cos(travel);
