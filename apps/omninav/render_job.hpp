@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "omninav/eval/plot.hpp"
 #include "omninav/sim/renderer.hpp"
 #include "omninav/sim/trajectory.hpp"
 
@@ -20,5 +21,12 @@ std::vector<cv::Mat> render_database(const sim::Renderer& renderer,
                                      const std::filesystem::path& folder,
                                      const std::string& description, bool overwrite,
                                      std::size_t preview_frames = 12);
+
+// Outlines of floor rectangles (obstacles, regions) as segments of grey level `grey`.
+void add_floor_boxes(eval::PointsPlot& plot, const std::vector<sim::FloorBox>& boxes, double grey);
+
+// The world seen from above: its floor, obstacles and named regions, and the trajectory's
+// positions (plan.png of `omninav render`).
+eval::PointsPlot floor_plan(const sim::World& world, const sim::Trajectory& trajectory);
 
 }  // namespace omninav::cli
