@@ -14,6 +14,9 @@ namespace omninav::sim {
 namespace {
 
 constexpr double kMargin_m = 6.0;  // grass, bushes and trees also grow this far round the floor
+// The near ground's texture is at most this many pixels on a side (a big field gets a coarser
+// one: at 40 px/m a 100 m field would need 20 million pixels and a gigabyte while made).
+constexpr double kMaxGroundTexture_px = 2048.0;
 const cv::Vec3f kHorizonSky{235.f, 215.f, 195.f};  // BGR: pale near the horizon
 const cv::Vec3f kZenithSky{205.f, 150.f, 95.f};    // deeper blue overhead
 
@@ -219,7 +222,10 @@ World make_field(const FieldParams& params) {
       world, flat(near_low, near_low, near_high, near_high, 0.0),
       {cv::Vec2f(0.f, 0.f), cv::Vec2f(1.f, 0.f), cv::Vec2f(1.f, 1.f), cv::Vec2f(0.f, 1.f)},
       build::add_material(world, "ground",
-                          ground_texture(near_high - near_low, params.texture_px_per_m, rng)));
+                          ground_texture(near_high - near_low,
+                                         std::min(params.texture_px_per_m,
+                                                  kMaxGroundTexture_px / (near_high - near_low)),
+                                         rng)));
   // Far away the ground is seen at grazing angles: one smooth, low-resolution texture
   // (no tiling, whose repeats would show as a chequer towards the horizon).
   const double far = hills_m * 1.05;

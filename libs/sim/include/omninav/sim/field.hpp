@@ -21,7 +21,7 @@ struct FieldParams {
   int bushes = 12;                 // obstacles, 0.3-0.9 m across
   int trees = 6;                   // obstacles: a trunk and a crown above 2 m
   std::string horizon = "trees";   // trees (a tree line before hills), hills, or none
-  double texture_px_per_m = 40.0;  // ground texture resolution
+  double texture_px_per_m = 40.0;  // ground texture resolution (at most 2048 px a side)
   int seed = 1;
 };
 
