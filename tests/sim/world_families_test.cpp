@@ -317,6 +317,24 @@ TEST(House, TheRobotStopsAtWallsAndPassesThroughDoorways) {
   EXPECT_EQ(now->name, "corridor");
 }
 
+TEST(House, DoorwaysHaveAFloor) {
+  // Looking down across a doorway from just beside it: the floor continues under the door
+  // (a threshold), no hole onto the background.
+  const World& house = cached("house").world;
+  const Region& room = house.regions[0];
+  int doorways = 0;
+  for (double x = room.area.min_x_m; x < room.area.max_x_m; x += 0.05) {
+    const double y = room.area.max_y_m + 0.06;  // inside the corridor wall's thickness
+    if (!house.is_free(x, y, 0.3)) continue;
+    ++doorways;
+    const cv::Mat view = render("house", {x, room.area.max_y_m - 0.1, 0.1, kPi / 2, 0.0, 0.0});
+    cv::Mat hole;
+    cv::inRange(view.rowRange(35, 45), cv::Scalar(39, 39, 39), cv::Scalar(41, 41, 41), hole);
+    EXPECT_EQ(cv::countNonZero(hole), 0) << "at x " << x;
+  }
+  EXPECT_GT(doorways, 0);
+}
+
 // ---- office ------------------------------------------------------------------------------
 
 TEST(Office, PlacesOneDeskPitchApartLookAlike) {

@@ -89,8 +89,9 @@ std::vector<std::pair<double, double>> openings_in(const std::vector<Door>& door
   return openings;
 }
 
-// The jambs and the lintel's underside of a doorway, closing the wall's thickness.
-void add_door_frame(World& world, const Door& door, int material) {
+// The jambs and the lintel's underside of a doorway, closing the wall's thickness, and the
+// threshold on the floor between them.
+void add_door_frame(World& world, const Door& door, int material, int threshold) {
   const float height = static_cast<float>(kDoorHeight_m);
   const auto corner = [&](double along, double across, float z) {
     return door.along_x ? cv::Vec3f(static_cast<float>(along), static_cast<float>(across), z)
@@ -104,11 +105,12 @@ void add_door_frame(World& world, const Door& door, int material) {
                      corner(along, door.wall_high, height), corner(along, door.wall_low, height)},
                     uv, material);
   }
-  build::add_quad(
-      world,
-      {corner(door.from, door.wall_low, height), corner(door.to, door.wall_low, height),
-       corner(door.to, door.wall_high, height), corner(door.from, door.wall_high, height)},
-      uv, material);
+  for (const auto& [z, surface] : {std::pair{height, material}, std::pair{0.f, threshold}}) {
+    build::add_quad(world,
+                    {corner(door.from, door.wall_low, z), corner(door.to, door.wall_low, z),
+                     corner(door.to, door.wall_high, z), corner(door.from, door.wall_high, z)},
+                    uv, surface);
+  }
 }
 
 // The wall's obstacle boxes between `low` and `high` along it, left open at the doorways.
@@ -253,7 +255,8 @@ World make_house(const HouseParams& params) {
                                         textures::ceiling(width_m, depth_m, ppm, rng)));
     world.regions.push_back({area.name, box});
   }
-  for (const Door& d : doors) add_door_frame(world, d, frame_material);
+  const int threshold_material = build::add_colour(world, "threshold", {60.f, 85.f, 110.f});
+  for (const Door& d : doors) add_door_frame(world, d, frame_material, threshold_material);
 
   // Walls between areas are obstacles, open at the doorways; the outer walls are the floor's
   // edge.
