@@ -67,6 +67,9 @@ TEST(Wander, IsSeededAndTimedBySpeedAndFrameRate) {
   EXPECT_THROW(make_trajectory("wander:length_m=5,duration_s=5", room), UsageError);
   EXPECT_THROW(make_trajectory("wander:wobble_period_s=0", room), UsageError);
   EXPECT_THROW(make_trajectory("wander:wobble=3", room), UsageError);
+  EXPECT_THROW(make_trajectory("wander:seed=-1", room), UsageError);
+  EXPECT_THROW(make_trajectory("wander:seed=1.5", room), UsageError);
+  EXPECT_THROW(make_trajectory("wander:length_m=1e12", room), UsageError);
 }
 
 TEST(Wander, HeadingWobblesAboutTheTravelAndTurnsVaryInSharpness) {

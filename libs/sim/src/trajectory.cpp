@@ -181,7 +181,11 @@ std::vector<TimedPose> wander(SpecArguments& args, const World& world, const std
   const double wobble = deg_to_rad(args.number("wobble_deg", 15.0));
   const double wobble_period = args.number("wobble_period_s", 2.0);
   const double clearance = args.number("clearance_m", 0.25);
-  cv::RNG rng(static_cast<std::uint64_t>(args.number("seed", 1)) * 2654435761ULL + 7);
+  const double seed = args.number("seed", 1);
+  if (!(seed >= 0.0 && seed <= 1e9 && seed == std::floor(seed))) {
+    throw UsageError("trajectory '" + spec + "': seed must be a whole number in [0, 1e9]");
+  }
+  cv::RNG rng(static_cast<std::uint64_t>(seed) * 2654435761ULL + 7);
   if (mean_turn_rate < 0.0 || wobble < 0.0 || clearance < 0.0) {
     throw UsageError("trajectory '" + spec +
                      "': turn_rate_deg_s, wobble_deg and clearance_m must not be negative");
@@ -200,6 +204,10 @@ std::vector<TimedPose> wander(SpecArguments& args, const World& world, const std
     log_warning("trajectory '" + spec + "': the start is closer than clearance_m to an obstacle");
   }
 
+  constexpr double kMaxFrames = 1e6;  // more than a day at 10 frames per second
+  if (!(seconds * fps < kMaxFrames)) {
+    throw UsageError("trajectory '" + spec + "': more than 1000000 poses");
+  }
   const int frames = static_cast<int>(std::floor(seconds * fps + 1e-9)) + 1;
   const double step = speed / fps;
   const double lookahead = std::max(0.5 * speed, 2.0 * step);
@@ -217,14 +225,11 @@ std::vector<TimedPose> wander(SpecArguments& args, const World& world, const std
     if (frame > 0) travel = wrap_angle(travel + turn_rate / fps);
     // Steer away from what lies ahead: the smallest turn, either way, that leaves the path
     // ahead free; stand and turn when none does.
+    // (A walker closer than clearance_m to something, at its start, keeps out of it only.)
+    const double keep = world.is_free(x, y, clearance) ? clearance : 0.0;
     const auto clear = [&](double direction) {
-      for (double ahead = step; ahead <= lookahead + 1e-9; ahead += step) {
-        if (!world.is_free(x + ahead * std::cos(direction), y + ahead * std::sin(direction),
-                           clearance)) {
-          return false;
-        }
-      }
-      return true;
+      return world.segment_is_free(x, y, x + lookahead * std::cos(direction),
+                                   y + lookahead * std::sin(direction), keep);
     };
     bool moving = clear(travel);
     for (int k = 1; !moving && k <= 18; ++k) {
