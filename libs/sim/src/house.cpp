@@ -136,6 +136,18 @@ void add_wall_obstacles(World& world, bool along_x, double start, double end, do
   add(done, end);
 }
 
+// A table: a top 4 cm thick at `height` on four legs, open underneath (a low camera sees
+// through it).
+void add_table(World& world, const FloorBox& box, float height, int material) {
+  constexpr double kLeg_m = 0.05, kInset_m = 0.04;
+  build::add_box(world, box, height, material, height - 0.04f);
+  for (const double x : {box.min_x_m + kInset_m, box.max_x_m - kInset_m - kLeg_m}) {
+    for (const double y : {box.min_y_m + kInset_m, box.max_y_m - kInset_m - kLeg_m}) {
+      build::add_box(world, {x, y, x + kLeg_m, y + kLeg_m}, height - 0.04f, material);
+    }
+  }
+}
+
 // The widths of one row of rooms along the corridor.
 std::vector<double> row_widths(int count, const HouseParams& params, cv::RNG& rng) {
   std::vector<double> widths;
@@ -297,7 +309,11 @@ World make_house(const HouseParams& params) {
       if (!free) continue;
       const int material = build::add_material(
           world, area.name + " furniture " + std::to_string(placed), textures::furniture(ppm, rng));
-      build::add_box(world, box, static_cast<float>(rng.uniform(0.4, 1.9)), material);
+      if (rng.uniform(0.0, 1.0) < 0.35) {
+        add_table(world, box, static_cast<float>(rng.uniform(0.45, 0.8)), material);
+      } else {  // a cupboard, a bed, a sofa, a shelf...
+        build::add_box(world, box, static_cast<float>(rng.uniform(0.4, 1.9)), material);
+      }
       world.obstacles.push_back(box);
       ++placed;
     }
