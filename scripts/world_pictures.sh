@@ -28,7 +28,9 @@ picture() {
 picture room "room" "grid:x0=1.5,y0=1.2,nx=2,ny=2,spacing_m=2.6"
 picture room_plain "room:seed=3,size_x_m=9,boxes=12,walls=plain" \
   "grid:x0=1.5,y0=1.2,nx=2,ny=2,spacing_m=2.8" noplan
-picture house "house" "grid:x0=2,y0=2,nx=2,ny=2,spacing_m=6"  # four rooms
+# Three rooms of the default house (rooms 1, 2 and 5 of its plan), in their free space.
+printf 'x_m,y_m,heading_deg\n2.2,2.5,0\n6.2,3.3,0\n9.5,6.5,0\n' >"$work/rooms.csv"
+picture house "house" "csv:path=$work/rooms.csv"
 picture office "office" "grid:x0=3.5,y0=4.3,nx=3,ny=1,spacing_m=2.0"  # one desk pitch apart
 # The field from one place at the heights insect-navigation studies use, then a few places.
 printf 'x_m,y_m,heading_deg,z_m\n10,10,0,0.02\n10,10,0,0.2\n10,10,0,1.5\n' \
