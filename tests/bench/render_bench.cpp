@@ -50,11 +50,11 @@ void render_family(benchmark::State& state, const std::string& spec, double z_m)
   state.counters["triangles"] = static_cast<double>(world.triangles.size());
 }
 
-BENCHMARK_CAPTURE(render_family, field_360x45_3rays_z0 .1, std::string("field"), 0.1)
+BENCHMARK_CAPTURE(render_family, field_360x45_3rays_z10cm, std::string("field"), 0.1)
     ->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(render_family, field_360x45_3rays_z1 .5, std::string("field"), 1.5)
+BENCHMARK_CAPTURE(render_family, field_360x45_3rays_z150cm, std::string("field"), 1.5)
     ->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(render_family, field20000_360x45_3rays_z0 .1, std::string("field:tussocks=20000"),
+BENCHMARK_CAPTURE(render_family, field20000_360x45_3rays_z10cm, std::string("field:tussocks=20000"),
                   0.1)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(render_family, house_360x45_3rays, std::string("house"), 1.0)
