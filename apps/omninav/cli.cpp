@@ -4,8 +4,14 @@
 
 #include "omninav/core/errors.hpp"
 #include "omninav/core/log.hpp"
+#include "omninav/core/output_file.hpp"
 
 namespace omninav::cli {
+
+std::ostream& summary(const GlobalOptions& global) {
+  static std::ostream nowhere(nullptr);  // a stream without a buffer writes nothing
+  return global.quiet ? nowhere : std::cout;
+}
 
 int run(int argc, const char* const* argv) {
   std::vector<std::string> args(argv + 1, argv + argc);
@@ -52,6 +58,7 @@ int run(const std::vector<std::string>& args) {
     std::vector<std::string> reversed(args.rbegin(),
                                       args.rend());  // CLI11 parses a reversed vector
     app.parse(reversed);
+    flush_standard_output();  // a full disk or a closed pipe is a failure, not a success
   } catch (const CLI::CallForHelp& help) {
     return app.exit(help);
   } catch (const CLI::CallForAllHelp& help) {

@@ -4,6 +4,7 @@
 
 #include <CLI/CLI.hpp>
 #include <filesystem>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -15,6 +16,10 @@ struct GlobalOptions {
   bool quiet = false;
   bool verbose = false;
 };
+
+// Where a command's summary lines go ("explored ...", "organised ..."): standard output, or
+// nowhere with -q. Output the user asked for (--out -, --format csv) goes to std::cout.
+std::ostream& summary(const GlobalOptions& global);
 
 // Runs the command line; returns the process exit status: 0 success, 1 an error in the input
 // or the configuration, 2 a usage error (bad or missing arguments).

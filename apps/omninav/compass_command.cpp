@@ -21,6 +21,7 @@
 #include "omninav/core/angles.hpp"
 #include "omninav/core/errors.hpp"
 #include "omninav/core/log.hpp"
+#include "omninav/core/output_file.hpp"
 #include "omninav/core/parse.hpp"
 #include "omninav/core/progress.hpp"
 #include "omninav/eval/png.hpp"
@@ -122,23 +123,6 @@ void write_csv(std::ostream& out, const std::vector<Row>& rows, bool with_truth)
   }
 }
 
-// Writes `text` to `path` through a temporary file renamed into place: never half a file.
-void write_file(const fs::path& path, const std::string& text) {
-  const fs::path temporary = path.string() + ".part";
-  {
-    std::ofstream file(temporary, std::ios::binary);
-    if (!file) throw InputError(path.string() + ": cannot be written");
-    file << text;
-    if (!file.flush()) throw InputError(path.string() + ": cannot be written");
-  }
-  std::error_code error;
-  fs::rename(temporary, path, error);
-  if (error) {
-    fs::remove(temporary, error);
-    throw InputError(path.string() + ": cannot be written");
-  }
-}
-
 void run_compass(const GlobalOptions& global, const CompassOptions& options) {
   compass::CompassConfig config = load_compass_config(global.config_dir);
   compass::CompassParams params = config.compass;
@@ -229,7 +213,7 @@ void run_compass(const GlobalOptions& global, const CompassOptions& options) {
     if (options.out == "-") {
       std::cout << csv.str();
     } else {
-      write_file(options.out, csv.str());
+      write_output_file(options.out, csv.str());
     }
   }
 
@@ -281,7 +265,7 @@ void run_compass(const GlobalOptions& global, const CompassOptions& options) {
         << ',' << (evaluation->slope_deg_per_s ? fixed(*evaluation->slope_deg_per_s, 5) : "") << ','
         << (evaluation->slope_deg_per_m ? fixed(*evaluation->slope_deg_per_m, 4) : "") << ','
         << fixed(evaluation->final_error_deg, 4) << '\n';
-    write_file(options.stats, csv.str());
+    write_output_file(options.stats, csv.str());
   }
   if (!options.plot.empty()) {
     std::vector<compass::CompassEstimate> all;

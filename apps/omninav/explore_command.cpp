@@ -49,6 +49,8 @@ void run_explore(const GlobalOptions& global, const ExploreOptions& options) {
     config.map.signature.normalise_brightness = options.brightness == "normalised";
   }
 
+  // The map is checked before the work: only a map may be replaced.
+  if (options.overwrite) memory::check_map_replaceable(options.out);
   std::error_code error;
   const bool extending = std::filesystem::exists(options.out, error) && !options.overwrite;
   memory::VisualMemory memory =
@@ -102,12 +104,13 @@ void run_explore(const GlobalOptions& global, const ExploreOptions& options) {
   if (explorer.frames_seen() == 0) throw InputError(options.input.string() + ": no frames");
   memory::save_map(memory, options.out, {.overwrite = options.overwrite, .after_place = {}});
   const std::size_t added = memory.place_count() - places_before;
-  std::cout << "explored " << explorer.frames_seen() << " frames of " << options.input.string()
-            << ": added " << added << (added == 1 ? " place" : " places") << " ("
-            << memory.place_count() << " in the map, " << memory.edge_count() << " edges, "
-            << memory.runs().size() << (memory.runs().size() == 1 ? " run" : " runs")
-            << ", headings: " << explorer.run().heading_source << ") to " << options.out.string()
-            << "\n";
+  summary(global) << "explored " << explorer.frames_seen() << " frames of "
+                  << options.input.string() << ": added " << added
+                  << (added == 1 ? " place" : " places") << " (" << memory.place_count()
+                  << " in the map, " << memory.edge_count() << " edges, " << memory.runs().size()
+                  << (memory.runs().size() == 1 ? " run" : " runs")
+                  << ", headings: " << explorer.run().heading_source << ") to "
+                  << options.out.string() << "\n";
 }
 
 }  // namespace

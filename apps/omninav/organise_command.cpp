@@ -31,33 +31,36 @@ void run_organise(const GlobalOptions& global, const OrganiseOptions& options) {
   memory::save_lattice_positions(options.map, positions);
 
   const lattice::DistanceCalibration& calibration = organised.calibration;
-  std::cout << std::fixed << std::setprecision(3) << "organised " << memory.place_count()
-            << " places of " << options.map.string() << "\n"
-            << "  scale:    " << calibration.step_m << " m between consecutive places ("
-            << calibration.step_source << "), dissimilarity " << calibration.step_dissimilarity
-            << " per step (median of the places' own), plateau "
-            << calibration.plateau_dissimilarity << "\n"
-            << "  springs:  " << organised.lattice.springs_kept << " kept of "
-            << organised.lattice.springs_given << " offered, of " << organised.lattice.place_pairs
-            << " pairs of places (x1 = " << calibration.correlation_range_m
-            << " m; weaker than K = " << params.lattice.min_stiffness << " dropped), "
-            << organised.lattice.motion_constraints << " motions (directions from the phases)\n"
-            << "  solver:   " << organised.lattice.summary << "\n";
+  summary(global) << std::fixed << std::setprecision(3) << "organised " << memory.place_count()
+                  << " places of " << options.map.string() << "\n"
+                  << "  scale:    " << calibration.step_m << " m between consecutive places ("
+                  << calibration.step_source << "), dissimilarity "
+                  << calibration.step_dissimilarity
+                  << " per step (median of the places' own), plateau "
+                  << calibration.plateau_dissimilarity << "\n"
+                  << "  springs:  " << organised.lattice.springs_kept << " kept of "
+                  << organised.lattice.springs_given << " offered, of "
+                  << organised.lattice.place_pairs
+                  << " pairs of places (x1 = " << calibration.correlation_range_m
+                  << " m; weaker than K = " << params.lattice.min_stiffness << " dropped), "
+                  << organised.lattice.motion_constraints
+                  << " motions (directions from the phases)\n"
+                  << "  solver:   " << organised.lattice.summary << "\n";
   const std::optional<lattice::LatticeEvaluation> evaluation =
       lattice::evaluate_against_truth(memory, organised.motions.empty());
   if (evaluation) {
-    std::cout << "  vs truth: RMSE after Procrustes " << evaluation->rmse.all << " spacings ("
-              << evaluation->rmse.interior << " interior, " << evaluation->rmse.boundary
-              << " boundary; spacing " << evaluation->spacing_m << " m)\n"
-              << "  folds:    " << evaluation->folded.size() << " of "
-              << evaluation->neighbour_triangles
-              << " triangles of true neighbours turned over in the lattice\n";
+    summary(global) << "  vs truth: RMSE after Procrustes " << evaluation->rmse.all << " spacings ("
+                    << evaluation->rmse.interior << " interior, " << evaluation->rmse.boundary
+                    << " boundary; spacing " << evaluation->spacing_m << " m)\n"
+                    << "  folds:    " << evaluation->folded.size() << " of "
+                    << evaluation->neighbour_triangles
+                    << " triangles of true neighbours turned over in the lattice\n";
   }
   const std::filesystem::path picture =
       options.picture.empty() ? std::filesystem::path(options.map).replace_extension(".lattice.png")
                               : options.picture;
   eval::save_png(lattice::lattice_picture(memory, organised, evaluation), picture);
-  std::cout << "  picture:  " << picture.string() << "\n";
+  summary(global) << "  picture:  " << picture.string() << "\n";
 }
 
 }  // namespace

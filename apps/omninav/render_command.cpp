@@ -61,9 +61,9 @@ void run_render(const GlobalOptions& global, const RenderOptions& options) {
   const std::filesystem::path sheet = options.out / "contact_sheet.png";
   eval::save_png(eval::contact_sheet(previews, captions, 2), sheet);
 
-  std::cout << "wrote " << trajectory.poses.size() << " panoramas (" << trajectory.length_m()
-            << " m travelled) to " << options.out.string()
-            << " as a BoB database; preview: " << sheet.string() << "\n";
+  summary(global) << "wrote " << trajectory.poses.size() << " panoramas (" << trajectory.length_m()
+                  << " m travelled) to " << options.out.string()
+                  << " as a BoB database; preview: " << sheet.string() << "\n";
 }
 
 }  // namespace

@@ -6,7 +6,6 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
-#include <opencv2/imgcodecs.hpp>
 #include <optional>
 #include <set>
 #include <string>
@@ -18,6 +17,7 @@
 #include "omninav/core/log.hpp"
 #include "omninav/core/panorama.hpp"
 #include "omninav/core/progress.hpp"
+#include "omninav/eval/png.hpp"
 #include "omninav/io/sequence.hpp"
 #include "omninav/omni/unwrap.hpp"
 
@@ -162,13 +162,7 @@ void run_unwrap(const UnwrapOptions& options, const GlobalOptions& global) {
         throw InputError(frame->source + ": " + unwrap_error.what());
       }
       const fs::path file = options.out / output_name(*frame, video, used_names);
-      bool ok = false;
-      try {
-        ok = cv::imwrite(file.string(), panorama);
-      } catch (const cv::Exception& write_error) {
-        throw Error(file.string() + ": cannot write the panorama: " + write_error.what());
-      }
-      if (!ok) throw Error(file.string() + ": cannot write the panorama");
+      eval::save_png(panorama, file);
       ++written;
       progress.advance();
     }

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <iomanip>
 #include <map>
 #include <numeric>
@@ -10,6 +9,7 @@
 #include <sstream>
 
 #include "omninav/core/errors.hpp"
+#include "omninav/core/output_file.hpp"
 #include "omninav/core/statistics.hpp"
 #include "omninav/eval/plot.hpp"
 #include "omninav/eval/png.hpp"
@@ -197,9 +197,7 @@ SignatureFigures write_signature_figures(const VisualMemory& memory,
   SignatureFigures out;
   const auto save_csv = [&](const std::string& name, const std::string& text) {
     const std::filesystem::path file = folder / name;
-    std::ofstream stream(file, std::ios::binary);
-    stream << text;
-    if (!stream) throw InputError(file.string() + ": cannot write");
+    write_output_file(file, text);
     out.files.push_back(file);
   };
   const auto save_plot = [&](const auto& plot, const std::string& name) {
