@@ -17,6 +17,16 @@ struct GlobalOptions {
   bool verbose = false;
 };
 
+// The range check of every number on the command line: CLI::Range lets NaN through (a NaN
+// compares false with both bounds), this refuses anything but a finite number in [min, max].
+CLI::Validator NumberRange(double min, double max);
+
+// The output folder of a command that writes many files (render, unwrap), checked before the
+// work: not a file, not the folder the input images live in (when `input` is given), and
+// empty unless --force. UsageError otherwise.
+void check_output_folder(const std::filesystem::path& out, bool force,
+                         const std::filesystem::path& input = {});
+
 // Where a command's summary lines go ("explored ...", "organised ..."): standard output, or
 // nowhere with -q. Output the user asked for (--out -, --format csv) goes to std::cout.
 std::ostream& summary(const GlobalOptions& global);

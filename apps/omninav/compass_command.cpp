@@ -318,14 +318,14 @@ void add_compass_command(CLI::App& app, const GlobalOptions& global) {
       ->add_option("--threshold", options->threshold,
                    "Override sampling.threshold_norm_amp, t of Algorithm 1 (Table 2: 0.6055)")
       ->type_name("T")
-      ->check(CLI::Range(0.0, 1.0));
+      ->check(NumberRange(0.0, 1.0));
   command
       ->add_option("-w,--width", options->width_px,
                    "Resample the panoramas to this many columns first (e.g. 360 = 1 px/deg, "
                    "1080 = 3 px/deg): circular tent filter, front kept at 0.25*width, rows "
                    "unchanged. Default: compass.yaml's input.width_px, else the input's width")
       ->type_name("COLUMNS")
-      ->check(CLI::Range(8, 16384));
+      ->check(NumberRange(8, 16384));
   command->add_flag("--truth", options->truth,
                     "Evaluate against the input's ground truth and print the statistics");
   command->add_flag("--unwrap", options->unwrap,

@@ -129,10 +129,10 @@ void add_demo_command(CLI::App& app, const GlobalOptions& global) {
       ->capture_default_str();
   command->add_option("--queries", options->queries, "Query images to localise")
       ->capture_default_str()
-      ->check(CLI::Range(1, 10000));
+      ->check(NumberRange(1, 10000));
   command->add_option("--trials", options->trials, "Random start and goal pairs to drive")
       ->capture_default_str()
-      ->check(CLI::Range(1, 10000));
+      ->check(NumberRange(1, 10000));
   command->add_option("--seed", options->seed, "Seed of the queries and the trials")
       ->capture_default_str();
   command->callback([&global, options] { Demo(global, *options).run_all(); });

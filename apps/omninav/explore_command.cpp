@@ -29,6 +29,12 @@ struct ExploreOptions {
   bool overwrite = false;
 };
 
+std::string description_number(double value) {
+  std::ostringstream text;
+  text << value;
+  return text.str();
+}
+
 void run_explore(const GlobalOptions& global, const ExploreOptions& options) {
   memory::MemoryConfig config = load_memory_config(global.config_dir);
   memory::ExplorationParams& params = config.exploration;
@@ -74,13 +80,14 @@ void run_explore(const GlobalOptions& global, const ExploreOptions& options) {
   PanoramaInput input(options.input, global.config_dir, options.unwrap);
   const bool every_frame = options.all_frames || input.is_grid();
   std::ostringstream description;
-  description << "omninav explore --input " << options.input.string() << "; "
-              << (every_frame ? std::string("every frame a place")
-                              : "new_place_dissimilarity " +
-                                    std::to_string(params.new_place_dissimilarity) +
-                                    ", every_n_frames " + std::to_string(params.every_n_frames) +
-                                    ", every_m " + std::to_string(params.every_m))
-              << ", heading_source " << params.heading_source;
+  description << "omninav explore --input " << options.input.string() << "; ";
+  if (every_frame) {
+    description << "every frame a place";
+  } else {
+    description << "new_place_dissimilarity " << params.new_place_dissimilarity
+                << ", every_n_frames " << params.every_n_frames << ", every_m " << params.every_m;
+  }
+  description << ", heading_source " << params.heading_source;
   log_info("exploring " + input.describe() + (extending ? " into " : " into a new map ") +
            options.out.string() +
            (every_frame
@@ -93,6 +100,13 @@ void run_explore(const GlobalOptions& global, const ExploreOptions& options) {
   {
     Progress progress("explore", input.size());
     while (std::optional<io::Frame> frame = input.next()) {
+      if (!every_frame && params.every_m > 0.0 && !frame->truth) {
+        // A distance travelled needs poses: without them --every-m would do nothing.
+        throw UsageError(frame->source + ": no pose, and a place every " +
+                         description_number(params.every_m) +
+                         " m (--every-m, memory.yaml exploration.every_m) needs the input's "
+                         "poses; give --every-n-frames or --dissimilarity instead");
+      }
       if (every_frame) {
         explorer.add_place(*frame);
       } else {
@@ -135,15 +149,15 @@ void add_explore_command(CLI::App& app, const GlobalOptions& global) {
       ->add_option("--dissimilarity", options->dissimilarity,
                    "New place when the mean magnitude difference per value to the last place "
                    "reaches this, grey levels; 0 = off (default: memory.yaml)")
-      ->check(CLI::Range(0.0, 1000.0));
+      ->check(NumberRange(0.0, 1000.0));
   command
       ->add_option("--every-n-frames", options->every_n_frames,
                    "Also a place every n frames; 0 = off (default: memory.yaml)")
-      ->check(CLI::Range(0, 1000000));
+      ->check(NumberRange(0, 1000000));
   command
       ->add_option("--every-m", options->every_m,
                    "Also a place every d metres travelled (inputs with poses); 0 = off")
-      ->check(CLI::Range(0.0, 1000.0));
+      ->check(NumberRange(0.0, 1000.0));
   command->add_flag("--all-frames", options->all_frames, "Make every frame a place");
   command
       ->add_option("--heading-source", options->heading_source,
@@ -165,7 +179,7 @@ void add_explore_command(CLI::App& app, const GlobalOptions& global) {
   command
       ->add_option("--components", options->components,
                    "Fourier components per row of a new map (default: memory.yaml)")
-      ->check(CLI::Range(1, 4096));
+      ->check(NumberRange(1, 4096));
   command->add_flag("--unwrap", options->unwrap,
                     "The images are raw omnidirectional images: unwrap them with camera.yaml");
   command->add_flag("--overwrite", options->overwrite,

@@ -322,18 +322,18 @@ void add_navigate_command(CLI::App& app, const GlobalOptions& global) {
           "Folder for steps.csv and path.png (with --trials: trials.csv, steps.csv, trial_<i>.png)")
       ->required();
   command->add_option("--max-steps", options->max_steps, "Step budget (default: navigation.yaml)")
-      ->check(CLI::Range(1, 100000));
+      ->check(NumberRange(1, 100000));
   command
       ->add_option("--trials", options->trials,
                    "Evaluate over this many seeded random start and goal pairs instead")
-      ->check(CLI::Range(1, 100000))
+      ->check(NumberRange(1, 100000))
       ->excludes(start)
       ->excludes(goal);
   command
       ->add_option("--seed", options->seed,
                    "Seed of the --trials start and goal poses (motion noise: navigation.yaml "
                    "robot.seed + the trial's index)")
-      ->check(CLI::Range(0, 1'000'000'000))
+      ->check(NumberRange(0, 1'000'000'000))
       ->capture_default_str();
   command->callback([&global, options] { run_navigate(global, *options); });
 }
