@@ -28,16 +28,8 @@ std::string read_bytes(const fs::path& file) {
 
 class Reliability : public CommandLineTest {
  protected:
-  // A small grid of the built-in room rendered and explored into a map.
   void make_map() {
-    grid_ = folder_ / "grid";
-    ASSERT_EQ(run_omninav({"render", "--trajectory", "grid:x0=1.2,y0=1.0,nx=6,ny=5,spacing_m=0.3",
-                           "--out", grid_.string(), "--width", "180", "--height", "24"}),
-              0)
-        << errors_;
-    map_ = folder_ / "grid.vmem";
-    ASSERT_EQ(run_omninav({"explore", "--input", grid_.string(), "--out", map_.string()}), 0)
-        << errors_;
+    render_and_explore_grid();
     image_ = io::read_all(*io::open_sequence(grid_)).at(3).source;
   }
 
@@ -59,7 +51,6 @@ class Reliability : public CommandLineTest {
     return status;
   }
 
-  fs::path grid_, map_;
   std::string image_;
 };
 
