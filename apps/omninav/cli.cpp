@@ -99,6 +99,23 @@ int run(const std::vector<std::string>& args) {
   add_demo_command(app, global);
 
   try {
+    // An unknown command is named as such (CLI11 would say "A subcommand is required").
+    for (std::size_t i = 0; i < args.size(); ++i) {
+      if (args[i] == "--config-dir") {
+        ++i;  // its value
+      } else if (!args[i].empty() && args[i][0] != '-') {
+        std::string commands;
+        bool known = false;
+        for (const CLI::App* command : app.get_subcommands({})) {
+          commands += (commands.empty() ? "" : ", ") + command->get_name();
+          known = known || command->get_name() == args[i];
+        }
+        if (!known) {
+          throw UsageError("unknown command '" + args[i] + "' (commands: " + commands + ")");
+        }
+        break;
+      }
+    }
     std::vector<std::string> reversed(args.rbegin(),
                                       args.rend());  // CLI11 parses a reversed vector
     app.parse(reversed);

@@ -2,6 +2,7 @@
 // (issue 12): each test sets up the fault and checks the exit status, the message and the
 // files left behind.
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cstdio>
@@ -201,6 +202,42 @@ TEST_F(Reliability, QuestionableRequestsAreQuestioned) {
                          (folder_ / "quiet.vmem").string()}),
             0);
   EXPECT_EQ(output_, "");
+}
+
+TEST_F(Reliability, EachBadInputIsOneLineNamingIt) {
+  const auto expect_one_line = [&](const std::vector<std::string>& args, int status,
+                                   const std::string& message) {
+    EXPECT_EQ(run_omninav(args), status) << errors_;
+    EXPECT_EQ(errors_, "error: " + message + "\n");
+  };
+  const fs::path video = folder_ / "bad.mp4";
+  std::ofstream(video, std::ios::binary) << std::string(3000, '\x5a');
+  expect_one_line(
+      {"compass", "-i", video.string()}, 1,
+      video.string() + ": cannot read as a video (unknown format or codec, or no frames)");
+  const fs::path png = folder_ / "cut.png";
+  cv::imwrite(png.string(), cv::Mat(24, 180, CV_8UC3, cv::Scalar(1, 2, 3)));
+  fs::resize_file(png, 60);
+  expect_one_line(
+      {"compass", "-i", png.string()}, 1,
+      png.string() + ": cannot read as a video (unknown format or codec, or no frames)");
+  const fs::path fifo = folder_ / "pipe.avi";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  expect_one_line({"compass", "-i", fifo.string()}, 1,
+                  fifo.string() + ": is a FIFO, not a video file");
+  expect_one_line({"frobnicate"}, 2,
+                  "unknown command 'frobnicate' (commands: render, unwrap, compass, explore, "
+                  "localise, export, organise, route, navigate, demo)");
+}
+
+TEST_F(Reliability, ACutPngIsOneLineWithoutLibpngsOwn) {
+  make_map();
+  const fs::path png = folder_ / "cut.png";
+  cv::imwrite(png.string(), cv::Mat(24, 180, CV_8UC3, cv::Scalar(1, 2, 3)));
+  fs::resize_file(png, 60);
+  EXPECT_EQ(run_omninav({"localise", map_.string(), png.string()}), 1);
+  EXPECT_EQ(errors_, "error: " + png.string() +
+                         ": cannot read image (unreadable, corrupt or not an image)\n");
 }
 
 }  // namespace

@@ -114,5 +114,13 @@ TEST(ConfigReader, ReadsFromAFile) {
   std::filesystem::remove(file);
 }
 
+TEST(ConfigReader, AKeyThatIsNotANameIsAConfigErrorNamingTheLine) {
+  const ConfigReader config = ConfigReader::from_string("a: 1\n? [b, c]\n: 2\n", "odd.yaml");
+  int a = 0;
+  config.read("a", a, 0, 10);
+  EXPECT_EQ(message_of([&] { config.require_all_known(); }),
+            "odd.yaml:2: a key must be a name, not a list or a map");
+}
+
 }  // namespace
 }  // namespace omninav
