@@ -297,8 +297,7 @@ void add_compass_command(CLI::App& app, const GlobalOptions& global) {
                    "Panoramas: a folder of images, a video, a BoB image database folder, or a CSV "
                    "of file,x_m,y_m,heading_deg (DESIGN.md, Data formats)")
       ->type_name("PATH")
-      ->required()
-      ->check(CLI::ExistingPath);
+      ->required();
   command
       ->add_option("-m,--method", options->method,
                    "alg1: Algorithm 1, a new reference image when the normalised amplitude falls\n"

@@ -299,9 +299,7 @@ void add_navigate_command(CLI::App& app, const GlobalOptions& global) {
       "trials.csv, steps.csv (every step of every trial) and trial_<i>.png for each trial that "
       "missed its goal or drove more than twice the straight line (needs a map with ground "
       "truth).");
-  command->add_option("map", options->map, "An organised map (.vmem)")
-      ->required()
-      ->check(CLI::ExistingFile);
+  command->add_option("map", options->map, "An organised map (.vmem)")->required();
   CLI::Option* world =
       command->add_option("--world", options->world, "'room' or a Wavefront .obj file")
           ->capture_default_str();
@@ -309,13 +307,11 @@ void add_navigate_command(CLI::App& app, const GlobalOptions& global) {
       ->add_option("--database", options->database,
                    "A grid of stored panoramas with poses (a BoB grid database) to navigate in, "
                    "instead of a rendered world")
-      ->check(CLI::ExistingDirectory)
       ->excludes(world);
   CLI::Option* start = command->add_option(
       "--start", options->start,
       "The robot's true start: x_m,y_m,heading_deg (on a grid: the nearest grid image)");
-  CLI::Option* goal = command->add_option("--goal", options->goal, "The goal image (a panorama)")
-                          ->check(CLI::ExistingFile);
+  CLI::Option* goal = command->add_option("--goal", options->goal, "The goal image (a panorama)");
   command
       ->add_option(
           "--out", options->out,

@@ -97,7 +97,7 @@ void add_organise_command(CLI::App& app, const GlobalOptions& global) {
       "calibration and the solver's report, and draws <map>.lattice.png. When the map has ground "
       "truth: the truth beside it, the Procrustes RMSE, and the folds (triangles of true "
       "neighbours turned over in the lattice).");
-  command->add_option("map", options->map, "The map (.vmem)")->required()->check(CLI::ExistingFile);
+  command->add_option("map", options->map, "The map (.vmem)")->required();
   command
       ->add_option("--step-m", options->step_m,
                    "Metres between consecutive places of the exploration (default: lattice.yaml, "

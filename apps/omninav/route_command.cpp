@@ -224,15 +224,9 @@ void add_route_command(CLI::App& app, const GlobalOptions& global) {
       "and the turn from the robot's heading now. Draws the lattice with every place's "
       "direction and the route (and the route over the places' true positions when the map has "
       "ground truth).");
-  command->add_option("map", options->map, "An organised map (.vmem)")
-      ->required()
-      ->check(CLI::ExistingFile);
-  command->add_option("--from", options->from, "The current image (a panorama)")
-      ->required()
-      ->check(CLI::ExistingFile);
-  command->add_option("--to", options->to, "The goal image (a panorama)")
-      ->required()
-      ->check(CLI::ExistingFile);
+  command->add_option("map", options->map, "An organised map (.vmem)")->required();
+  command->add_option("--from", options->from, "The current image (a panorama)")->required();
+  command->add_option("--to", options->to, "The goal image (a panorama)")->required();
   command->add_option("--format", options->format, "text, csv or json")
       ->check(CLI::IsMember({"text", "csv", "json"}))
       ->capture_default_str();

@@ -178,8 +178,7 @@ void add_unwrap_command(CLI::App& app, const GlobalOptions& global) {
                    "Raw images: a folder of images, a video file, a BoB image database folder, "
                    "or a CSV of file,x_m,y_m,heading_deg")
       ->type_name("PATH")
-      ->required()
-      ->check(CLI::ExistingPath);
+      ->required();
   command
       ->add_option("-o,--out", options->out,
                    "Folder for the panoramas (created if missing; must be empty unless --force)")
