@@ -124,6 +124,12 @@ void write_csv(std::ostream& out, const std::vector<Row>& rows, bool with_truth)
 }
 
 void run_compass(const GlobalOptions& global, const CompassOptions& options) {
+  // The outputs before the work, not after it.
+  if (!options.stats.empty() && !options.truth) throw UsageError("--stats needs --truth");
+  for (const fs::path& output :
+       {fs::path(options.out == "-" ? "" : options.out), options.plot, options.stats}) {
+    if (!output.empty()) check_output_path(output);
+  }
   compass::CompassConfig config = load_compass_config(global.config_dir);
   compass::CompassParams params = config.compass;
   apply_method(options.method, params);
@@ -252,7 +258,6 @@ void run_compass(const GlobalOptions& global, const CompassOptions& options) {
               << flagged << " frames with a low-confidence flag\n";
   }
   if (!options.stats.empty()) {
-    if (!evaluation) throw UsageError("--stats needs --truth");
     std::ostringstream csv;
     csv << "dataset,method,width_px,reference_frames,total_frames,max_abs_error_deg,"
            "mean_error_deg,std_error_deg,slope_deg_per_s,slope_deg_per_m,final_error_deg\n";

@@ -11,6 +11,7 @@
 #include "cli.hpp"
 #include "omninav/core/angles.hpp"
 #include "omninav/core/errors.hpp"
+#include "omninav/core/output_file.hpp"
 #include "omninav/memory/map_file.hpp"
 
 namespace omninav::cli {
@@ -48,10 +49,11 @@ class Demo {
     if (capture.empty()) {
       status = run(command);
     } else {
-      std::ofstream file(capture);
-      std::streambuf* terminal = std::cout.rdbuf(file.rdbuf());
+      OutputFile file(capture);
+      std::streambuf* terminal = std::cout.rdbuf(file.stream().rdbuf());
       status = run(command);
       std::cout.rdbuf(terminal);
+      if (status == 0) file.commit();
     }
     if (status != 0) {
       throw Error("demo: '" + what + "' failed (exit status " + std::to_string(status) + ")");

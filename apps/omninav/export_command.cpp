@@ -22,6 +22,7 @@ struct ExportOptions {
 };
 
 void run_export(const GlobalOptions& global, const ExportOptions& options) {
+  if (!options.out.empty() && options.what != "figures") check_output_path(options.out);
   const memory::VisualMemory map = memory::load_map(options.map);
   if (options.what == "figures") {
     if (options.out.empty()) throw UsageError("--what figures needs --out <folder>");

@@ -146,6 +146,24 @@ TEST_F(Reliability, OrganiseChecksItsOutputsBeforeChangingTheMap) {
   EXPECT_FALSE(memory::load_map(map_).all_have_lattice());
 }
 
+TEST_F(Reliability, EveryCommandChecksItsOutputPathsBeforeTheWork) {
+  make_map();
+  const std::string nowhere = (folder_ / "no" / "out.png").string();
+  const std::vector<std::vector<std::string>> commands = {
+      {"compass", "-i", grid_.string(), "--plot", nowhere},
+      {"compass", "-i", grid_.string(), "--out", nowhere},
+      {"route", map_.string(), "--from", image_, "--to", image_, "--plot", nowhere},
+      {"localise", map_.string(), image_, "--plot", nowhere},
+      {"export", map_.string(), "--out", nowhere},
+  };
+  for (const std::vector<std::string>& command : commands) {
+    EXPECT_EQ(run_omninav(command), 1) << command[0];
+    // Before the work: nothing printed but the one error line (route: before the lattice check).
+    EXPECT_EQ(errors_, "error: " + nowhere + ": cannot write (no folder " +
+                           (folder_ / "no").string() + ")\n");
+  }
+}
+
 TEST_F(Reliability, FiguresRefuseAnAbsurdTruthInsteadOfSpinning) {
   make_map();
   memory::VisualMemory memory = memory::load_map(map_);
