@@ -55,7 +55,7 @@ void apply_method(const std::string& method, compass::CompassParams& params) {
     sampling.policy = compass::SamplingPolicy::kThreshold;
   } else if (method.rfind("fx:", 0) == 0) {
     sampling.policy = compass::SamplingPolicy::kFixedSkip;
-    const int skip = parse_int(method.substr(3), "--method " + method);
+    const int skip = parse_int_argument(method.substr(3), "--method " + method);
     if (skip < 0) throw UsageError("--method " + method + ": the skip must be 0 or more");
     sampling.fixed_skip_frames = skip;
   } else if (method == "exhaustive" || method == "fft" || method == "phase") {

@@ -40,8 +40,9 @@ struct NavigateOptions {
 Pose2 parse_start(const std::string& text) {
   const std::vector<std::string> fields = split(text, ',');
   if (fields.size() != 3) throw UsageError("--start: expected x,y,heading_deg, got '" + text + "'");
-  return {parse_double(fields[0], "--start x"), parse_double(fields[1], "--start y"),
-          deg_to_rad(parse_double(fields[2], "--start heading"))};
+  return {parse_double_argument(fields[0], "--start x"),
+          parse_double_argument(fields[1], "--start y"),
+          deg_to_rad(parse_double_argument(fields[2], "--start heading"))};
 }
 
 // Trials that drive more than this many times the straight line get a picture of their path.

@@ -77,6 +77,10 @@ TEST_F(Reliability, NonFiniteNumbersAreRefusedByEveryNumberOption) {
               std::string::npos)
         << errors_;
   }
+  // Numbers inside a value are arguments too: exit status 2, as for an option's own.
+  EXPECT_EQ(run_omninav({"compass", "-i", in, "--method", "fx:nan"}), 2) << errors_;
+  EXPECT_EQ(run_omninav({"render", "--trajectory", "grid:nx=nan", "--out", out}), 2) << errors_;
+  EXPECT_NE(errors_.find("key nx: 'nan' is not a number"), std::string::npos) << errors_;
   EXPECT_FALSE(fs::exists(out));
 }
 
