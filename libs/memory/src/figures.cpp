@@ -10,6 +10,7 @@
 
 #include "omninav/core/errors.hpp"
 #include "omninav/core/output_file.hpp"
+#include "omninav/core/pose.hpp"
 #include "omninav/core/statistics.hpp"
 #include "omninav/eval/plot.hpp"
 #include "omninav/eval/png.hpp"
@@ -199,10 +200,6 @@ std::pair<std::vector<double>, std::vector<double>> mean_per_distance(
   return {x, y};
 }
 
-// The figures measure distances in metres between places of one room: a truth coordinate that
-// is not finite or lies farther than this is a damaged input, refused before any work.
-constexpr double kMaxTruthCoordinate_m = 1e6;
-
 }  // namespace
 
 SignatureFigures write_signature_figures(const VisualMemory& memory,
@@ -228,11 +225,10 @@ SignatureFigures write_signature_figures(const VisualMemory& memory,
   std::vector<cv::Point2d> positions;
   for (PlaceIndex i = 0; i < memory.place_count(); ++i) {
     const CameraPose& truth = *memory.place(i).truth;
-    if (!(std::fabs(truth.x_m) <= kMaxTruthCoordinate_m) ||
-        !(std::fabs(truth.y_m) <= kMaxTruthCoordinate_m)) {
+    if (!plausible_position(truth)) {
       std::ostringstream message;  // %g: 1e+160, not 161 digits
       message << "place " << i << " has a true position of (" << truth.x_m << ", " << truth.y_m
-              << ") m: not finite or farther than " << kMaxTruthCoordinate_m / 1000
+              << ") m: not finite or farther than " << kMaxPlausibleCoordinate_m / 1000
               << " km from the origin";
       throw InputError(message.str());
     }
