@@ -438,6 +438,17 @@ TEST_F(MapFileTest, OverwriteReplacesOnlyAnOmninavMapItKnows) {
   expect_same(memory, load_map(damaged));
 }
 
+TEST_F(MapFileTest, AFailedNewMapLeavesNothingBehind) {
+  const fs::path file = dir_ / "failed.vmem";
+  VisualMemory memory = synthetic_memory(10);
+  SaveOptions failing;
+  failing.after_place = [](std::size_t written) {
+    if (written == 5) throw std::runtime_error("the disk is full");
+  };
+  EXPECT_THROW(save_map(memory, file, failing), std::runtime_error);
+  EXPECT_TRUE(folder_entries(dir_).empty()) << "no map, no temporary, no lock file";
+}
+
 TEST_F(MapFileTest, AMapCannotBeWrittenOntoADevice) {
   VisualMemory memory = synthetic_memory(3);
   EXPECT_THROW(save_map(memory, "/dev/full", {.overwrite = true, .after_place = {}}), Error);
