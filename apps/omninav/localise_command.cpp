@@ -310,10 +310,10 @@ void run_localise(const GlobalOptions& global, const LocaliseOptions& options) {
     }
   }
   if (results.empty()) throw UsageError("no query images");
-  if (!options.plot.empty() && results.size() == 1) eval::save_png(first_figure, options.plot);
   if (results.size() == 1 && results.front().no_match) {
     throw InputError(results.front().source + ": " + *results.front().no_match);
   }
+  if (!options.plot.empty() && results.size() == 1) eval::save_png(first_figure, options.plot);
   const auto unmatched = std::count_if(results.begin(), results.end(),
                                        [](const QueryResult& q) { return q.no_match.has_value(); });
   if (unmatched > 0) {
