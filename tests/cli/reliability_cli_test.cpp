@@ -153,6 +153,10 @@ TEST_F(Reliability, OrganiseChecksItsOutputsBeforeChangingTheMap) {
   EXPECT_EQ(read_bytes(map_), before);
   EXPECT_FALSE(memory::load_map(map_).all_have_lattice());
 
+  ASSERT_EQ(run_omninav({"organise", map_.string(), "--step-m", "0.3"}), 0) << errors_;
+  EXPECT_NE(output_.find("vs truth: RMSE"), std::string::npos) << output_;
+  EXPECT_EQ(output_.find("nan"), std::string::npos) << output_;  // "no interior places"
+
   // A truth of 1e12 mm is not compared with (OpenCV's triangulation threw on it, after the
   // map had been changed); the lattice itself does not need it.
   memory::VisualMemory memory = memory::load_map(map_);
