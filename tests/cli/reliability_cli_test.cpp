@@ -249,17 +249,7 @@ TEST_F(Reliability, EachBadInputIsOneLineNamingIt) {
     EXPECT_EQ(run_omninav(args), status) << errors_;
     EXPECT_EQ(errors_, "error: " + message + "\n");
   };
-  const fs::path video = folder_ / "bad.mp4";
-  std::ofstream(video, std::ios::binary) << std::string(3000, '\x5a');
-  expect_one_line(
-      {"compass", "-i", video.string()}, 1,
-      video.string() + ": cannot read as a video (unknown format or codec, or no frames)");
-  const fs::path png = folder_ / "cut.png";
-  cv::imwrite(png.string(), cv::Mat(24, 180, CV_8UC3, cv::Scalar(1, 2, 3)));
-  fs::resize_file(png, 60);
-  expect_one_line(
-      {"compass", "-i", png.string()}, 1,
-      png.string() + ": cannot read as a video (unknown format or codec, or no frames)");
+  // (A bad video: tests/io/video_sequence_test.cpp, where OpenCV's own leaks are tolerated.)
   const fs::path fifo = folder_ / "pipe.avi";
   ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
   expect_one_line({"compass", "-i", fifo.string()}, 1,
