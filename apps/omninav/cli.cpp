@@ -1,11 +1,61 @@
 #include "cli.hpp"
 
 #include <iostream>
+#include <limits>
+#include <sstream>
 
 #include "omninav/core/errors.hpp"
 #include "omninav/core/log.hpp"
+#include "omninav/core/output_file.hpp"
+#include "omninav/core/parse.hpp"
 
 namespace omninav::cli {
+
+CLI::Validator NumberRange(double min, double max) {
+  std::ostringstream range;
+  if (max == std::numeric_limits<double>::max()) {
+    range << ">= " << min;
+  } else {
+    range << "in [" << min << ", " << max << "]";
+  }
+  return CLI::Validator(
+      [min, max, range = range.str()](std::string& text) -> std::string {
+        double value = 0.0;
+        try {
+          value = parse_double(text, "value");  // finite, or InputError
+        } catch (const InputError&) {
+          return "'" + text + "' is not a finite number " + range;
+        }
+        if (value < min || value > max) return "'" + text + "' is not " + range;
+        return "";
+      },
+      range.str());
+}
+
+// The output folder must not be a file, nor the folder the input images live in (the PNGs
+// could overwrite them), nor hold anything unless --force.
+void check_output_folder(const std::filesystem::path& out, bool force,
+                         const std::filesystem::path& input) {
+  namespace fs = std::filesystem;
+  std::error_code error;
+  if (!fs::exists(out, error)) return;
+  if (!fs::is_directory(out, error)) {
+    throw UsageError(out.string() + ": exists and is not a folder");
+  }
+  const fs::path input_folder = fs::is_directory(input, error) ? input : input.parent_path();
+  if (!input.empty() &&
+      fs::equivalent(out, input_folder.empty() ? fs::path(".") : input_folder, error)) {
+    throw UsageError(out.string() + ": is the input's folder; write the panoramas elsewhere");
+  }
+  if (!force && !fs::is_empty(out, error)) {
+    throw UsageError(out.string() + ": is not empty; choose an empty folder or add --force");
+  }
+}
+
+std::ostream& summary(const GlobalOptions& global) {
+  static std::ostream nowhere(nullptr);  // a stream without a buffer writes nothing
+  return global.quiet ? nowhere : std::cout;
+}
 
 int run(int argc, const char* const* argv) {
   std::vector<std::string> args(argv + 1, argv + argc);
@@ -49,9 +99,27 @@ int run(const std::vector<std::string>& args) {
   add_demo_command(app, global);
 
   try {
+    // An unknown command is named as such (CLI11 would say "A subcommand is required").
+    for (std::size_t i = 0; i < args.size(); ++i) {
+      if (args[i] == "--config-dir") {
+        ++i;  // its value
+      } else if (!args[i].empty() && args[i][0] != '-') {
+        std::string commands;
+        bool known = false;
+        for (const CLI::App* command : app.get_subcommands({})) {
+          commands += (commands.empty() ? "" : ", ") + command->get_name();
+          known = known || command->get_name() == args[i];
+        }
+        if (!known) {
+          throw UsageError("unknown command '" + args[i] + "' (commands: " + commands + ")");
+        }
+        break;
+      }
+    }
     std::vector<std::string> reversed(args.rbegin(),
                                       args.rend());  // CLI11 parses a reversed vector
     app.parse(reversed);
+    flush_standard_output();  // a full disk or a closed pipe is a failure, not a success
   } catch (const CLI::CallForHelp& help) {
     return app.exit(help);
   } catch (const CLI::CallForAllHelp& help) {

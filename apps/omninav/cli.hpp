@@ -4,6 +4,7 @@
 
 #include <CLI/CLI.hpp>
 #include <filesystem>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -15,6 +16,20 @@ struct GlobalOptions {
   bool quiet = false;
   bool verbose = false;
 };
+
+// The range check of every number on the command line: CLI::Range lets NaN through (a NaN
+// compares false with both bounds), this refuses anything but a finite number in [min, max].
+CLI::Validator NumberRange(double min, double max);
+
+// The output folder of a command that writes many files (render, unwrap), checked before the
+// work: not a file, not the folder the input images live in (when `input` is given), and
+// empty unless --force. UsageError otherwise.
+void check_output_folder(const std::filesystem::path& out, bool force,
+                         const std::filesystem::path& input = {});
+
+// Where a command's summary lines go ("explored ...", "organised ..."): standard output, or
+// nowhere with -q. Output the user asked for (--out -, --format csv) goes to std::cout.
+std::ostream& summary(const GlobalOptions& global);
 
 // Runs the command line; returns the process exit status: 0 success, 1 an error in the input
 // or the configuration, 2 a usage error (bad or missing arguments).

@@ -21,6 +21,7 @@
 #include "omninav/core/angles.hpp"
 #include "omninav/core/errors.hpp"
 #include "omninav/core/log.hpp"
+#include "omninav/core/output_file.hpp"
 #include "omninav/core/parse.hpp"
 #include "omninav/core/progress.hpp"
 #include "omninav/eval/png.hpp"
@@ -54,7 +55,7 @@ void apply_method(const std::string& method, compass::CompassParams& params) {
     sampling.policy = compass::SamplingPolicy::kThreshold;
   } else if (method.rfind("fx:", 0) == 0) {
     sampling.policy = compass::SamplingPolicy::kFixedSkip;
-    const int skip = parse_int(method.substr(3), "--method " + method);
+    const int skip = parse_int_argument(method.substr(3), "--method " + method);
     if (skip < 0) throw UsageError("--method " + method + ": the skip must be 0 or more");
     sampling.fixed_skip_frames = skip;
   } else if (method == "exhaustive" || method == "fft" || method == "phase") {
@@ -122,24 +123,13 @@ void write_csv(std::ostream& out, const std::vector<Row>& rows, bool with_truth)
   }
 }
 
-// Writes `text` to `path` through a temporary file renamed into place: never half a file.
-void write_file(const fs::path& path, const std::string& text) {
-  const fs::path temporary = path.string() + ".part";
-  {
-    std::ofstream file(temporary, std::ios::binary);
-    if (!file) throw InputError(path.string() + ": cannot be written");
-    file << text;
-    if (!file.flush()) throw InputError(path.string() + ": cannot be written");
-  }
-  std::error_code error;
-  fs::rename(temporary, path, error);
-  if (error) {
-    fs::remove(temporary, error);
-    throw InputError(path.string() + ": cannot be written");
-  }
-}
-
 void run_compass(const GlobalOptions& global, const CompassOptions& options) {
+  // The outputs before the work, not after it.
+  if (!options.stats.empty() && !options.truth) throw UsageError("--stats needs --truth");
+  for (const fs::path& output :
+       {fs::path(options.out == "-" ? "" : options.out), options.plot, options.stats}) {
+    if (!output.empty()) check_output_path(output);
+  }
   compass::CompassConfig config = load_compass_config(global.config_dir);
   compass::CompassParams params = config.compass;
   apply_method(options.method, params);
@@ -229,7 +219,7 @@ void run_compass(const GlobalOptions& global, const CompassOptions& options) {
     if (options.out == "-") {
       std::cout << csv.str();
     } else {
-      write_file(options.out, csv.str());
+      write_output_file(options.out, csv.str());
     }
   }
 
@@ -268,7 +258,6 @@ void run_compass(const GlobalOptions& global, const CompassOptions& options) {
               << flagged << " frames with a low-confidence flag\n";
   }
   if (!options.stats.empty()) {
-    if (!evaluation) throw UsageError("--stats needs --truth");
     std::ostringstream csv;
     csv << "dataset,method,width_px,reference_frames,total_frames,max_abs_error_deg,"
            "mean_error_deg,std_error_deg,slope_deg_per_s,slope_deg_per_m,final_error_deg\n";
@@ -281,7 +270,7 @@ void run_compass(const GlobalOptions& global, const CompassOptions& options) {
         << ',' << (evaluation->slope_deg_per_s ? fixed(*evaluation->slope_deg_per_s, 5) : "") << ','
         << (evaluation->slope_deg_per_m ? fixed(*evaluation->slope_deg_per_m, 4) : "") << ','
         << fixed(evaluation->final_error_deg, 4) << '\n';
-    write_file(options.stats, csv.str());
+    write_output_file(options.stats, csv.str());
   }
   if (!options.plot.empty()) {
     std::vector<compass::CompassEstimate> all;
@@ -313,8 +302,7 @@ void add_compass_command(CLI::App& app, const GlobalOptions& global) {
                    "Panoramas: a folder of images, a video, a BoB image database folder, or a CSV "
                    "of file,x_m,y_m,heading_deg (DESIGN.md, Data formats)")
       ->type_name("PATH")
-      ->required()
-      ->check(CLI::ExistingPath);
+      ->required();
   command
       ->add_option("-m,--method", options->method,
                    "alg1: Algorithm 1, a new reference image when the normalised amplitude falls\n"
@@ -334,14 +322,14 @@ void add_compass_command(CLI::App& app, const GlobalOptions& global) {
       ->add_option("--threshold", options->threshold,
                    "Override sampling.threshold_norm_amp, t of Algorithm 1 (Table 2: 0.6055)")
       ->type_name("T")
-      ->check(CLI::Range(0.0, 1.0));
+      ->check(NumberRange(0.0, 1.0));
   command
       ->add_option("-w,--width", options->width_px,
                    "Resample the panoramas to this many columns first (e.g. 360 = 1 px/deg, "
                    "1080 = 3 px/deg): circular tent filter, front kept at 0.25*width, rows "
                    "unchanged. Default: compass.yaml's input.width_px, else the input's width")
       ->type_name("COLUMNS")
-      ->check(CLI::Range(8, 16384));
+      ->check(NumberRange(8, 16384));
   command->add_flag("--truth", options->truth,
                     "Evaluate against the input's ground truth and print the statistics");
   command->add_flag("--unwrap", options->unwrap,

@@ -11,6 +11,7 @@
 #include "cli.hpp"
 #include "omninav/core/angles.hpp"
 #include "omninav/core/errors.hpp"
+#include "omninav/core/output_file.hpp"
 #include "omninav/memory/map_file.hpp"
 
 namespace omninav::cli {
@@ -48,10 +49,11 @@ class Demo {
     if (capture.empty()) {
       status = run(command);
     } else {
-      std::ofstream file(capture);
-      std::streambuf* terminal = std::cout.rdbuf(file.rdbuf());
+      OutputFile file(capture);
+      std::streambuf* terminal = std::cout.rdbuf(file.stream().rdbuf());
       status = run(command);
       std::cout.rdbuf(terminal);
+      if (status == 0) file.commit();
     }
     if (status != 0) {
       throw Error("demo: '" + what + "' failed (exit status " + std::to_string(status) + ")");
@@ -129,10 +131,10 @@ void add_demo_command(CLI::App& app, const GlobalOptions& global) {
       ->capture_default_str();
   command->add_option("--queries", options->queries, "Query images to localise")
       ->capture_default_str()
-      ->check(CLI::Range(1, 10000));
+      ->check(NumberRange(1, 10000));
   command->add_option("--trials", options->trials, "Random start and goal pairs to drive")
       ->capture_default_str()
-      ->check(CLI::Range(1, 10000));
+      ->check(NumberRange(1, 10000));
   command->add_option("--seed", options->seed, "Seed of the queries and the trials")
       ->capture_default_str();
   command->callback([&global, options] { Demo(global, *options).run_all(); });

@@ -29,6 +29,12 @@ struct ExploreOptions {
   bool overwrite = false;
 };
 
+std::string description_number(double value) {
+  std::ostringstream text;
+  text << value;
+  return text.str();
+}
+
 void run_explore(const GlobalOptions& global, const ExploreOptions& options) {
   memory::MemoryConfig config = load_memory_config(global.config_dir);
   memory::ExplorationParams& params = config.exploration;
@@ -49,6 +55,8 @@ void run_explore(const GlobalOptions& global, const ExploreOptions& options) {
     config.map.signature.normalise_brightness = options.brightness == "normalised";
   }
 
+  // The map is checked before the work: only a map may be replaced.
+  if (options.overwrite) memory::check_map_replaceable(options.out);
   std::error_code error;
   const bool extending = std::filesystem::exists(options.out, error) && !options.overwrite;
   memory::VisualMemory memory =
@@ -72,13 +80,14 @@ void run_explore(const GlobalOptions& global, const ExploreOptions& options) {
   PanoramaInput input(options.input, global.config_dir, options.unwrap);
   const bool every_frame = options.all_frames || input.is_grid();
   std::ostringstream description;
-  description << "omninav explore --input " << options.input.string() << "; "
-              << (every_frame ? std::string("every frame a place")
-                              : "new_place_dissimilarity " +
-                                    std::to_string(params.new_place_dissimilarity) +
-                                    ", every_n_frames " + std::to_string(params.every_n_frames) +
-                                    ", every_m " + std::to_string(params.every_m))
-              << ", heading_source " << params.heading_source;
+  description << "omninav explore --input " << options.input.string() << "; ";
+  if (every_frame) {
+    description << "every frame a place";
+  } else {
+    description << "new_place_dissimilarity " << params.new_place_dissimilarity
+                << ", every_n_frames " << params.every_n_frames << ", every_m " << params.every_m;
+  }
+  description << ", heading_source " << params.heading_source;
   log_info("exploring " + input.describe() + (extending ? " into " : " into a new map ") +
            options.out.string() +
            (every_frame
@@ -91,6 +100,13 @@ void run_explore(const GlobalOptions& global, const ExploreOptions& options) {
   {
     Progress progress("explore", input.size());
     while (std::optional<io::Frame> frame = input.next()) {
+      if (!every_frame && params.every_m > 0.0 && !frame->truth) {
+        // A distance travelled needs poses: without them --every-m would do nothing.
+        throw UsageError(frame->source + ": no pose, and a place every " +
+                         description_number(params.every_m) +
+                         " m (--every-m, memory.yaml exploration.every_m) needs the input's "
+                         "poses; give --every-n-frames or --dissimilarity instead");
+      }
       if (every_frame) {
         explorer.add_place(*frame);
       } else {
@@ -102,12 +118,13 @@ void run_explore(const GlobalOptions& global, const ExploreOptions& options) {
   if (explorer.frames_seen() == 0) throw InputError(options.input.string() + ": no frames");
   memory::save_map(memory, options.out, {.overwrite = options.overwrite, .after_place = {}});
   const std::size_t added = memory.place_count() - places_before;
-  std::cout << "explored " << explorer.frames_seen() << " frames of " << options.input.string()
-            << ": added " << added << (added == 1 ? " place" : " places") << " ("
-            << memory.place_count() << " in the map, " << memory.edge_count() << " edges, "
-            << memory.runs().size() << (memory.runs().size() == 1 ? " run" : " runs")
-            << ", headings: " << explorer.run().heading_source << ") to " << options.out.string()
-            << "\n";
+  summary(global) << "explored " << explorer.frames_seen() << " frames of "
+                  << options.input.string() << ": added " << added
+                  << (added == 1 ? " place" : " places") << " (" << memory.place_count()
+                  << " in the map, " << memory.edge_count() << " edges, " << memory.runs().size()
+                  << (memory.runs().size() == 1 ? " run" : " runs")
+                  << ", headings: " << explorer.run().heading_source << ") to "
+                  << options.out.string() << "\n";
 }
 
 }  // namespace
@@ -132,15 +149,15 @@ void add_explore_command(CLI::App& app, const GlobalOptions& global) {
       ->add_option("--dissimilarity", options->dissimilarity,
                    "New place when the mean magnitude difference per value to the last place "
                    "reaches this, grey levels; 0 = off (default: memory.yaml)")
-      ->check(CLI::Range(0.0, 1000.0));
+      ->check(NumberRange(0.0, 1000.0));
   command
       ->add_option("--every-n-frames", options->every_n_frames,
                    "Also a place every n frames; 0 = off (default: memory.yaml)")
-      ->check(CLI::Range(0, 1000000));
+      ->check(NumberRange(0, 1000000));
   command
       ->add_option("--every-m", options->every_m,
                    "Also a place every d metres travelled (inputs with poses); 0 = off")
-      ->check(CLI::Range(0.0, 1000.0));
+      ->check(NumberRange(0.0, 1000.0));
   command->add_flag("--all-frames", options->all_frames, "Make every frame a place");
   command
       ->add_option("--heading-source", options->heading_source,
@@ -162,7 +179,7 @@ void add_explore_command(CLI::App& app, const GlobalOptions& global) {
   command
       ->add_option("--components", options->components,
                    "Fourier components per row of a new map (default: memory.yaml)")
-      ->check(CLI::Range(1, 4096));
+      ->check(NumberRange(1, 4096));
   command->add_flag("--unwrap", options->unwrap,
                     "The images are raw omnidirectional images: unwrap them with camera.yaml");
   command->add_flag("--overwrite", options->overwrite,

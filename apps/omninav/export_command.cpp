@@ -1,11 +1,12 @@
 // omninav export: a map's places and edges for other tools (CSV, GraphML), and the figures of
 // 001_5bb151a4e28490b4.txt §2 from a map of a rendered grid.
-#include <fstream>
 #include <iostream>
+#include <optional>
 
 #include "cli.hpp"
 #include "omninav/core/errors.hpp"
 #include "omninav/core/log.hpp"
+#include "omninav/core/output_file.hpp"
 #include "omninav/memory/export.hpp"
 #include "omninav/memory/figures.hpp"
 #include "omninav/memory/map_file.hpp"
@@ -20,21 +21,19 @@ struct ExportOptions {
   std::filesystem::path out;
 };
 
-void run_export(const ExportOptions& options) {
+void run_export(const GlobalOptions& global, const ExportOptions& options) {
+  if (!options.out.empty() && options.what != "figures") check_output_path(options.out);
   const memory::VisualMemory map = memory::load_map(options.map);
   if (options.what == "figures") {
     if (options.out.empty()) throw UsageError("--what figures needs --out <folder>");
     const memory::SignatureFigures figures = memory::write_signature_figures(map, options.out);
-    std::cout << figures.summary;
+    summary(global) << figures.summary;
     log_info("wrote " + std::to_string(figures.files.size()) + " files to " + options.out.string());
     return;
   }
-  std::ofstream file;
-  if (!options.out.empty()) {
-    file.open(options.out, std::ios::binary);
-    if (!file) throw InputError(options.out.string() + ": cannot write");
-  }
-  std::ostream& out = options.out.empty() ? std::cout : file;
+  std::optional<OutputFile> file;
+  if (!options.out.empty()) file.emplace(options.out);
+  std::ostream& out = file ? file->stream() : std::cout;
   if (options.format == "graphml") {
     // GraphML holds the whole graph: places as nodes, edges as edges.
     memory::write_graphml(map, out);
@@ -43,14 +42,12 @@ void run_export(const ExportOptions& options) {
   } else {
     memory::write_places_csv(map, out);
   }
-  out.flush();
-  if (!out)
-    throw InputError((options.out.empty() ? "stdout" : options.out.string()) + ": write failed");
+  if (file) file->commit();
 }
 
 }  // namespace
 
-void add_export_command(CLI::App& app, const GlobalOptions& /*global*/) {
+void add_export_command(CLI::App& app, const GlobalOptions& global) {
   auto options = std::make_shared<ExportOptions>();
   CLI::App* command = app.add_subcommand(
       "export",
@@ -68,7 +65,7 @@ void add_export_command(CLI::App& app, const GlobalOptions& /*global*/) {
       ->capture_default_str();
   command->add_option("--out", options->out,
                       "File to write (default: standard output); a folder for --what figures");
-  command->callback([options] { run_export(*options); });
+  command->callback([&global, options] { run_export(global, *options); });
 }
 
 }  // namespace omninav::cli

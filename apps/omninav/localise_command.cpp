@@ -1,4 +1,5 @@
 // omninav localise: hierarchical localisation of query images in a visual memory.
+#include <algorithm>
 #include <iomanip>
 #include <iostream>
 #include <sstream>
@@ -8,10 +9,13 @@
 #include "omninav/core/angles.hpp"
 #include "omninav/core/errors.hpp"
 #include "omninav/core/log.hpp"
+#include "omninav/core/output_file.hpp"
+#include "omninav/core/parse.hpp"
 #include "omninav/eval/png.hpp"
 #include "omninav/memory/figures.hpp"
 #include "omninav/memory/localisation.hpp"
 #include "omninav/memory/map_file.hpp"
+#include "omninav/navigation/memory_places.hpp"
 #include "panorama_input.hpp"
 
 namespace omninav::cli {
@@ -20,8 +24,8 @@ namespace {
 struct LocaliseOptions {
   std::filesystem::path map;
   std::vector<std::filesystem::path> queries;
-  std::string levels;  // empty: memory.yaml
-  int top_k = 0;       // 0: memory.yaml
+  std::optional<std::string> levels;  // none: memory.yaml
+  int top_k = 0;                      // 0: memory.yaml
   std::string format = "text";
   std::filesystem::path plot;
   bool exhaustive = false;
@@ -71,8 +75,8 @@ std::string csv_field(const std::string& text) {
   return out + "\"";
 }
 
-// The figure of query `index`: <stem>_<index><ext> next to --plot. Figures are written as the
-// queries are read; when there was only one, it is renamed to the --plot path itself.
+// The figure of query `index`: <stem>_<index><ext> next to --plot. A single query's figure is
+// the --plot path itself: the first figure waits until a second query shows which it is.
 std::filesystem::path numbered_plot_file(const std::filesystem::path& plot, std::size_t index) {
   std::ostringstream name;
   name << plot.stem().string() << '_' << std::setw(4) << std::setfill('0') << index
@@ -85,13 +89,14 @@ struct QueryResult {
   memory::Localisation result;
   std::optional<CameraPose> truth;
   std::optional<memory::LocalisationScore::Query> score;
+  std::optional<std::string> no_match;  // why the query matches no place of the map
 };
 
 void print_text(const QueryResult& q, const memory::VisualMemory& map) {
   const memory::Localisation& r = q.result;
   std::cout << q.source << ":";
-  if (r.best.empty()) {
-    std::cout << " the map has no places\n";
+  if (q.no_match) {
+    std::cout << ' ' << *q.no_match << "\n";
     return;
   }
   const memory::PlaceMatch& best = r.best.front();
@@ -237,15 +242,23 @@ std::string to_json(const QueryResult& q) {
 void run_localise(const GlobalOptions& global, const LocaliseOptions& options) {
   memory::MemoryConfig config = load_memory_config(global.config_dir);
   memory::LocalisationParams params = config.localisation;
-  if (!options.levels.empty()) {
-    params.hierarchy.levels = signature::parse_levels(options.levels, "--levels");
+  if (options.levels) {
+    if (trim(*options.levels).empty()) {
+      throw UsageError(
+          "--levels is empty: give the components compared at each level, e.g. 2,5,15");
+    }
+    params.hierarchy.levels = signature::parse_levels(*options.levels, "--levels");
   }
   if (options.top_k > 0) params.top_k = options.top_k;
+  if (!options.plot.empty()) check_output_path(options.plot);  // before the work
 
   const memory::VisualMemory map = memory::load_map(options.map);
   if (map.place_count() == 0) throw InputError(options.map.string() + ": the map has no places");
   const memory::Localiser localiser(map, params);
   signature::SignatureExtractor extractor(map.parameters().signature);
+  // A query matches a place by route's and navigate's criterion (navigation.yaml).
+  const double match_limit =
+      navigation::match_limit(map, load_navigation_config(global.config_dir).route);
   std::optional<memory::LocalisationScore> score;
   if (map.all_have_truth()) score.emplace(map);
   if (!options.plot.empty() && !memory::place_positions(map)) {
@@ -255,6 +268,7 @@ void run_localise(const GlobalOptions& global, const LocaliseOptions& options) {
   }
 
   std::vector<QueryResult> results;
+  cv::Mat first_figure;  // --plot: the first query's, written once the count is known
   for (const std::filesystem::path& query : options.queries) {
     PanoramaInput input(query, global.config_dir, options.unwrap);
     while (std::optional<io::Frame> frame = input.next()) {
@@ -268,25 +282,43 @@ void run_localise(const GlobalOptions& global, const LocaliseOptions& options) {
       q.truth = frame->truth;
       q.result = options.exhaustive ? localiser.localise_exhaustive(signature)
                                     : localiser.localise(signature);
+      q.no_match =
+          navigation::no_match_reason(navigation::place_match(localiser, q.result), match_limit);
+      if (q.no_match) {
+        q.result.best.clear();
+        q.result.position.reset();
+      }
       if (score && q.truth) q.score = score->add(q.result, *q.truth);
       if (!options.plot.empty()) {
-        const std::filesystem::path file = numbered_plot_file(options.plot, results.size());
         std::optional<cv::Point2d> truth;
         if (q.truth && memory::place_positions(map)->first == memory::PositionFrame::kTruth) {
           truth = cv::Point2d(q.truth->x_m, q.truth->y_m);
         }
-        eval::save_png(
-            memory::localisation_figure(localiser, signature, q.result, truth,
-                                        "hierarchical localisation of " +
-                                            std::filesystem::path(q.source).filename().string()),
-            file);
+        cv::Mat figure = memory::localisation_figure(
+            localiser, signature, q.result, truth,
+            "hierarchical localisation of " + std::filesystem::path(q.source).filename().string());
+        if (results.empty()) {
+          first_figure = std::move(figure);
+        } else {
+          if (results.size() == 1) {
+            eval::save_png(first_figure, numbered_plot_file(options.plot, 0));
+          }
+          eval::save_png(figure, numbered_plot_file(options.plot, results.size()));
+        }
       }
       results.push_back(std::move(q));
     }
   }
   if (results.empty()) throw UsageError("no query images");
-  if (!options.plot.empty() && results.size() == 1) {
-    std::filesystem::rename(numbered_plot_file(options.plot, 0), options.plot);
+  if (results.size() == 1 && results.front().no_match) {
+    throw InputError(results.front().source + ": " + *results.front().no_match);
+  }
+  if (!options.plot.empty() && results.size() == 1) eval::save_png(first_figure, options.plot);
+  const auto unmatched = std::count_if(results.begin(), results.end(),
+                                       [](const QueryResult& q) { return q.no_match.has_value(); });
+  if (unmatched > 0) {
+    log_warning(std::to_string(unmatched) + " of " + std::to_string(results.size()) +
+                " queries match no place of the map");
   }
 
   const std::vector<int>& levels = params.hierarchy.levels;
@@ -354,7 +386,7 @@ void add_localise_command(CLI::App& app, const GlobalOptions& global) {
   command->add_option("--levels", options->levels,
                       "Components compared at each level, e.g. 2,5,15 (default: memory.yaml)");
   command->add_option("--top", options->top_k, "Best places to report (default: memory.yaml)")
-      ->check(CLI::Range(1, 100000));
+      ->check(NumberRange(1, 100000));
   command->add_option("--format", options->format, "text, csv or json")
       ->check(CLI::IsMember({"text", "csv", "json"}))
       ->capture_default_str();

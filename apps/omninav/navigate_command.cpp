@@ -2,15 +2,16 @@
 // visual memory towards a goal image: a virtual robot in a rendered world, or a robot on a grid
 // of stored images (a BoB grid database); and the evaluation over seeded random start and goal
 // pairs (--trials).
-#include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <memory>
 
 #include "app_config.hpp"
 #include "cli.hpp"
 #include "omninav/core/angles.hpp"
 #include "omninav/core/errors.hpp"
 #include "omninav/core/log.hpp"
+#include "omninav/core/output_file.hpp"
 #include "omninav/core/parse.hpp"
 #include "omninav/eval/plot.hpp"
 #include "omninav/eval/png.hpp"
@@ -40,8 +41,9 @@ struct NavigateOptions {
 Pose2 parse_start(const std::string& text) {
   const std::vector<std::string> fields = split(text, ',');
   if (fields.size() != 3) throw UsageError("--start: expected x,y,heading_deg, got '" + text + "'");
-  return {parse_double(fields[0], "--start x"), parse_double(fields[1], "--start y"),
-          deg_to_rad(parse_double(fields[2], "--start heading"))};
+  return {parse_double_argument(fields[0], "--start x"),
+          parse_double_argument(fields[1], "--start y"),
+          deg_to_rad(parse_double_argument(fields[2], "--start heading"))};
 }
 
 // Trials that drive more than this many times the straight line get a picture of their path.
@@ -67,22 +69,25 @@ void write_step_rows(std::ostream& csv, const std::string& prefix,
   }
 }
 
-std::ofstream open_csv(const std::filesystem::path& file, const std::string& header) {
-  std::ofstream csv(file);
-  if (!csv) throw InputError(file.string() + ": cannot write");
-  csv << header << '\n';
+// A CSV written whole or not at all: its header now, its rows by the caller, then commit().
+std::unique_ptr<OutputFile> open_csv(const std::filesystem::path& file, const std::string& header) {
+  auto csv = std::make_unique<OutputFile>(file);
+  csv->stream() << header << '\n';
   return csv;
 }
 
 // trials.csv, one row per trial, and steps.csv, every step of every trial.
 void write_trials_csv(const std::vector<navigation::TrialOutcome>& outcomes,
                       double lattice_to_world_rad, const std::filesystem::path& folder) {
-  std::ofstream trials = open_csv(
+  const std::unique_ptr<OutputFile> trials_file = open_csv(
       folder / "trials.csv",
       "trial,start_x_m,start_y_m,start_heading_deg,goal_x_m,goal_y_m,goal_heading_deg,goal_place,"
       "stopped_at_goal,reached,final_error_m,path_m,straight_m,path_ratio,steps,jumps,sidesteps,"
       "replans,loops,homing_steps");
-  std::ofstream steps = open_csv(folder / "steps.csv", std::string("trial,") + kStepColumns);
+  const std::unique_ptr<OutputFile> steps_file =
+      open_csv(folder / "steps.csv", std::string("trial,") + kStepColumns);
+  std::ostream& trials = trials_file->stream();
+  std::ostream& steps = steps_file->stream();
   for (std::size_t i = 0; i < outcomes.size(); ++i) {
     const navigation::TrialOutcome& o = outcomes[i];
     const navigation::NavigationResult& r = o.result;
@@ -95,6 +100,8 @@ void write_trials_csv(const std::vector<navigation::TrialOutcome>& outcomes,
            << r.sidesteps << ',' << r.replans << ',' << r.loops << ',' << r.homing_steps << '\n';
     write_step_rows(steps, std::to_string(i) + ",", r, lattice_to_world_rad);
   }
+  trials_file->commit();
+  steps_file->commit();
 }
 
 // path.png: the places matched, in order, over the lattice; beside it the robot's true path
@@ -154,7 +161,8 @@ std::vector<navigation::GridImage> read_grid(const std::filesystem::path& input,
   return images;
 }
 
-void evaluate_trials(const NavigateOptions& options, const memory::VisualMemory& memory,
+void evaluate_trials(const GlobalOptions& global, const NavigateOptions& options,
+                     const memory::VisualMemory& memory,
                      const std::vector<navigation::PlaceNode>& places,
                      const navigation::Localiser& localise, NavigationConfig navigation,
                      const sim::World& world, const sim::Renderer& renderer) {
@@ -178,7 +186,6 @@ void evaluate_trials(const NavigateOptions& options, const memory::VisualMemory&
       trials, world, renderer, places, localise, navigation::match_limit(memory, navigation.route),
       navigation::homing_scale(memory, places), navigation.route, navigation.navigator,
       navigation.robot, navigation.trials.goal_radius_spacings * spacing_m);
-  std::filesystem::create_directories(options.out);
   write_trials_csv(outcomes, memory.place(0).heading_rad.value_or(0.0), options.out);
   // The trials worth a look: those that missed their goal and those that drove the long way.
   for (std::size_t i = 0; i < outcomes.size(); ++i) {
@@ -190,10 +197,10 @@ void evaluate_trials(const NavigateOptions& options, const memory::VisualMemory&
                 options.out / ("trial_" + std::to_string(i) + ".png"));
     }
   }
-  std::cout << navigation::summarise(outcomes).text() << " (seed " << options.seed
-            << "; reached: stopped within " << std::fixed << std::setprecision(2)
-            << navigation.trials.goal_radius_spacings * spacing_m
-            << " m of the goal); trials: " << (options.out / "trials.csv").string() << "\n";
+  summary(global) << navigation::summarise(outcomes).text() << " (seed " << options.seed
+                  << "; reached: stopped within " << std::fixed << std::setprecision(2)
+                  << navigation.trials.goal_radius_spacings * spacing_m
+                  << " m of the goal); trials: " << (options.out / "trials.csv").string() << "\n";
 }
 
 void run_navigate(const GlobalOptions& global, const NavigateOptions& options) {
@@ -206,6 +213,10 @@ void run_navigate(const GlobalOptions& global, const NavigateOptions& options) {
   const memory::MemoryConfig memory_config = load_memory_config(global.config_dir);
   NavigationConfig navigation = load_navigation_config(global.config_dir);
   if (options.max_steps > 0) navigation.navigator.max_steps = options.max_steps;
+  // The output folder before the work, not after it.
+  std::error_code error;
+  std::filesystem::create_directories(options.out, error);
+  check_output_path(options.out / (options.trials > 0 ? "trials.csv" : "steps.csv"));
 
   const memory::VisualMemory memory = memory::load_map(options.map);
   const std::vector<navigation::PlaceNode> places = navigation::places_from_memory(memory);
@@ -226,7 +237,7 @@ void run_navigate(const GlobalOptions& global, const NavigateOptions& options) {
     worlds.render.geometry.height_px = memory.place(0).signature.rows;
     renderer = std::make_unique<sim::Renderer>(*world, worlds.render);
     if (options.trials > 0) {
-      evaluate_trials(options, memory, places, localise, navigation, *world, *renderer);
+      evaluate_trials(global, options, memory, places, localise, navigation, *world, *renderer);
       return;
     }
     const Pose2 start = parse_start(options.start);
@@ -253,17 +264,18 @@ void run_navigate(const GlobalOptions& global, const NavigateOptions& options) {
       navigation.route, navigation.navigator);
   const navigation::NavigationResult& result = run.result;
 
-  std::filesystem::create_directories(options.out);
-  std::ofstream steps = open_csv(options.out / "steps.csv", kStepColumns);
-  write_step_rows(steps, "", result, memory.place(0).heading_rad.value_or(0.0));
+  const std::unique_ptr<OutputFile> steps = open_csv(options.out / "steps.csv", kStepColumns);
+  write_step_rows(steps->stream(), "", result, memory.place(0).heading_rad.value_or(0.0));
+  steps->commit();
   draw_path(result, places, run.goal.place, memory,
             world ? world->obstacles : std::vector<sim::FloorBox>{}, grid, std::nullopt,
             options.out / "path.png");
-  std::cout << std::fixed << std::setprecision(2) << (result.reached ? "reached" : "did not reach")
-            << " the goal (place " << run.goal.place << ") in " << result.steps.size() << " steps, "
-            << result.path_length_m << " m driven, " << result.jumps
-            << " localisation jumps; steps: " << (options.out / "steps.csv").string()
-            << ", picture: " << (options.out / "path.png").string() << "\n";
+  summary(global) << std::fixed << std::setprecision(2)
+                  << (result.reached ? "reached" : "did not reach") << " the goal (place "
+                  << run.goal.place << ") in " << result.steps.size() << " steps, "
+                  << result.path_length_m << " m driven, " << result.jumps
+                  << " localisation jumps; steps: " << (options.out / "steps.csv").string()
+                  << ", picture: " << (options.out / "path.png").string() << "\n";
 }
 
 }  // namespace
@@ -283,40 +295,36 @@ void add_navigate_command(CLI::App& app, const GlobalOptions& global) {
       "trials.csv, steps.csv (every step of every trial) and trial_<i>.png for each trial that "
       "missed its goal or drove more than twice the straight line (needs a map with ground "
       "truth).");
-  command->add_option("map", options->map, "An organised map (.vmem)")
-      ->required()
-      ->check(CLI::ExistingFile);
+  command->add_option("map", options->map, "An organised map (.vmem)")->required();
   CLI::Option* world =
       command->add_option("--world", options->world, kWorldOptionHelp)->capture_default_str();
   command
       ->add_option("--database", options->database,
                    "A grid of stored panoramas with poses (a BoB grid database) to navigate in, "
                    "instead of a rendered world")
-      ->check(CLI::ExistingDirectory)
       ->excludes(world);
   CLI::Option* start = command->add_option(
       "--start", options->start,
       "The robot's true start: x_m,y_m,heading_deg (on a grid: the nearest grid image)");
-  CLI::Option* goal = command->add_option("--goal", options->goal, "The goal image (a panorama)")
-                          ->check(CLI::ExistingFile);
+  CLI::Option* goal = command->add_option("--goal", options->goal, "The goal image (a panorama)");
   command
       ->add_option(
           "--out", options->out,
           "Folder for steps.csv and path.png (with --trials: trials.csv, steps.csv, trial_<i>.png)")
       ->required();
   command->add_option("--max-steps", options->max_steps, "Step budget (default: navigation.yaml)")
-      ->check(CLI::Range(1, 100000));
+      ->check(NumberRange(1, 100000));
   command
       ->add_option("--trials", options->trials,
                    "Evaluate over this many seeded random start and goal pairs instead")
-      ->check(CLI::Range(1, 100000))
+      ->check(NumberRange(1, 100000))
       ->excludes(start)
       ->excludes(goal);
   command
       ->add_option("--seed", options->seed,
                    "Seed of the --trials start and goal poses (motion noise: navigation.yaml "
                    "robot.seed + the trial's index)")
-      ->check(CLI::Range(0, 1'000'000'000))
+      ->check(NumberRange(0, 1'000'000'000))
       ->capture_default_str();
   command->callback([&global, options] { run_navigate(global, *options); });
 }

@@ -1,10 +1,13 @@
 // omninav organise: the spring-model lattice of a visual memory (Ceres), stored in the map.
+#include <cmath>
 #include <iomanip>
 #include <iostream>
+#include <sstream>
 
 #include "app_config.hpp"
 #include "cli.hpp"
 #include "omninav/core/errors.hpp"
+#include "omninav/core/output_file.hpp"
 #include "omninav/eval/png.hpp"
 #include "omninav/lattice/lattice_report.hpp"
 #include "omninav/memory/map_file.hpp"
@@ -23,41 +26,63 @@ void run_organise(const GlobalOptions& global, const OrganiseOptions& options) {
   lattice::OrganiseParams params = load_lattice_config(global.config_dir);
   if (options.step_m > 0.0) params.step_m = options.step_m;
   if (options.no_motion) params.motion_constraints = false;
-  memory::VisualMemory memory = memory::load_map(options.map);
-  const lattice::OrganiseResult organised = lattice::organise(memory, params);
-  std::vector<memory::LatticePosition> positions;
-  for (std::size_t i = 0; i < memory.place_count(); ++i)
-    positions.push_back(*memory.place(i).lattice);
-  memory::save_lattice_positions(options.map, positions);
-
-  const lattice::DistanceCalibration& calibration = organised.calibration;
-  std::cout << std::fixed << std::setprecision(3) << "organised " << memory.place_count()
-            << " places of " << options.map.string() << "\n"
-            << "  scale:    " << calibration.step_m << " m between consecutive places ("
-            << calibration.step_source << "), dissimilarity " << calibration.step_dissimilarity
-            << " per step (median of the places' own), plateau "
-            << calibration.plateau_dissimilarity << "\n"
-            << "  springs:  " << organised.lattice.springs_kept << " kept of "
-            << organised.lattice.springs_given << " offered, of " << organised.lattice.place_pairs
-            << " pairs of places (x1 = " << calibration.correlation_range_m
-            << " m; weaker than K = " << params.lattice.min_stiffness << " dropped), "
-            << organised.lattice.motion_constraints << " motions (directions from the phases)\n"
-            << "  solver:   " << organised.lattice.summary << "\n";
-  const std::optional<lattice::LatticeEvaluation> evaluation =
-      lattice::evaluate_against_truth(memory, organised.motions.empty());
-  if (evaluation) {
-    std::cout << "  vs truth: RMSE after Procrustes " << evaluation->rmse.all << " spacings ("
-              << evaluation->rmse.interior << " interior, " << evaluation->rmse.boundary
-              << " boundary; spacing " << evaluation->spacing_m << " m)\n"
-              << "  folds:    " << evaluation->folded.size() << " of "
-              << evaluation->neighbour_triangles
-              << " triangles of true neighbours turned over in the lattice\n";
-  }
   const std::filesystem::path picture =
       options.picture.empty() ? std::filesystem::path(options.map).replace_extension(".lattice.png")
                               : options.picture;
+  check_output_path(picture);  // before the work, not after it
+  memory::VisualMemory memory = memory::load_map(options.map);
+  const lattice::OrganiseResult organised = lattice::organise(memory, params);
+  std::vector<memory::LatticePosition> positions;
+  for (std::size_t i = 0; i < memory.place_count(); ++i) {
+    positions.push_back(*memory.place(i).lattice);
+    if (!std::isfinite(positions.back().x) || !std::isfinite(positions.back().y)) {
+      throw InputError(options.map.string() + ": the lattice has no finite position for place " +
+                       std::to_string(i) + "; the map is left unchanged");
+    }
+  }
+
+  const lattice::DistanceCalibration& calibration = organised.calibration;
+  summary(global) << std::fixed << std::setprecision(3) << "organised " << memory.place_count()
+                  << " places of " << options.map.string() << "\n"
+                  << "  scale:    " << calibration.step_m << " m between consecutive places ("
+                  << calibration.step_source << "), dissimilarity "
+                  << calibration.step_dissimilarity
+                  << " per step (median of the places' own), plateau "
+                  << calibration.plateau_dissimilarity << "\n"
+                  << "  springs:  " << organised.lattice.springs_kept << " kept of "
+                  << organised.lattice.springs_given << " offered, of "
+                  << organised.lattice.place_pairs
+                  << " pairs of places (x1 = " << calibration.correlation_range_m
+                  << " m; weaker than K = " << params.lattice.min_stiffness << " dropped), "
+                  << organised.lattice.motion_constraints
+                  << " motions (directions from the phases)\n"
+                  << "  solver:   " << organised.lattice.summary << "\n";
+  const std::optional<lattice::LatticeEvaluation> evaluation =
+      lattice::evaluate_against_truth(memory, organised.motions.empty());
+  if (evaluation) {
+    // An RMSE over no places (a map without interior places) is NaN: said in words.
+    const auto rmse = [](double value, const char* places) {
+      std::ostringstream text;
+      text << std::fixed << std::setprecision(3);
+      if (std::isnan(value)) {
+        text << "no " << places << " places";
+      } else {
+        text << value << ' ' << places;
+      }
+      return text.str();
+    };
+    summary(global) << "  vs truth: RMSE after Procrustes " << evaluation->rmse.all << " spacings ("
+                    << rmse(evaluation->rmse.interior, "interior") << ", "
+                    << rmse(evaluation->rmse.boundary, "boundary") << "; spacing "
+                    << evaluation->spacing_m << " m)\n"
+                    << "  folds:    " << evaluation->folded.size() << " of "
+                    << evaluation->neighbour_triangles
+                    << " triangles of true neighbours turned over in the lattice\n";
+  }
   eval::save_png(lattice::lattice_picture(memory, organised, evaluation), picture);
-  std::cout << "  picture:  " << picture.string() << "\n";
+  // The map last: a failure above leaves it as it was.
+  memory::save_lattice_positions(options.map, positions);
+  summary(global) << "  picture:  " << picture.string() << "\n";
 }
 
 }  // namespace
@@ -72,12 +97,12 @@ void add_organise_command(CLI::App& app, const GlobalOptions& global) {
       "calibration and the solver's report, and draws <map>.lattice.png. When the map has ground "
       "truth: the truth beside it, the Procrustes RMSE, and the folds (triangles of true "
       "neighbours turned over in the lattice).");
-  command->add_option("map", options->map, "The map (.vmem)")->required()->check(CLI::ExistingFile);
+  command->add_option("map", options->map, "The map (.vmem)")->required();
   command
       ->add_option("--step-m", options->step_m,
                    "Metres between consecutive places of the exploration (default: lattice.yaml, "
                    "else the spacing the map was explored with, explore --every-m)")
-      ->check(CLI::Range(0.0, 100.0));
+      ->check(NumberRange(0.0, 100.0));
   command->add_flag("--no-motion", options->no_motion,
                     "Springs only: no motions measured from the phases");
   command->add_option("--picture", options->picture,

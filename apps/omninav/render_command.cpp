@@ -27,6 +27,7 @@ struct RenderOptions {
 };
 
 void run_render(const GlobalOptions& global, const RenderOptions& options) {
+  check_output_folder(options.out, options.force);
   const CameraConfig camera = load_camera_config(global.config_dir);
   PanoramaGeometry panorama = camera.panorama;
   if (options.width_px > 0) panorama.width_px = options.width_px;
@@ -64,10 +65,10 @@ void run_render(const GlobalOptions& global, const RenderOptions& options) {
   const std::filesystem::path plan = options.out / "plan.png";
   floor_plan(world, trajectory).save(plan);
 
-  std::cout << "wrote " << trajectory.poses.size() << " panoramas (" << trajectory.length_m()
-            << " m travelled) to " << options.out.string()
-            << " as a BoB database; preview: " << sheet.string() << ", top view: " << plan.string()
-            << "\n";
+  summary(global) << "wrote " << trajectory.poses.size() << " panoramas (" << trajectory.length_m()
+                  << " m travelled) to " << options.out.string()
+                  << " as a BoB database; preview: " << sheet.string()
+                  << ", top view: " << plan.string() << "\n";
 }
 
 }  // namespace
@@ -102,23 +103,23 @@ void add_render_command(CLI::App& app, const GlobalOptions& global) {
   command->add_option("--out", options->out, "Folder to write the database into")->required();
   command
       ->add_option("--width", options->width_px, "Panorama width in pixels (default: camera.yaml)")
-      ->check(CLI::Range(8, 16384));
+      ->check(NumberRange(8, 16384));
   command
       ->add_option("--height", options->height_px,
                    "Panorama height in pixels (default: camera.yaml)")
-      ->check(CLI::Range(1, 4096));
+      ->check(NumberRange(1, 4096));
   command
       ->add_option("--rays-per-pixel", options->rays_per_pixel,
                    "Anti-aliasing rays per pixel (default: worlds.yaml)")
-      ->check(CLI::Range(1, 16));
+      ->check(NumberRange(1, 16));
   command
       ->add_option("--noise", options->noise_stddev,
                    "Gaussian pixel noise, grey levels (default: worlds.yaml)")
-      ->check(CLI::Range(0.0, 100.0));
+      ->check(NumberRange(0.0, 100.0));
   command
       ->add_option("--exposure", options->exposure_gain,
                    "Exposure gain multiplying every pixel (default: worlds.yaml)")
-      ->check(CLI::Range(0.05, 20.0));
+      ->check(NumberRange(0.05, 20.0));
   command->add_flag("--occluder", options->occluder,
                     "Add the moving occluder of worlds.yaml (a person walking by)");
   command->add_flag("--force", options->force, "Replace a database already in --out");

@@ -10,6 +10,7 @@
 #include "omninav/core/angles.hpp"
 #include "omninav/core/errors.hpp"
 #include "omninav/core/log.hpp"
+#include "omninav/core/output_file.hpp"
 #include "omninav/eval/png.hpp"
 #include "omninav/io/image_file.hpp"
 #include "omninav/memory/map_file.hpp"
@@ -160,6 +161,9 @@ void print_json(const Route& route, const RouteOptions& options) {
 }
 
 void run_route(const GlobalOptions& global, const RouteOptions& options) {
+  std::filesystem::path plot = options.plot;
+  if (plot.empty()) plot = std::filesystem::path(options.map).replace_extension(".route.png");
+  check_output_path(plot);  // before the work
   const memory::MemoryConfig memory_config = load_memory_config(global.config_dir);
   const NavigationConfig navigation = load_navigation_config(global.config_dir);
   const memory::VisualMemory memory = memory::load_map(options.map);
@@ -204,8 +208,6 @@ void run_route(const GlobalOptions& global, const RouteOptions& options) {
     for (std::size_t i = 0; i < memory.place_count(); ++i)
       truth->emplace_back(memory.place(i).truth->x_m, memory.place(i).truth->y_m);
   }
-  std::filesystem::path plot = options.plot;
-  if (plot.empty()) plot = std::filesystem::path(options.map).replace_extension(".route.png");
   eval::save_png(navigation::route_figure(places, plan, from.place, truth), plot);
   log_info("route picture: " + plot.string());
 }
@@ -224,15 +226,9 @@ void add_route_command(CLI::App& app, const GlobalOptions& global) {
       "and the turn from the robot's heading now. Draws the lattice with every place's "
       "direction and the route (and the route over the places' true positions when the map has "
       "ground truth).");
-  command->add_option("map", options->map, "An organised map (.vmem)")
-      ->required()
-      ->check(CLI::ExistingFile);
-  command->add_option("--from", options->from, "The current image (a panorama)")
-      ->required()
-      ->check(CLI::ExistingFile);
-  command->add_option("--to", options->to, "The goal image (a panorama)")
-      ->required()
-      ->check(CLI::ExistingFile);
+  command->add_option("map", options->map, "An organised map (.vmem)")->required();
+  command->add_option("--from", options->from, "The current image (a panorama)")->required();
+  command->add_option("--to", options->to, "The goal image (a panorama)")->required();
   command->add_option("--format", options->format, "text, csv or json")
       ->check(CLI::IsMember({"text", "csv", "json"}))
       ->capture_default_str();

@@ -5,8 +5,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <limits>
 #include <memory>
-#include <opencv2/imgcodecs.hpp>
 #include <optional>
 #include <set>
 #include <string>
@@ -18,6 +18,7 @@
 #include "omninav/core/log.hpp"
 #include "omninav/core/panorama.hpp"
 #include "omninav/core/progress.hpp"
+#include "omninav/eval/png.hpp"
 #include "omninav/io/sequence.hpp"
 #include "omninav/omni/unwrap.hpp"
 
@@ -60,23 +61,6 @@ bool is_video_file(const fs::path& input) {
   std::transform(extension.begin(), extension.end(), extension.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return extension != ".csv";
-}
-
-// The output folder must not be a file, nor the folder the input images live in (the PNGs
-// could overwrite them), nor hold anything unless --force.
-void check_output_folder(const fs::path& out, const fs::path& input, bool force) {
-  std::error_code error;
-  if (!fs::exists(out, error)) return;
-  if (!fs::is_directory(out, error)) {
-    throw UsageError(out.string() + ": exists and is not a folder");
-  }
-  const fs::path input_folder = fs::is_directory(input, error) ? input : input.parent_path();
-  if (fs::equivalent(out, input_folder.empty() ? fs::path(".") : input_folder, error)) {
-    throw UsageError(out.string() + ": is the input's folder; write the panoramas elsewhere");
-  }
-  if (!force && !fs::is_empty(out, error)) {
-    throw UsageError(out.string() + ": is not empty; choose an empty folder or add --force");
-  }
 }
 
 // Command-line values override the file's. Lengths are converted to pixels first, because the
@@ -127,7 +111,7 @@ std::string output_name(const io::Frame& frame, bool video, std::set<std::string
 void run_unwrap(const UnwrapOptions& options, const GlobalOptions& global) {
   const fs::path config_file = global.config_dir / "camera.yaml";
   const omni::UnwrapParams from_file = load_camera_config(global.config_dir).unwrap;
-  check_output_folder(options.out, options.input, options.force);
+  check_output_folder(options.out, options.force, options.input);
 
   std::unique_ptr<io::SequenceReader> reader = io::open_sequence(options.input);
   log_info("reading " + reader->describe());
@@ -162,13 +146,7 @@ void run_unwrap(const UnwrapOptions& options, const GlobalOptions& global) {
         throw InputError(frame->source + ": " + unwrap_error.what());
       }
       const fs::path file = options.out / output_name(*frame, video, used_names);
-      bool ok = false;
-      try {
-        ok = cv::imwrite(file.string(), panorama);
-      } catch (const cv::Exception& write_error) {
-        throw Error(file.string() + ": cannot write the panorama: " + write_error.what());
-      }
-      if (!ok) throw Error(file.string() + ": cannot write the panorama");
+      eval::save_png(panorama, file);
       ++written;
       progress.advance();
     }
@@ -200,8 +178,7 @@ void add_unwrap_command(CLI::App& app, const GlobalOptions& global) {
                    "Raw images: a folder of images, a video file, a BoB image database folder, "
                    "or a CSV of file,x_m,y_m,heading_deg")
       ->type_name("PATH")
-      ->required()
-      ->check(CLI::ExistingPath);
+      ->required();
   command
       ->add_option("-o,--out", options->out,
                    "Folder for the panoramas (created if missing; must be empty unless --force)")
@@ -212,7 +189,7 @@ void add_unwrap_command(CLI::App& app, const GlobalOptions& global) {
   const auto add_length = [&](const char* name, double& value, const char* help) {
     return command->add_option(name, value, help)
         ->type_name("LENGTH")
-        ->check(CLI::NonNegativeNumber);
+        ->check(NumberRange(0.0, std::numeric_limits<double>::max()));
   };
   options->centre_x_option = add_length("--centre-x", options->centre_x,
                                         "Mirror centre, x (to the right); overrides "
@@ -240,13 +217,13 @@ void add_unwrap_command(CLI::App& app, const GlobalOptions& global) {
                                            "Panorama width, pixels (columns; 360 = one per "
                                            "degree); overrides panorama.width_px")
                               ->type_name("PX")
-                              ->check(CLI::Range(8, 16384));
+                              ->check(NumberRange(8, 16384));
   options->height_option = command
                                ->add_option("--height", options->height_px,
                                             "Panorama height, pixels (rows); overrides "
                                             "panorama.height_px")
                                ->type_name("PX")
-                               ->check(CLI::Range(1, 4096));
+                               ->check(NumberRange(1, 4096));
   CLI::Option* nearest =
       command->add_flag("--nearest", options->nearest,
                         "Take the nearest raw pixel (the papers' unsmoothed unwrapping)");
@@ -268,7 +245,7 @@ void add_unwrap_command(CLI::App& app, const GlobalOptions& global) {
                        "Where the robot's front is in the raw image: degrees counter-clockwise "
                        "from the top (0 = top, 90 = left edge); overrides unwrap.front_offset_deg")
           ->type_name("DEG")
-          ->check(CLI::Range(-360.0, 360.0));
+          ->check(NumberRange(-360.0, 360.0));
   command->add_flag("--force", options->force,
                     "Write into a non-empty output folder (files of the same name are replaced)");
   command->callback([options, &global] { run_unwrap(*options, global); });

@@ -199,7 +199,11 @@ TEST_F(CommandLine, CompassFollowsARenderedTurnAndWritesItsCsv) {
   }
   EXPECT_EQ(rows, 16);  // a quarter turn at 30°/s is 3 s: 15 intervals at 5 Hz, 16 frames
   EXPECT_NE(header.find("heading_deg"), std::string::npos) << header;
-  EXPECT_EQ(run_omninav({"compass", "--input", (folder_ / "nowhere").string()}), 2);
+  // A missing input is an input error (1), through an option as through a positional argument.
+  EXPECT_EQ(run_omninav({"compass", "--input", (folder_ / "nowhere").string()}), 1);
+  EXPECT_EQ(errors_, "error: " + (folder_ / "nowhere").string() + ": no such file or folder\n");
+  EXPECT_EQ(run_omninav({"localise", (folder_ / "nowhere.vmem").string(), "q.png"}), 1);
+  EXPECT_EQ(run_omninav({"organise", (folder_ / "nowhere.vmem").string()}), 1);
 }
 
 TEST_F(CommandLine, UnwrapOfAFolderWithACorruptImageNamesIt) {

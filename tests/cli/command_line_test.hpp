@@ -39,7 +39,21 @@ class CommandLineTest : public ::testing::Test {
     return status;
   }
 
+  // A 6 × 5 grid at 30 cm of the built-in room (180 × 24 panoramas) rendered into the BoB
+  // database folder_/grid and explored into the map folder_/grid.vmem.
+  void render_and_explore_grid() {
+    grid_ = folder_ / "grid";
+    ASSERT_EQ(run_omninav({"render", "--trajectory", "grid:x0=1.2,y0=1.0,nx=6,ny=5,spacing_m=0.3",
+                           "--out", grid_.string(), "--width", "180", "--height", "24"}),
+              0)
+        << errors_;
+    map_ = folder_ / "grid.vmem";
+    ASSERT_EQ(run_omninav({"explore", "--input", grid_.string(), "--out", map_.string()}), 0)
+        << errors_;
+  }
+
   std::filesystem::path folder_;
+  std::filesystem::path grid_, map_;  // render_and_explore_grid's
   std::filesystem::path config_dir_ = omninav::testing::config_dir();
   std::string output_, errors_;  // standard output and standard error of the last run
 };

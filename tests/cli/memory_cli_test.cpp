@@ -21,14 +21,7 @@ class ExploreLocaliseExport : public CommandLineTest {
   // A 6 × 5 grid at 30 cm explored into a map, and queries rendered along a line between its
   // points at a heading that is not the grid's (the line's direction, 33.7°).
   void make_map_and_queries() {
-    const std::filesystem::path grid = folder_ / "grid";
-    ASSERT_EQ(run_omninav({"render", "--trajectory", "grid:x0=1.2,y0=1.0,nx=6,ny=5,spacing_m=0.3",
-                           "--out", grid.string(), "--width", "180", "--height", "24"}),
-              0)
-        << errors_;
-    map_ = folder_ / "grid.vmem";
-    ASSERT_EQ(run_omninav({"explore", "--input", grid.string(), "--out", map_.string()}), 0)
-        << errors_;
+    render_and_explore_grid();
     queries_ = folder_ / "queries";
     ASSERT_EQ(run_omninav({"render", "--trajectory",
                            "line:x0=1.35,y0=1.15,x1=2.25,y1=1.75,speed_m_s=0.2,fps=1", "--out",
@@ -38,7 +31,7 @@ class ExploreLocaliseExport : public CommandLineTest {
     query_frames_ = io::read_all(*io::open_sequence(queries_));
   }
 
-  std::filesystem::path map_, queries_;
+  std::filesystem::path queries_;
   std::vector<io::Frame> query_frames_;
 };
 

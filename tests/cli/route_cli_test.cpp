@@ -19,14 +19,7 @@ class RouteAndNavigate : public CommandLineTest {
  protected:
   // A 6 × 5 grid at 30 cm rendered into a BoB database and explored into a map.
   void make_map() {
-    grid_ = folder_ / "grid";
-    ASSERT_EQ(run_omninav({"render", "--trajectory", "grid:x0=1.2,y0=1.0,nx=6,ny=5,spacing_m=0.3",
-                           "--out", grid_.string(), "--width", "180", "--height", "24"}),
-              0)
-        << errors_;
-    map_ = folder_ / "grid.vmem";
-    ASSERT_EQ(run_omninav({"explore", "--input", grid_.string(), "--out", map_.string()}), 0)
-        << errors_;
+    render_and_explore_grid();
     frames_ = io::read_all(*io::open_sequence(grid_));
   }
 
@@ -53,7 +46,6 @@ class RouteAndNavigate : public CommandLineTest {
     throw std::runtime_error("no grid frame there");
   }
 
-  std::filesystem::path grid_, map_;
   std::vector<io::Frame> frames_;
 };
 

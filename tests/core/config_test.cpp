@@ -114,5 +114,27 @@ TEST(ConfigReader, ReadsFromAFile) {
   std::filesystem::remove(file);
 }
 
+TEST(ConfigReader, NonFiniteNumbersAreRefusedWhateverTheRange) {
+  for (const std::string value : {".nan", ".inf", "-.inf", "nan", "1e999"}) {
+    const ConfigReader config = ConfigReader::from_string("a: " + value + "\n", "n.yaml");
+    double a = 1.0;
+    std::optional<double> b;
+    EXPECT_NE(
+        message_of([&] { config.read("a", a, -1e300, 1e300); }).find("key 'a' must be a number"),
+        std::string::npos)
+        << value;
+    EXPECT_EQ(a, 1.0);
+    EXPECT_NE(message_of([&] { config.read("a", b, 0.0, 1.0); }), "(no ConfigError)") << value;
+  }
+}
+
+TEST(ConfigReader, AKeyThatIsNotANameIsAConfigErrorNamingTheLine) {
+  const ConfigReader config = ConfigReader::from_string("a: 1\n? [b, c]\n: 2\n", "odd.yaml");
+  int a = 0;
+  config.read("a", a, 0, 10);
+  EXPECT_EQ(message_of([&] { config.require_all_known(); }),
+            "odd.yaml:2: a key must be a name, not a list or a map");
+}
+
 }  // namespace
 }  // namespace omninav

@@ -1,6 +1,7 @@
 #include "omninav/io/video_sequence.hpp"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <opencv2/videoio.hpp>
 
@@ -76,6 +77,28 @@ TEST(VideoSequence, UnreadableFileIsInputErrorNamingIt) {
   const std::filesystem::path file = dir / "broken.mp4";
   write_text(file, "these bytes are no video");
   EXPECT_INPUT_ERROR(VideoSequence{file}, file.string());
+}
+
+TEST(VideoSequence, ABadVideoLeavesStandardErrorToOurMessage) {
+  const TempDir dir;
+  const std::filesystem::path file = dir / "bad.mp4";
+  write_text(file, std::string(3000, 'Z'));
+  ::testing::internal::CaptureStderr();
+  EXPECT_THROW(VideoSequence{file}, InputError);
+  // FFmpeg, GStreamer and OpenCV printed 8 lines here before the error line of omninav.
+  EXPECT_EQ(::testing::internal::GetCapturedStderr(), "");
+}
+
+TEST(VideoSequence, AFifoIsNamedAsSuch) {
+  const TempDir dir;
+  const std::filesystem::path fifo = dir / "pipe.avi";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  try {
+    VideoSequence{fifo};
+    ADD_FAILURE() << "a FIFO was read as a video";
+  } catch (const InputError& error) {
+    EXPECT_EQ(std::string(error.what()), fifo.string() + ": is a FIFO, not a video file");
+  }
 }
 
 TEST(VideoSequence, MissingFileIsInputErrorNamingIt) {

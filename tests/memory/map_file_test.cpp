@@ -1,11 +1,14 @@
 #include "omninav/memory/map_file.hpp"
 
+#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sqlite3.h>
+#include <sys/file.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <random>
@@ -154,6 +157,16 @@ std::string load_error(const fs::path& file) {
   return "";
 }
 
+// The names in `folder`, sorted: what a writer left there.
+std::vector<std::string> folder_entries(const fs::path& folder) {
+  std::vector<std::string> names;
+  for (const auto& entry : fs::directory_iterator(folder)) {
+    names.push_back(entry.path().filename().string());
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
 TEST(LittleEndianFloats, ExplicitByteOrder) {
   const std::vector<float> values{1.0f, -2.5f, 0.0f, 3.0e-20f};
   const std::vector<std::uint8_t> bytes = floats_to_le_bytes(values);
@@ -172,7 +185,7 @@ TEST_F(MapFileTest, RoundTripKeepsSignaturesAndGraphIdentical) {
   memory.place(4).lattice = LatticePosition{1.5, -2.0};
   const fs::path file = dir_ / "round.vmem";
   save_map(memory, file);
-  EXPECT_FALSE(fs::exists(dir_ / "round.vmem.partial"));
+  EXPECT_EQ(folder_entries(dir_), std::vector<std::string>{"round.vmem"});
   const VisualMemory loaded = load_map(file);
   expect_same(memory, loaded);
   EXPECT_EQ(loaded.place(4).lattice->x, 1.5);
@@ -342,8 +355,104 @@ TEST_F(MapFileTest, AWriterKilledWhileCreatingLeavesNoMapOrTheOldOne) {
   // The next write cleans up the killed writer's leftovers.
   VisualMemory next = synthetic_memory(2, 10, 5);
   save_map(next, file, {.overwrite = true, .after_place = {}});
-  EXPECT_FALSE(fs::exists(dir_ / "new.vmem.partial"));
+  EXPECT_EQ(folder_entries(dir_), std::vector<std::string>{"new.vmem"});
   expect_same(next, load_map(file));
+}
+
+TEST_F(MapFileTest, ANewMapIsNeverRolledBackByTheOldMapsJournal) {
+  const fs::path file = dir_ / "stale.vmem";
+  fs::path journal = file;
+  journal += "-journal";
+  for (const bool deleted_first : {false, true}) {
+    VisualMemory before = synthetic_memory(20, 100);
+    save_map(before, file, {.overwrite = true, .after_place = {}});
+    kill_writer_midway(synthetic_memory(1500, 8000, 2, load_map(file)), file, 1000, false);
+    ASSERT_TRUE(fs::exists(journal)) << "the kill should leave a hot journal";
+    if (deleted_first) fs::remove(file);  // the user deletes the map, not its journal
+    VisualMemory fresh = synthetic_memory(7, 10, 11);
+    save_map(fresh, file, {.overwrite = !deleted_first, .after_place = {}});
+    EXPECT_FALSE(fs::exists(journal));
+    expect_same(fresh, load_map(file));
+  }
+}
+
+TEST_F(MapFileTest, ASecondWriterOfTheSameNewMapFailsAtOnce) {
+  const fs::path file = dir_ / "shared.vmem";
+  // Another process writing the map holds the lock beside it.
+  const int held = ::open((file.string() + ".lock").c_str(), O_RDWR | O_CREAT, 0644);
+  ASSERT_GE(held, 0);
+  ASSERT_EQ(::flock(held, LOCK_EX), 0);
+  VisualMemory memory = synthetic_memory(4);
+  try {
+    save_map(memory, file);
+    ADD_FAILURE() << "the second writer wrote";
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what()).find("shared.vmem: another process is writing this map"),
+              std::string::npos)
+        << error.what();
+  }
+  EXPECT_FALSE(fs::exists(file));
+  ::close(held);
+  fs::remove(file.string() + ".lock");
+  save_map(memory, file);
+  expect_same(memory, load_map(file));
+  EXPECT_EQ(folder_entries(dir_), std::vector<std::string>{"shared.vmem"});
+
+  // A map that appeared while this memory was made is not replaced by a new one.
+  VisualMemory other = synthetic_memory(3, 10, 7);
+  try {
+    save_map(other, file, {.overwrite = false, .after_place = {}});
+    ADD_FAILURE() << "the map made meanwhile was replaced";
+  } catch (const Error&) {
+  }
+  expect_same(memory, load_map(file));
+}
+
+TEST_F(MapFileTest, OverwriteReplacesOnlyAnOmninavMapItKnows) {
+  const fs::path picture = dir_ / "picture.png";
+  std::ofstream(picture, std::ios::binary) << "\x89PNG\r\n\x1a\n" << std::string(200, 'p');
+  const auto before = fs::file_size(picture);
+  VisualMemory memory = synthetic_memory(3);
+  EXPECT_THROW(save_map(memory, picture, {.overwrite = true, .after_place = {}}), UsageError);
+  EXPECT_EQ(fs::file_size(picture), before);
+
+  const fs::path newer = dir_ / "newer.vmem";
+  VisualMemory old = synthetic_memory(5);
+  save_map(old, newer);
+  sql(newer, "UPDATE schema_version SET version = 7");
+  try {
+    check_map_replaceable(newer);
+    ADD_FAILURE() << "a newer map would be replaced";
+  } catch (const UsageError& error) {
+    EXPECT_NE(std::string(error.what()).find("newer omninav (schema version 7)"), std::string::npos)
+        << error.what();
+  }
+  EXPECT_THROW(save_map(memory, newer, {.overwrite = true, .after_place = {}}), UsageError);
+
+  // A damaged map of ours is what --overwrite is for.
+  const fs::path damaged = dir_ / "damaged.vmem";
+  VisualMemory big = synthetic_memory(300, 2000);
+  save_map(big, damaged);
+  fs::resize_file(damaged, fs::file_size(damaged) / 2);
+  save_map(memory, damaged, {.overwrite = true, .after_place = {}});
+  expect_same(memory, load_map(damaged));
+}
+
+TEST_F(MapFileTest, AFailedNewMapLeavesNothingBehind) {
+  const fs::path file = dir_ / "failed.vmem";
+  VisualMemory memory = synthetic_memory(10);
+  SaveOptions failing;
+  failing.after_place = [](std::size_t written) {
+    if (written == 5) throw std::runtime_error("the disk is full");
+  };
+  EXPECT_THROW(save_map(memory, file, failing), std::runtime_error);
+  EXPECT_TRUE(folder_entries(dir_).empty()) << "no map, no temporary, no lock file";
+}
+
+TEST_F(MapFileTest, AMapCannotBeWrittenOntoADevice) {
+  VisualMemory memory = synthetic_memory(3);
+  EXPECT_THROW(save_map(memory, "/dev/full", {.overwrite = true, .after_place = {}}), Error);
+  EXPECT_TRUE(fs::is_character_file("/dev/full"));
 }
 
 TEST_F(MapFileTest, EachBadFileGivesItsError) {
@@ -401,6 +510,17 @@ TEST_F(MapFileTest, EachBadFileGivesItsError) {
   }
   const std::string scribbled_error = load_error(scribbled);
   EXPECT_NE(scribbled_error.find("corrupt"), std::string::npos) << scribbled_error;
+
+  const fs::path wordy = dir_ / "wordy.vmem";
+  VisualMemory memory4 = synthetic_memory(5);
+  save_map(memory4, wordy);
+  sql(wordy, "UPDATE schema_version SET version = 'two'");
+  EXPECT_NE(load_error(wordy).find("schema version 'two'"), std::string::npos) << load_error(wordy);
+  sql(wordy, "UPDATE schema_version SET version = 2");
+  sql(wordy, "UPDATE parameters SET value = 'many' WHERE key = 'signature.components'");
+  EXPECT_NE(load_error(wordy).find("signature.components: 'many' is not a whole number"),
+            std::string::npos)
+      << load_error(wordy);
 
   const fs::path folder = dir_ / "folder.vmem";
   fs::create_directories(folder);

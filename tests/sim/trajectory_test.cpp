@@ -167,7 +167,8 @@ TEST(Trajectory, BadSpecsNameTheProblem) {
   EXPECT_THROW(make_trajectory("spiral", world), UsageError);
   EXPECT_THROW(make_trajectory("rotate:rate_deg_s=0", world), UsageError);
   EXPECT_THROW(make_trajectory("line:speed=0.2", world), UsageError);  // speed_m_s, not speed
-  EXPECT_THROW(make_trajectory("line:speed_m_s=fast", world), InputError);
+  // A value that is not a number is a bad spec like the others, whichever key.
+  EXPECT_THROW(make_trajectory("line:speed_m_s=fast", world), UsageError);
   EXPECT_THROW(make_trajectory("circle:radius_m", world), UsageError);
   try {
     make_trajectory("line:sped_m_s=0.2", world);

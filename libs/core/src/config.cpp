@@ -28,13 +28,18 @@ std::string format_number(double value) {
 
 // Walks every key of `node`, calling `visit` with its dotted path.
 template <typename Visit>
-void for_each_key(const YAML::Node& node, const std::string& prefix, Visit&& visit) {
+void for_each_key(const std::string& name, const YAML::Node& node, const std::string& prefix,
+                  Visit&& visit) {
   if (!node.IsMap()) return;
   for (const auto& entry : node) {
-    const std::string key = prefix.empty() ? entry.first.as<std::string>()
-                                           : prefix + "." + entry.first.as<std::string>();
+    if (!entry.first.IsScalar()) {  // `? [a, b]: 1`: yaml-cpp cannot make text of it
+      throw ConfigError(name + ":" + std::to_string(entry.first.Mark().line + 1) +
+                        ": a key must be a name, not a list or a map");
+    }
+    const std::string key =
+        prefix.empty() ? entry.first.Scalar() : prefix + "." + entry.first.Scalar();
     visit(key, entry.second);
-    for_each_key(entry.second, key, visit);
+    for_each_key(name, entry.second, key, visit);
   }
 }
 
@@ -63,7 +68,7 @@ ConfigReader ConfigReader::from_string(const std::string& yaml, const std::strin
 ConfigReader ConfigReader::from_file(const std::filesystem::path& file) {
   std::error_code error;
   if (!std::filesystem::is_regular_file(file, error)) {
-    throw ConfigError(file.string() + ": configuration file not found");
+    throw ConfigError(file.string() + ": " + unreadable_file_reason(file, "configuration file"));
   }
   std::ifstream stream(file, std::ios::binary);
   std::stringstream text;
@@ -182,7 +187,7 @@ void ConfigReader::read_deg(const std::string& key, double& value_rad, double mi
 }
 
 void ConfigReader::require_all_known() const {
-  for_each_key(shared_->root, "", [&](const std::string& key, const YAML::Node&) {
+  for_each_key(shared_->name, shared_->root, "", [&](const std::string& key, const YAML::Node&) {
     if (!shared_->known.contains(key)) {
       std::string siblings;
       const std::string parent =

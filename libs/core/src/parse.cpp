@@ -48,4 +48,20 @@ int parse_int(std::string_view text, const std::string& where) {
   return value;
 }
 
+double parse_double_argument(std::string_view text, const std::string& where) {
+  try {
+    return parse_double(text, where);
+  } catch (const InputError& error) {
+    throw UsageError(error.what());
+  }
+}
+
+int parse_int_argument(std::string_view text, const std::string& where) {
+  try {
+    return parse_int(text, where);
+  } catch (const InputError& error) {
+    throw UsageError(error.what());
+  }
+}
+
 }  // namespace omninav

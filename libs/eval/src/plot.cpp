@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <limits>
 #include <opencv2/imgproc.hpp>
+#include <sstream>
 #include <string>
 
 #include "omninav/core/errors.hpp"
@@ -233,13 +234,26 @@ TickStep nice_step(double range, int intervals) {
   return step;
 }
 
+// Ticks k·step for k = first, first + 1, ..., last, counted in whole numbers: for bounds so far
+// from 0 that k + 1 == k in floating point, a loop over k would never end.
+std::vector<double> ticks_from(double first, double last, const TickStep& step) {
+  constexpr double kMaxTicks = 1000.0;
+  if (!(last - first <= kMaxTicks)) {
+    std::ostringstream message;
+    message << "an axis from " << first * step.value() << " to " << last * step.value()
+            << " would have more than " << kMaxTicks << " ticks";
+    throw UsageError(message.str());
+  }
+  std::vector<double> ticks;
+  const int count = last >= first ? static_cast<int>(last - first) + 1 : 0;
+  for (int i = 0; i < count; ++i) ticks.push_back(step.tick(first + i));
+  return ticks;
+}
+
 // Multiples of `step` within [low, high].
 std::vector<double> ticks_within(double low, double high, const TickStep& step) {
-  std::vector<double> ticks;
-  const double first = std::ceil(low / step.value() - 1e-9);
-  const double last = std::floor(high / step.value() + 1e-9);
-  for (double k = first; k <= last; k += 1.0) ticks.push_back(step.tick(k));
-  return ticks;
+  return ticks_from(std::ceil(low / step.value() - 1e-9), std::floor(high / step.value() + 1e-9),
+                    step);
 }
 
 }  // namespace
@@ -256,8 +270,9 @@ cv::Scalar palette_colour(std::size_t index) {
 
 std::vector<double> nice_ticks(double low, double high, int target_count) {
   if (!std::isfinite(low) || !std::isfinite(high) || low > high) {
-    throw UsageError("axis range [" + std::to_string(low) + ", " + std::to_string(high) +
-                     "] is not a finite interval");
+    std::ostringstream message;  // %g: DBL_MAX in 12 characters, not 309 digits
+    message << "axis range [" << low << ", " << high << "] is not a finite interval";
+    throw UsageError(message.str());
   }
   const double magnitude_of_bounds = std::max(std::abs(low), std::abs(high));
   if (high == low || high - low <= 1e-12 * magnitude_of_bounds) {
@@ -267,11 +282,8 @@ std::vector<double> nice_ticks(double low, double high, int target_count) {
   }
   const TickStep step = nice_step(high - low, target_count);
   // The tolerance keeps a bound that is a multiple of the step from adding a tick beyond it.
-  const double first = std::floor(low / step.value() + 1e-9);
-  const double last = std::ceil(high / step.value() - 1e-9);
-  std::vector<double> ticks;
-  for (double k = first; k <= last; k += 1.0) ticks.push_back(step.tick(k));
-  return ticks;
+  return ticks_from(std::floor(low / step.value() + 1e-9), std::ceil(high / step.value() - 1e-9),
+                    step);
 }
 
 LinePlot::LinePlot(std::string title, std::string x_label, std::string y_label, cv::Size size_px)

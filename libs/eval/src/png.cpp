@@ -1,13 +1,11 @@
 #include "omninav/eval/png.hpp"
 
-#include <cerrno>
-#include <cstring>
-#include <fstream>
 #include <opencv2/imgcodecs.hpp>
 #include <string>
 #include <vector>
 
 #include "omninav/core/errors.hpp"
+#include "omninav/core/output_file.hpp"
 
 namespace omninav::eval {
 
@@ -31,16 +29,8 @@ void save_png(const cv::Mat& image, const std::filesystem::path& path) {
   }
   if (!encoded) throw InputError("cannot encode " + path.string() + " as PNG");
 
-  errno = 0;
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  if (!out) {
-    const std::string reason = errno != 0 ? std::string(": ") + std::strerror(errno) : "";
-    throw InputError("cannot open " + path.string() + " for writing" + reason);
-  }
-  out.write(reinterpret_cast<const char*>(bytes.data()),
-            static_cast<std::streamsize>(bytes.size()));
-  out.close();
-  if (!out) throw InputError("cannot write " + path.string() + " (disk full?)");
+  write_output_file(path,
+                    std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
 }
 
 }  // namespace omninav::eval

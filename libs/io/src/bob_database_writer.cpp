@@ -2,12 +2,12 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <opencv2/imgcodecs.hpp>
 
 #include "bob_format.hpp"
 #include "omninav/core/angles.hpp"
 #include "omninav/core/errors.hpp"
+#include "omninav/core/output_file.hpp"
 #include "omninav/core/panorama.hpp"
 #include "omninav/io/bob_database.hpp"
 
@@ -42,13 +42,6 @@ std::string grid_file_name(const CameraPose& truth) {
                 std::lround(truth.x_m * 1000.0), std::lround(truth.y_m * 1000.0),
                 std::lround(truth.z_m * 1000.0));
   return name;
-}
-
-void write_text_file(const std::filesystem::path& file, const std::string& text) {
-  std::ofstream stream(file, std::ios::binary);
-  stream << text;
-  stream.close();
-  if (!stream) throw Error(file.string() + ": cannot write");
 }
 
 void rename_into_place(const std::filesystem::path& from, const std::filesystem::path& to) {
@@ -165,8 +158,8 @@ void DatabaseWriter::finish() {
     if (has_times) csv += ", " + format_number(*entry.time_s * 1000.0);
     csv += '\n';
   }
-  write_text_file(staging_ / kBobEntriesFile, csv);
-  write_text_file(staging_ / kBobMetadataFile, bob::metadata_yaml(info_, greyscale_));
+  write_output_file(staging_ / kBobEntriesFile, csv);
+  write_output_file(staging_ / kBobMetadataFile, bob::metadata_yaml(info_, greyscale_));
 
   // From here on the folder changes. The old entries go first, so that an interruption leaves
   // no database rather than old entries that name new images; the new entries come last, so

@@ -3,6 +3,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "omninav/core/errors.hpp"
+#include "quiet_stderr.hpp"
 
 namespace omninav::io {
 namespace {
@@ -16,10 +17,11 @@ std::string size_text(const cv::Size& size) {
 cv::Mat read_image(const std::filesystem::path& file) {
   std::error_code error;
   if (!std::filesystem::is_regular_file(file, error)) {
-    throw InputError(file.string() + ": no such image file");
+    throw InputError(file.string() + ": " + unreadable_file_reason(file, "image file"));
   }
   cv::Mat image;
   try {
+    const QuietStderr quiet;  // no "libpng error: ..." before our message
     image = cv::imread(file.string(), cv::IMREAD_COLOR);
   } catch (const cv::Exception& e) {
     // Some decoders throw on malformed headers instead of returning an empty image.

@@ -5,15 +5,21 @@
 
 #include "omninav/core/errors.hpp"
 #include "omninav/core/log.hpp"
+#include "quiet_stderr.hpp"
 
 namespace omninav::io {
 
 VideoSequence::VideoSequence(const std::filesystem::path& file) : file_(file) {
   std::error_code error;
   if (!std::filesystem::is_regular_file(file, error)) {
-    throw InputError(file.string() + ": no such video file");
+    throw InputError(file.string() + ": " + unreadable_file_reason(file, "video file"));
   }
-  if (!capture_.open(file.string()) || !capture_.read(pending_) || pending_.empty()) {
+  bool opened = false;
+  {
+    const QuietStderr quiet;  // FFmpeg's, GStreamer's and OpenCV's lines: ours says it
+    opened = capture_.open(file.string()) && capture_.read(pending_) && !pending_.empty();
+  }
+  if (!opened) {
     throw InputError(file.string() +
                      ": cannot read as a video (unknown format or codec, or no frames)");
   }
@@ -36,7 +42,10 @@ std::optional<Frame> VideoSequence::next() {
 
   // A fresh Mat each time: the frame handed out must not be overwritten by the next read.
   pending_ = cv::Mat();
-  if (!capture_.read(pending_)) pending_ = cv::Mat();
+  {
+    const QuietStderr quiet;
+    if (!capture_.read(pending_)) pending_ = cv::Mat();
+  }
   if (pending_.empty() && static_cast<std::size_t>(next_index_) < declared_frames_) {
     log_warning(file_.string() + ": ended after " + std::to_string(next_index_) +
                 " frames, but its container declares " + std::to_string(declared_frames_));

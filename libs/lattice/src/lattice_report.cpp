@@ -5,8 +5,11 @@
 #include <map>
 #include <opencv2/imgproc.hpp>
 #include <set>
+#include <sstream>
 #include <utility>
 
+#include "omninav/core/log.hpp"
+#include "omninav/core/pose.hpp"
 #include "omninav/eval/plot.hpp"
 #include "omninav/lattice/stiffness.hpp"
 #include "omninav/memory/localisation.hpp"
@@ -78,7 +81,16 @@ std::optional<LatticeEvaluation> evaluate_against_truth(const memory::VisualMemo
     return std::nullopt;
   std::vector<Eigen::Vector2d> truth;
   for (std::size_t i = 0; i < memory.place_count(); ++i) {
-    truth.emplace_back(memory.place(i).truth->x_m, memory.place(i).truth->y_m);
+    const CameraPose& pose = *memory.place(i).truth;
+    if (!plausible_position(pose)) {
+      std::ostringstream message;
+      message << "place " << i << "'s true position (" << pose.x_m << ", " << pose.y_m
+              << ") m is not finite or farther than " << kMaxPlausibleCoordinate_m / 1000
+              << " km from the origin: the lattice is not compared with the truth";
+      log_warning(message.str());
+      return std::nullopt;
+    }
+    truth.emplace_back(pose.x_m, pose.y_m);
   }
   LatticeEvaluation evaluation;
   std::vector<cv::Point2d> truth_points;

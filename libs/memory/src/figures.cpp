@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <iomanip>
 #include <map>
 #include <numeric>
@@ -10,6 +9,8 @@
 #include <sstream>
 
 #include "omninav/core/errors.hpp"
+#include "omninav/core/output_file.hpp"
+#include "omninav/core/pose.hpp"
 #include "omninav/core/statistics.hpp"
 #include "omninav/eval/plot.hpp"
 #include "omninav/eval/png.hpp"
@@ -183,6 +184,22 @@ std::string fixed(double value, int digits) {
   return text.str();
 }
 
+// One point per distance of `distance` (ascending): the mean of `value` over the places at that
+// distance (within 1 µm). Each step takes at least one place, whatever the numbers.
+std::pair<std::vector<double>, std::vector<double>> mean_per_distance(
+    const std::vector<double>& distance, const std::vector<double>& value) {
+  std::vector<double> x, y;
+  for (std::size_t a = 0; a < distance.size();) {
+    std::size_t b = a + 1;
+    double sum = value[a];
+    while (b < distance.size() && distance[b] - distance[a] < 1e-6) sum += value[b++];
+    x.push_back(distance[a]);
+    y.push_back(sum / static_cast<double>(b - a));
+    a = b;
+  }
+  return {x, y};
+}
+
 }  // namespace
 
 SignatureFigures write_signature_figures(const VisualMemory& memory,
@@ -193,13 +210,10 @@ SignatureFigures write_signature_figures(const VisualMemory& memory,
         "rendered grid, e.g. omninav render --trajectory grid:...)");
   }
   if (memory.place_count() < 8) throw UsageError("figures need a map of at least 8 places");
-  std::filesystem::create_directories(folder);
   SignatureFigures out;
   const auto save_csv = [&](const std::string& name, const std::string& text) {
     const std::filesystem::path file = folder / name;
-    std::ofstream stream(file, std::ios::binary);
-    stream << text;
-    if (!stream) throw InputError(file.string() + ": cannot write");
+    write_output_file(file, text);
     out.files.push_back(file);
   };
   const auto save_plot = [&](const auto& plot, const std::string& name) {
@@ -210,8 +224,17 @@ SignatureFigures write_signature_figures(const VisualMemory& memory,
 
   std::vector<cv::Point2d> positions;
   for (PlaceIndex i = 0; i < memory.place_count(); ++i) {
-    positions.emplace_back(memory.place(i).truth->x_m, memory.place(i).truth->y_m);
+    const CameraPose& truth = *memory.place(i).truth;
+    if (!plausible_position(truth)) {
+      std::ostringstream message;  // %g: 1e+160, not 161 digits
+      message << "place " << i << " has a true position of (" << truth.x_m << ", " << truth.y_m
+              << ") m: not finite or farther than " << kMaxPlausibleCoordinate_m / 1000
+              << " km from the origin";
+      throw InputError(message.str());
+    }
+    positions.emplace_back(truth.x_m, truth.y_m);
   }
+  std::filesystem::create_directories(folder);
   const double spacing = typical_spacing(positions);
   cv::Point2d centre(0, 0);
   for (const cv::Point2d& p : positions) centre += p;
@@ -303,15 +326,7 @@ SignatureFigures write_signature_figures(const VisualMemory& memory,
       for (std::size_t j : near) dis.push_back(prefix(terms(terms_lum, middle, j), m));
       sims.push_back(signature::rescale_similarities(dis));
       // One point per distance: the mean over the neighbours at that distance.
-      std::vector<double> x, y;
-      for (std::size_t a = 0; a < near.size();) {
-        std::size_t b = a;
-        double sum = 0.0;
-        while (b < near.size() && distance[b] - distance[a] < 1e-6) sum += sims.back()[b++];
-        x.push_back(distance[a]);
-        y.push_back(sum / static_cast<double>(b - a));
-        a = b;
-      }
+      const auto [x, y] = mean_per_distance(distance, sims.back());
       plot.add_series(
           m == half ? "m = " + std::to_string(m) + " (all)" : "m = " + std::to_string(m), x, y,
           eval::SeriesStyle::kLineAndPoints);
@@ -399,16 +414,13 @@ SignatureFigures write_signature_figures(const VisualMemory& memory,
         csv << r << ',' << j << ',' << d << ',' << dis << '\n';
       }
       std::sort(curve.begin(), curve.end());
-      // One point per distance (the mean of places at the same distance), as a line.
-      std::vector<double> x, y;
-      for (std::size_t a = 0; a < curve.size();) {
-        std::size_t b = a;
-        double sum = 0.0;
-        while (b < curve.size() && curve[b].first - curve[a].first < 1e-6) sum += curve[b++].second;
-        x.push_back(curve[a].first);
-        y.push_back(sum / (b - a));
-        a = b;
+      std::vector<double> distances, values;
+      for (const auto& [d, value] : curve) {
+        distances.push_back(d);
+        values.push_back(value);
       }
+      // One point per distance (the mean of places at the same distance), as a line.
+      const auto [x, y] = mean_per_distance(distances, values);
       plot.add_series("from place " + std::to_string(r), x, y, eval::SeriesStyle::kLine);
     }
     // The median over all pairs, in bins.

@@ -1,14 +1,20 @@
 #include "omninav/memory/map_file.hpp"
 
 #include <fcntl.h>
+#include <sys/file.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <bit>
+#include <cerrno>
 #include <cstring>
+#include <fstream>
 #include <set>
 #include <sstream>
 
 #include "omninav/core/errors.hpp"
+#include "omninav/core/output_file.hpp"
+#include "omninav/core/parse.hpp"
 #include "sqlite_db.hpp"
 
 #ifndef OMNINAV_VERSION_STRING
@@ -144,8 +150,11 @@ std::int64_t check_map(Database& db) {
   if (has_version.integer(0) != 1) {
     throw InputError(corrupt(file, "it has no schema_version table"));
   }
-  Statement version = db.prepare("SELECT version, written_by FROM schema_version");
+  Statement version = db.prepare("SELECT version, written_by, typeof(version) FROM schema_version");
   if (!version.step()) throw InputError(corrupt(file, "its schema_version table is empty"));
+  if (version.text(2) != "integer") {
+    throw InputError(corrupt(file, "schema version '" + version.text(0) + "' is not a number"));
+  }
   const std::int64_t v = version.integer(0);
   if (v > kMapSchemaVersion) {
     throw InputError(file.string() + ": the map has schema version " + std::to_string(v) +
@@ -258,24 +267,58 @@ void write_parameters(Database& db, const VisualMemory& memory) {
   for (const auto& [key, value] : parameter_rows(memory)) upsert.bind(1, key).bind(2, value).run();
 }
 
-void fsync_path(const std::filesystem::path& path, bool directory) {
-  const int fd = ::open(path.c_str(), directory ? O_RDONLY | O_DIRECTORY : O_RDONLY);
-  if (fd < 0) return;  // best effort: the rename is still atomic
-  ::fsync(fd);
-  ::close(fd);
-}
+// Held while a new map is written, on "<map>.lock" beside it: a second writer of the same map
+// fails at once instead of sharing the first one's work. The last holder removes the file; a
+// process that locked a file removed meanwhile locks the new one.
+class WriteLock {
+ public:
+  explicit WriteLock(const std::filesystem::path& map) : file_(map.string() + ".lock") {
+    while (true) {
+      fd_ = ::open(file_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0666);
+      if (fd_ < 0) {
+        throw InputError(map.string() + ": cannot write (" + file_ + ": " + std::strerror(errno) +
+                         ")");
+      }
+      if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+        ::close(fd_);
+        throw InputError(map.string() + ": another process is writing this map; try again later");
+      }
+      struct stat held {};
+      struct stat named {};
+      if (::fstat(fd_, &held) == 0 && ::stat(file_.c_str(), &named) == 0 &&
+          held.st_dev == named.st_dev && held.st_ino == named.st_ino) {
+        return;
+      }
+      ::close(fd_);
+    }
+  }
+  WriteLock(const WriteLock&) = delete;
+  WriteLock& operator=(const WriteLock&) = delete;
+  ~WriteLock() {
+    ::unlink(file_.c_str());
+    ::close(fd_);
+  }
+
+ private:
+  std::string file_;
+  int fd_ = -1;
+};
 
 void write_new(VisualMemory& memory, const std::filesystem::path& file,
                const SaveOptions& options) {
-  std::filesystem::path partial = file;
-  partial += ".partial";
   std::error_code ignored;
   if (file.has_parent_path()) std::filesystem::create_directories(file.parent_path(), ignored);
-  std::filesystem::remove(partial, ignored);
-  std::filesystem::remove(std::filesystem::path(partial.string() + "-journal"), ignored);
+  const WriteLock lock(file);
+  if (!options.overwrite && std::filesystem::exists(file, ignored)) {
+    throw InputError(file.string() + ": another process made this map meanwhile; not replacing it");
+  }
+  check_map_replaceable(file);
+  remove_stale_temporaries(file);  // a killed writer's, under the lock no one else's
+  OutputFile output(file);
+  if (output.in_place()) throw InputError(file.string() + ": is not a regular file");
   {
-    Database db(partial, Database::Mode::kCreate);
-    // The partial file is thrown away if anything fails, so it needs no journal; it is synced
+    Database db(output.temporary(), Database::Mode::kCreate);
+    // The temporary is thrown away if anything fails, so it needs no journal; it is synced
     // once, whole, before the rename.
     db.exec("PRAGMA journal_mode = OFF");
     db.exec("PRAGMA synchronous = OFF");
@@ -292,9 +335,14 @@ void write_new(VisualMemory& memory, const std::filesystem::path& file,
     insert_edges(db, memory, 0);
     db.exec("COMMIT");
   }
-  fsync_path(partial, false);
-  std::filesystem::rename(partial, file);
-  fsync_path(file.parent_path().empty() ? std::filesystem::path(".") : file.parent_path(), true);
+  // The old map's journal, left hot by a writer killed mid-transaction, would be rolled back
+  // into the new map the next time it is opened: it goes before the new map arrives.
+  const std::filesystem::path journal = file.string() + "-journal";
+  std::filesystem::remove(journal, ignored);
+  if (std::filesystem::exists(journal, ignored)) {
+    throw InputError(file.string() + ": cannot remove the old map's journal " + journal.string());
+  }
+  output.commit();
 }
 
 void append(VisualMemory& memory, const std::filesystem::path& file, const SaveOptions& options) {
@@ -390,6 +438,41 @@ Place read_place(const Statement& row, const std::filesystem::path& file, std::s
 
 }  // namespace
 
+void check_map_replaceable(const std::filesystem::path& file) {
+  std::error_code error;
+  if (!std::filesystem::exists(file, error)) return;
+  const auto refuse = [&](const std::string& what) {
+    throw UsageError(file.string() + ": " + what + "; not replacing it (only an omninav map is)");
+  };
+  if (!std::filesystem::is_regular_file(file, error)) refuse("is not a regular file");
+  // SQLite's header: its magic, then the application id, big-endian, at byte 68.
+  char header[72] = {};
+  {
+    std::ifstream stream(file, std::ios::binary);
+    stream.read(header, sizeof header);
+    if (stream.gcount() != sizeof header) refuse("is not an omninav map");
+  }
+  const auto byte = [&](int i) {
+    return static_cast<std::uint32_t>(static_cast<unsigned char>(header[i]));
+  };
+  const std::uint32_t id = byte(68) << 24 | byte(69) << 16 | byte(70) << 8 | byte(71);
+  if (std::memcmp(header, "SQLite format 3", 16) != 0 ||
+      id != static_cast<std::uint32_t>(kMapApplicationId)) {
+    refuse("is not an omninav map");
+  }
+  std::int64_t version = 0;
+  try {
+    Database db(file, Database::Mode::kReadOnly);
+    Statement row = db.prepare("SELECT version FROM schema_version");
+    if (row.step()) version = row.integer(0);
+  } catch (const InputError&) {
+    return;  // a damaged map of ours: replacing it is what the user asked for
+  }
+  if (version > kMapSchemaVersion) {
+    refuse("was written by a newer omninav (schema version " + std::to_string(version) + ")");
+  }
+}
+
 VisualMemory load_map(const std::filesystem::path& file) {
   std::error_code error;
   if (!std::filesystem::exists(file, error)) {
@@ -417,7 +500,8 @@ VisualMemory load_map(const std::filesystem::path& file) {
       if (found == parameters.end()) throw InputError("the parameter " + key + " is missing");
       return found->second;
     };
-    map_parameters.signature.components = std::stoi(get("signature.components"));
+    map_parameters.signature.components =
+        parse_int(get("signature.components"), "signature.components");
     map_parameters.signature.colour = signature::colour_mode_from_string(get("signature.colour"));
     const std::string normalise = get("signature.normalise_brightness");
     if (normalise != "true" && normalise != "false") {
@@ -426,7 +510,8 @@ VisualMemory load_map(const std::filesystem::path& file) {
     map_parameters.signature.normalise_brightness = normalise == "true";
     map_parameters.weights =
         signature::parse_component_weights(get("signature.weights"), "signature.weights");
-    map_parameters.panorama_rows = std::stoi(get("signature.panorama_rows"));
+    map_parameters.panorama_rows =
+        parse_int(get("signature.panorama_rows"), "signature.panorama_rows");
   } catch (const std::exception& e) {
     throw InputError(corrupt(file, e.what()));
   }

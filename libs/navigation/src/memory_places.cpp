@@ -32,6 +32,23 @@ std::vector<PlaceNode> places_from_memory(const memory::VisualMemory& memory) {
   return places;
 }
 
+PlaceMatch place_match(const memory::Localiser& localiser, const memory::Localisation& result) {
+  PlaceMatch match;
+  if (result.best.empty()) return match;
+  match.place = static_cast<int>(result.best.front().place);
+  match.similarity = result.best.front().similarity;
+  match.heading_in_place_rad = result.best.front().relative_heading_rad;
+  const signature::Signature& place = localiser.memory().place(match.place).signature;
+  const int components = localiser.params().hierarchy.levels.back();
+  match.dissimilarity_per_value =
+      result.best.front().dissimilarity / (static_cast<double>(place.lines()) * components);
+  if (result.position && result.position->frame == memory::PositionFrame::kLattice) {
+    match.position =
+        Eigen::Vector2d(result.position->interpolated_x, result.position->interpolated_y);
+  }
+  return match;
+}
+
 Localiser memory_localiser(const memory::Localiser& localiser,
                            signature::SignatureExtractor& extractor) {
   return [&localiser, &extractor](const cv::Mat& panorama) {
@@ -40,23 +57,23 @@ Localiser memory_localiser(const memory::Localiser& localiser,
       throw InputError("a panorama of " + std::to_string(panorama.rows) + " rows; the map's have " +
                        std::to_string(rows));
     }
-    const memory::Localisation result =
-        localiser.localise(extractor.compute(panorama, "the robot's view"));
-    PlaceMatch match;
-    if (result.best.empty()) return match;
-    match.place = static_cast<int>(result.best.front().place);
-    match.similarity = result.best.front().similarity;
-    match.heading_in_place_rad = result.best.front().relative_heading_rad;
-    const signature::Signature& place = localiser.memory().place(match.place).signature;
-    const int components = localiser.params().hierarchy.levels.back();
-    match.dissimilarity_per_value =
-        result.best.front().dissimilarity / (static_cast<double>(place.lines()) * components);
-    if (result.position && result.position->frame == memory::PositionFrame::kLattice) {
-      match.position =
-          Eigen::Vector2d(result.position->interpolated_x, result.position->interpolated_y);
-    }
-    return match;
+    return place_match(localiser,
+                       localiser.localise(extractor.compute(panorama, "the robot's view")));
   };
+}
+
+std::optional<std::string> no_match_reason(const PlaceMatch& match, double limit) {
+  if (match.place < 0) return "matches no place of the map (no candidate)";
+  if (!(match.dissimilarity_per_value <= limit)) {
+    std::ostringstream message;
+    message << "matches no place of the map (the nearest, place " << match.place << ", differs by "
+            << std::fixed << std::setprecision(2) << match.dissimilarity_per_value
+            << " grey levels per compared value, more than " << limit
+            << ": navigation.yaml route.match_dissimilarity_ratio times the map's "
+            << "typical difference between neighbouring places)";
+    return message.str();
+  }
+  return std::nullopt;
 }
 
 namespace {
@@ -107,15 +124,8 @@ PlaceMatch match_image(const Localiser& localise, const cv::Mat& image, double l
   } catch (const InputError& error) {
     throw InputError(what + ": " + error.what());
   }
-  if (match.place < 0) throw InputError(what + ": matches no place of the map (no candidate)");
-  if (match.dissimilarity_per_value > limit) {
-    std::ostringstream message;
-    message << what << ": matches no place of the map (the nearest, place " << match.place
-            << ", differs by " << std::fixed << std::setprecision(2)
-            << match.dissimilarity_per_value << " grey levels per compared value, more than "
-            << limit << ": navigation.yaml route.match_dissimilarity_ratio times the map's "
-            << "typical difference between neighbouring places)";
-    throw InputError(message.str());
+  if (const std::optional<std::string> reason = no_match_reason(match, limit)) {
+    throw InputError(what + ": " + *reason);
   }
   return match;
 }

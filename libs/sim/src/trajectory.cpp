@@ -34,7 +34,7 @@ class SpecArguments {
     asked_.insert(key);
     const auto found = values_.find(key);
     if (found == values_.end()) return fallback;
-    return parse_double(found->second, "trajectory '" + spec_ + "', key " + key);
+    return parse_double_argument(found->second, "trajectory '" + spec_ + "', key " + key);
   }
 
   std::string text(const std::string& key, const std::string& fallback) {

@@ -2,6 +2,7 @@
 // Typed exceptions thrown by the libraries and caught once, at main, where they become a
 // one-line message and a non-zero exit status (DESIGN.md, Conventions: Errors).
 
+#include <filesystem>
 #include <stdexcept>
 #include <string>
 
@@ -30,5 +31,10 @@ class UsageError : public Error {
  public:
   using Error::Error;
 };
+
+// Why `path` cannot be read as a `kind` (e.g. "video file"), for "<path>: <reason>" when a
+// regular file was wanted: "no such video file", "cannot reach the video file (Permission
+// denied)", "is a folder, not a video file", "is a FIFO, not a video file".
+std::string unreadable_file_reason(const std::filesystem::path& path, const std::string& kind);
 
 }  // namespace omninav

@@ -11,6 +11,10 @@ namespace omninav {
 // InputError "<where>: '<text>' is not a number".
 double parse_double(std::string_view text, const std::string& where);
 int parse_int(std::string_view text, const std::string& where);
+// The same for a value on the command line: a bad one is a UsageError (exit status 2), whichever
+// option or spec it came in.
+double parse_double_argument(std::string_view text, const std::string& where);
+int parse_int_argument(std::string_view text, const std::string& where);
 
 // Removes leading and trailing blanks (spaces, tabs, CR, LF).
 std::string_view trim(std::string_view text);

@@ -3,6 +3,8 @@
 // (ROS REP 103 yaw). Pitch and roll follow REP 103 too: positive pitch turns the nose down,
 // positive roll turns the left side up.
 
+#include <cmath>
+
 namespace omninav {
 
 // A robot's pose on the floor.
@@ -23,5 +25,16 @@ struct CameraPose {
 
   Pose2 on_floor() const { return {x_m, y_m, heading_rad}; }
 };
+
+// Ground truth describes one room or building: a coordinate that is not finite or lies farther
+// than this from the origin is a damaged input, refused where distances are measured (figures,
+// the lattice's evaluation) instead of overflowing them.
+inline constexpr double kMaxPlausibleCoordinate_m = 1e6;
+
+inline bool plausible_position(const CameraPose& pose) {
+  return std::fabs(pose.x_m) <= kMaxPlausibleCoordinate_m &&
+         std::fabs(pose.y_m) <= kMaxPlausibleCoordinate_m &&
+         std::fabs(pose.z_m) <= kMaxPlausibleCoordinate_m;  // false for NaN
+}
 
 }  // namespace omninav

@@ -4,9 +4,16 @@
 // a schema version.
 //
 // Writes never leave a half-written map:
-//   - a new map is written whole into "<file>.partial" next to it, committed, and renamed over
-//     <file> (rename is atomic on POSIX file systems): killed before the rename, there is no
-//     map at <file> (or the old one, when overwriting);
+//   - a new map is written whole into a temporary of a unique name next to it (a hidden
+//     ".<name>.XXXXXX.vmem", core/output_file.hpp), committed, synced and renamed over <file>
+//     (rename is atomic on POSIX file systems): killed or failing before the rename, there is
+//     no map at <file> (or the old one, when overwriting), and no temporary once it failed;
+//     the old map's rollback journal, if a killed writer left one, is removed first, so that
+//     it is never rolled back into the new map; a second process writing the same new map at
+//     the same time fails at once ("another process is writing this map": a lock on
+//     "<file>.lock", removed after);
+//   - replacing (overwrite) takes only an omninav map of a schema this build knows: anything
+//     else at <file> is a UsageError;
 //   - adding to an existing map (exploring again) appends the new rows in one SQLite
 //     transaction: killed midway, SQLite's rollback journal restores the previous map the next
 //     time the file is opened.
@@ -38,6 +45,10 @@ struct SaveOptions {
   // writer midway).
   std::function<void(std::size_t places_written)> after_place;
 };
+
+// UsageError unless `file` is absent or an omninav map this build may replace (see above).
+// Explore calls it before the work when asked to overwrite.
+void check_map_replaceable(const std::filesystem::path& file);
 
 // Reads a whole map. Throws InputError as described above.
 VisualMemory load_map(const std::filesystem::path& file);

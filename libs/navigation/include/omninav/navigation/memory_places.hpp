@@ -3,6 +3,7 @@
 
 #include <memory>
 #include <opencv2/core.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,10 @@ namespace omninav::navigation {
 // map without places, UsageError when the map has no lattice yet ("run omninav organise") or a
 // place has no heading (neither stored nor measurable along the exploration).
 std::vector<PlaceNode> places_from_memory(const memory::VisualMemory& memory);
+
+// The best place of `result` (a localisation by `localiser`) as the navigator sees it; place
+// -1 when there is none.
+PlaceMatch place_match(const memory::Localiser& localiser, const memory::Localisation& result);
 
 // A navigator's localiser backed by the memory's hierarchical localisation: the best place,
 // its similarity, and the robot's heading relative to the place from the phases. The
@@ -37,6 +42,11 @@ double match_limit(const memory::VisualMemory& memory, const RouteParams& params
 // map's links, which join places about one spacing apart. Without links, metres_per_dissimilarity
 // is 0 (homing never moves), with a warning in the log.
 HomingScale homing_scale(const memory::VisualMemory& memory, const std::vector<PlaceNode>& places);
+
+// Why `match` matches no place of the map, none when it does: no candidate, or a mean
+// dissimilarity per value above `limit` (see match_limit). The one criterion of route, navigate
+// and localise.
+std::optional<std::string> no_match_reason(const PlaceMatch& match, double limit);
 
 // Localises `image` (named `what` in messages, e.g. "goal.png") and checks that it matches a
 // place: InputError when it matches none (no candidate, or a mean dissimilarity per value above
