@@ -1,5 +1,6 @@
 #include "bob_format.hpp"
 
+#include <cstring>
 #include <fstream>
 #include <opencv2/core/persistence.hpp>
 #include <sstream>
@@ -68,8 +69,9 @@ class MetadataParser {
 
   cv::Size resolution(const cv::FileNode& node) const {
     if (node.empty()) return {};
-    if (!node.isSeq() || node.size() != 2 || !node[0].isInt() || !node[1].isInt()) {
-      fail("camera.resolution", "is not [width, height]");
+    if (!node.isSeq() || node.size() != 2 || !node[0].isInt() || !node[1].isInt() ||
+        static_cast<int>(node[0]) < 1 || static_cast<int>(node[1]) < 1) {
+      fail("camera.resolution", "is not [width, height] in pixels");
     }
     return {static_cast<int>(node[0]), static_cast<int>(node[1])};
   }
@@ -82,6 +84,68 @@ class MetadataParser {
   cv::FileNode metadata_;
 };
 
+// BoB's metadata is a few hundred bytes, nested three levels deep. OpenCV's YAML parser
+// recurses once per level of nesting, so a small file of 50,000 brackets overflows the stack
+// (SIGSEGV, no exception): the size and depth are bounded here, before OpenCV sees the text.
+constexpr std::size_t kMaxMetadataBytes = 64 * 1024;
+constexpr int kMaxMetadataDepth = 32;
+
+// An upper bound of the nesting OpenCV would follow: flow brackets ([ and {) still open, plus,
+// at the start of each line, its indentation and its "- " sequence markers (each of which can
+// open a block collection). Brackets inside a quoted scalar or a comment are text; a quote or
+// comment ends at the end of its line here, so that the bound errs only on the safe side.
+void check_nesting(const std::string& text, const std::filesystem::path& file) {
+  if (text.size() > kMaxMetadataBytes) {
+    throw InputError(file.string() + ": " + std::to_string(text.size()) +
+                     " bytes, too large for BoB metadata (at most " +
+                     std::to_string(kMaxMetadataBytes) + ")");
+  }
+  int flow_depth = 0;
+  int line_depth = 0;  // indentation and sequence markers of the current line
+  bool line_start = true;
+  char quote = 0;     // the quote character of a quoted scalar being read
+  char previous = 0;  // the last character outside quotes on this line that was not blank
+  bool blank_before = true;
+  bool comment = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    const bool blank = c == ' ' || c == '\t' || c == '\r';
+    if (c == '\n') {
+      line_start = blank_before = true;
+      line_depth = 0;
+      quote = previous = 0;
+      comment = false;
+      continue;
+    }
+    if (line_start) {
+      if (blank ||
+          (c == '-' && i + 1 < text.size() && (text[i + 1] == ' ' || text[i + 1] == '\t'))) {
+        ++line_depth;
+      } else {
+        line_start = false;
+      }
+    }
+    if (comment) continue;
+    if (quote != 0) {
+      if (c == quote) quote = 0;
+    } else if ((c == '"' || c == '\'') && (previous == 0 || std::strchr(":-[{,", previous))) {
+      quote = c;
+    } else if (c == '#' && blank_before) {
+      comment = true;
+    } else if (c == '[' || c == '{') {
+      ++flow_depth;
+    } else if ((c == ']' || c == '}') && flow_depth > 0) {
+      --flow_depth;
+    }
+    if (!blank && quote == 0) previous = c;
+    blank_before = blank;
+    if (flow_depth + line_depth > kMaxMetadataDepth) {
+      throw InputError(file.string() + ": nested more than " + std::to_string(kMaxMetadataDepth) +
+                       " levels deep (indentation included), not BoB metadata");
+    }
+  }
+}
+
 }  // namespace
 
 std::optional<Metadata> read_metadata(const std::filesystem::path& yaml_file) {
@@ -89,18 +153,25 @@ std::optional<Metadata> read_metadata(const std::filesystem::path& yaml_file) {
   if (!std::filesystem::exists(yaml_file, error)) return std::nullopt;
   std::ifstream stream(yaml_file, std::ios::binary);
   if (!stream) throw InputError(yaml_file.string() + ": cannot open");
-  std::ostringstream content;
+  std::ostringstream file_text;
+  file_text << stream.rdbuf();
+  if (stream.bad()) throw InputError(yaml_file.string() + ": read error");
+  check_nesting(file_text.str(), yaml_file);
   // As BoB does: prepend the directive, so that files written without it (by hand, or by BoB's
   // unwrap()) parse too; OpenCV skips the file's own directive line if it has one.
-  content << "%YAML:1.0\n" << stream.rdbuf();
+  const std::string content = "%YAML:1.0\n" + file_text.str();
   try {
-    const cv::FileStorage storage(content.str(), cv::FileStorage::READ | cv::FileStorage::MEMORY |
-                                                     cv::FileStorage::FORMAT_YAML);
+    const cv::FileStorage storage(
+        content, cv::FileStorage::READ | cv::FileStorage::MEMORY | cv::FileStorage::FORMAT_YAML);
     const cv::FileNode metadata = storage["metadata"];
     if (!metadata.isMap()) throw InputError(yaml_file.string() + ": no 'metadata' map");
     return MetadataParser(yaml_file, metadata).parse();
   } catch (const cv::Exception& e) {
     throw InputError(yaml_file.string() + ": cannot parse YAML (" + e.err + ")");
+  } catch (const std::length_error&) {
+    // OpenCV's YAML parser, given a key with no name ("   :x" in a map), asks for a string of
+    // negative length (found by tests/fuzz/bob_metadata_fuzz.cpp).
+    throw InputError(yaml_file.string() + ": cannot parse YAML (a key with no name?)");
   }
 }
 
