@@ -340,6 +340,14 @@ TEST(BobDatabaseReader, MetadataWithAKeyWithoutANameIsInputError) {
                      "cannot parse YAML");
 }
 
+TEST(BobDatabaseReader, NonFiniteMetadataNumberIsInputError) {
+  const TempDir dir;
+  write_example_route(dir);
+  write_text(dir / kBobMetadataFile, "metadata:\n  type: route\n  frameRate: .nan\n");
+  EXPECT_INPUT_ERROR(BobDatabaseReader{dir.path()}, (dir / kBobMetadataFile).string(),
+                     "metadata.frameRate is not a finite number");
+}
+
 TEST(BobDatabaseReader, AbsurdPositionIsInputErrorNamingLineAndColumn) {
   const TempDir dir;
   write_example_route(dir);

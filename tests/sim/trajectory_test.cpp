@@ -161,6 +161,15 @@ TEST(Trajectory, ReadsPosesFromCsv) {
     EXPECT_NE(std::string(error.what()).find(file.string() + ":2"), std::string::npos)
         << error.what();
   }
+  std::ofstream(file) << "x_m,y_m,heading_deg\n1,2,3\n1e157,2,3\n";  // 1e160 mm
+  try {
+    make_trajectory("csv:path=" + file.string(), empty_room());
+    FAIL();
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what()).find(file.string() + ":3: 1e+157 m is not a position"),
+              std::string::npos)
+        << error.what();
+  }
   std::filesystem::remove(file);
 }
 

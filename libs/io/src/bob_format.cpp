@@ -1,5 +1,6 @@
 #include "bob_format.hpp"
 
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <opencv2/core/persistence.hpp>
@@ -64,7 +65,9 @@ class MetadataParser {
     const cv::FileNode node = parent[key];
     if (node.empty()) return std::nullopt;
     if (!node.isInt() && !node.isReal()) fail(key, "is not a number");
-    return static_cast<double>(node);
+    const auto value = static_cast<double>(node);
+    if (!std::isfinite(value)) fail(key, "is not a finite number");  // OpenCV reads .nan, .inf
+    return value;
   }
 
   cv::Size resolution(const cv::FileNode& node) const {

@@ -158,11 +158,11 @@ std::vector<TimedPose> read_csv_poses(const std::string& path) {
       return fields[index];
     };
     TimedPose pose;
-    pose.pose.x_m = parse_double(field(x), where);
-    pose.pose.y_m = parse_double(field(y), where);
+    pose.pose.x_m = check_coordinate_m(parse_double(field(x), where), where);
+    pose.pose.y_m = check_coordinate_m(parse_double(field(y), where), where);
     pose.pose.heading_rad = deg_to_rad(parse_double(field(heading), where));
     pose.time_s = time >= 0 ? parse_double(field(time), where) : -1.0;
-    if (z >= 0) pose.pose.z_m = parse_double(field(z), where);
+    if (z >= 0) pose.pose.z_m = check_coordinate_m(parse_double(field(z), where), where);
     if (pitch >= 0) pose.pose.pitch_rad = deg_to_rad(parse_double(field(pitch), where));
     if (roll >= 0) pose.pose.roll_rad = deg_to_rad(parse_double(field(roll), where));
     poses.push_back(pose);
