@@ -331,13 +331,23 @@ TEST(BobDatabaseReader, DeeplyNestedMetadataIsInputErrorNotAStackOverflow) {
   EXPECT_EQ(BobDatabaseReader(dir.path()).info().description, std::string(100, '['));
 }
 
-// Found by tests/fuzz/bob_metadata_fuzz.cpp: OpenCV threw std::length_error, not cv::Exception.
-TEST(BobDatabaseReader, MetadataWithAKeyWithoutANameIsInputError) {
+// Found by tests/fuzz/bob_metadata_fuzz.cpp: OpenCV's parser threw std::length_error on the
+// key ":r" (a valid YAML name, which BoB does not use).
+TEST(BobDatabaseReader, MetadataWithAKeyOpenCvFailedOnIsRead) {
   const TempDir dir;
   write_example_route(dir);
   write_text(dir / kBobMetadataFile, "%YAML:1.0\n---\nmetadata:\n   type: grid\n   :r\n");
-  EXPECT_INPUT_ERROR(BobDatabaseReader{dir.path()}, (dir / kBobMetadataFile).string(),
-                     "cannot parse YAML");
+  EXPECT_INPUT_ERROR(BobDatabaseReader{dir.path()}, "missing column 'Grid X'");  // type was read
+}
+
+// Found by tests/fuzz/bob_metadata_fuzz.cpp: OpenCV's YAML parser looped forever on these.
+TEST(BobDatabaseReader, MetadataThatHungOpenCvIsInputError) {
+  const TempDir dir;
+  write_example_route(dir);
+  for (const std::string text : {" - a\nt\"\nb", "  - a\nt\"\n  - "}) {
+    write_text(dir / kBobMetadataFile, text);
+    EXPECT_INPUT_ERROR(BobDatabaseReader{dir.path()}, (dir / kBobMetadataFile).string());
+  }
 }
 
 TEST(BobDatabaseReader, NonFiniteMetadataNumberIsInputError) {

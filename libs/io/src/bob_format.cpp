@@ -1,5 +1,7 @@
 #include "bob_format.hpp"
 
+#include <yaml-cpp/yaml.h>
+
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -11,9 +13,15 @@
 namespace omninav::io::bob {
 namespace {
 
+// Reads the `metadata` map of database_metadata.yaml. BoB writes and reads the file with
+// OpenCV's cv::FileStorage; omninav reads it with yaml-cpp instead, because OpenCV's YAML parser
+// is not safe on damaged input: it overflowed its stack on deep nesting, threw
+// std::length_error on a key with no name, and looped forever on the 12 bytes " - a\nt\"\nb"
+// (the last two found by tests/fuzz/bob_metadata_fuzz.cpp). The keys BoB writes are plain
+// YAML, which both read alike.
 class MetadataParser {
  public:
-  MetadataParser(const std::filesystem::path& file, cv::FileNode metadata)
+  MetadataParser(const std::filesystem::path& file, YAML::Node metadata)
       : file_(file), metadata_(std::move(metadata)) {}
 
   Metadata parse() const {
@@ -36,8 +44,8 @@ class MetadataParser {
       parsed.info.needs_unwrapping = *flag != 0.0;
     }
 
-    const cv::FileNode camera = metadata_["camera"];
-    if (camera.isMap()) {
+    const YAML::Node camera = metadata_["camera"];
+    if (camera.IsDefined() && camera.IsMap()) {
       parsed.info.camera_name = text("name", camera).value_or("");
       parsed.info.image_size = resolution(camera["resolution"]);
       // BoB: "If needsUnwrapping is not explicitly set then assume that if the camera used was
@@ -47,36 +55,42 @@ class MetadataParser {
           parsed.info.needs_unwrapping = *panoramic != 0.0;
         }
       }
-    } else if (!camera.empty()) {
+    } else if (camera.IsDefined() && !camera.IsNull()) {
       fail("camera", "is not a map");
     }
     return parsed;
   }
 
  private:
-  std::optional<std::string> text(const char* key, const cv::FileNode& parent) const {
-    const cv::FileNode node = parent[key];
-    if (node.empty()) return std::nullopt;
-    if (!node.isString()) fail(key, "is not text");
-    return static_cast<std::string>(node);
+  static bool absent(const YAML::Node& node) { return !node.IsDefined() || node.IsNull(); }
+
+  std::optional<std::string> text(const char* key, const YAML::Node& parent) const {
+    const YAML::Node node = parent[key];
+    if (absent(node)) return std::nullopt;
+    if (!node.IsScalar()) fail(key, "is not text");
+    return node.Scalar();
   }
 
-  std::optional<double> number(const char* key, const cv::FileNode& parent) const {
-    const cv::FileNode node = parent[key];
-    if (node.empty()) return std::nullopt;
-    if (!node.isInt() && !node.isReal()) fail(key, "is not a number");
-    const auto value = static_cast<double>(node);
-    if (!std::isfinite(value)) fail(key, "is not a finite number");  // OpenCV reads .nan, .inf
+  std::optional<double> number(const char* key, const YAML::Node& parent) const {
+    const YAML::Node node = parent[key];
+    if (absent(node)) return std::nullopt;
+    double value = 0.0;
+    if (!node.IsScalar() || !YAML::convert<double>::decode(node, value)) {
+      fail(key, "is not a number");
+    }
+    if (!std::isfinite(value)) fail(key, "is not a finite number");  // YAML has .nan and .inf
     return value;
   }
 
-  cv::Size resolution(const cv::FileNode& node) const {
-    if (node.empty()) return {};
-    if (!node.isSeq() || node.size() != 2 || !node[0].isInt() || !node[1].isInt() ||
-        static_cast<int>(node[0]) < 1 || static_cast<int>(node[1]) < 1) {
+  cv::Size resolution(const YAML::Node& node) const {
+    if (absent(node)) return {};
+    int width = 0, height = 0;
+    if (!node.IsSequence() || node.size() != 2 || !node[0].IsScalar() || !node[1].IsScalar() ||
+        !YAML::convert<int>::decode(node[0], width) ||
+        !YAML::convert<int>::decode(node[1], height) || width < 1 || height < 1) {
       fail("camera.resolution", "is not [width, height] in pixels");
     }
-    return {static_cast<int>(node[0]), static_cast<int>(node[1])};
+    return {width, height};
   }
 
   [[noreturn]] void fail(const std::string& key, const std::string& problem) const {
@@ -84,16 +98,17 @@ class MetadataParser {
   }
 
   std::filesystem::path file_;
-  cv::FileNode metadata_;
+  YAML::Node metadata_;
 };
 
-// BoB's metadata is a few hundred bytes, nested three levels deep. OpenCV's YAML parser
-// recurses once per level of nesting, so a small file of 50,000 brackets overflows the stack
-// (SIGSEGV, no exception): the size and depth are bounded here, before OpenCV sees the text.
+// BoB's metadata is a few hundred bytes, nested three levels deep. YAML parsers recurse once
+// per level of nesting (OpenCV's overflowed its stack on a file of 50,000 brackets; yaml-cpp
+// stops at 2,000 levels): the size and depth are bounded here, before any parser sees the
+// text, with a message that says what is wrong.
 constexpr std::size_t kMaxMetadataBytes = 64 * 1024;
 constexpr int kMaxMetadataDepth = 32;
 
-// An upper bound of the nesting OpenCV would follow: flow brackets ([ and {) still open, plus,
+// An upper bound of the nesting a parser would follow: flow brackets ([ and {) still open, plus,
 // at the start of each line, its indentation and its "- " sequence markers (each of which can
 // open a block collection). Brackets inside a quoted scalar or a comment are text; a quote or
 // comment ends at the end of its line here, so that the bound errs only on the safe side.
@@ -159,22 +174,21 @@ std::optional<Metadata> read_metadata(const std::filesystem::path& yaml_file) {
   std::ostringstream file_text;
   file_text << stream.rdbuf();
   if (stream.bad()) throw InputError(yaml_file.string() + ": read error");
-  check_nesting(file_text.str(), yaml_file);
-  // As BoB does: prepend the directive, so that files written without it (by hand, or by BoB's
-  // unwrap()) parse too; OpenCV skips the file's own directive line if it has one.
-  const std::string content = "%YAML:1.0\n" + file_text.str();
+  std::string content = file_text.str();
+  check_nesting(content, yaml_file);
+  // OpenCV's own directive, "%YAML:1.0" (not YAML's "%YAML 1.0"), which BoB's files may or may
+  // not start with, is not YAML: it is dropped, as OpenCV itself skips it.
+  if (content.starts_with("%YAML:")) content.erase(0, content.find('\n'));
   try {
-    const cv::FileStorage storage(
-        content, cv::FileStorage::READ | cv::FileStorage::MEMORY | cv::FileStorage::FORMAT_YAML);
-    const cv::FileNode metadata = storage["metadata"];
-    if (!metadata.isMap()) throw InputError(yaml_file.string() + ": no 'metadata' map");
-    return MetadataParser(yaml_file, metadata).parse();
-  } catch (const cv::Exception& e) {
-    throw InputError(yaml_file.string() + ": cannot parse YAML (" + e.err + ")");
-  } catch (const std::length_error&) {
-    // OpenCV's YAML parser, given a key with no name ("   :x" in a map), asks for a string of
-    // negative length (found by tests/fuzz/bob_metadata_fuzz.cpp).
-    throw InputError(yaml_file.string() + ": cannot parse YAML (a key with no name?)");
+    const YAML::Node root = YAML::Load(content);
+    // (A missing key's node is undefined, and asking it anything else throws.)
+    if (!root.IsMap() || !root["metadata"].IsDefined() || !root["metadata"].IsMap()) {
+      throw InputError(yaml_file.string() + ": no 'metadata' map");
+    }
+    return MetadataParser(yaml_file, root["metadata"]).parse();
+  } catch (const YAML::Exception& e) {
+    const std::string line = e.mark.is_null() ? "" : ":" + std::to_string(e.mark.line + 1);
+    throw InputError(yaml_file.string() + line + ": cannot parse YAML (" + e.msg + ")");
   }
 }
 
