@@ -427,7 +427,9 @@ TEST_F(MapFileTest, NonFiniteAndAbsurdValuesAreCorrupt) {
   for (const auto& [statement, expected] : cases) {
     const fs::path map = dir_ / "damaged.vmem";
     VisualMemory memory = synthetic_memory(5);
-    save_map(memory, map, {.overwrite = true});
+    SaveOptions replace;
+    replace.overwrite = true;
+    save_map(memory, map, replace);
     sql(map, statement);
     const std::string error = load_error(map);
     EXPECT_NE(error.find("corrupt map: " + expected), std::string::npos)

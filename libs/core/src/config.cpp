@@ -63,13 +63,13 @@ class KeyChecker : public YAML::EventHandler {
   void OnSequenceStart(const YAML::Mark& mark, const std::string&, YAML::anchor_t,
                        YAML::EmitterStyle::value) override {
     node(mark, nullptr);
-    levels_.push_back({});
+    levels_.emplace_back();
   }
   void OnSequenceEnd() override { levels_.pop_back(); }
   void OnMapStart(const YAML::Mark& mark, const std::string&, YAML::anchor_t,
                   YAML::EmitterStyle::value) override {
     node(mark, nullptr);
-    levels_.push_back({true});
+    levels_.emplace_back().is_map = true;
   }
   void OnMapEnd() override { levels_.pop_back(); }
 
