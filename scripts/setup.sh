@@ -6,9 +6,13 @@
 #   scripts/setup.sh demo     ... then run `omninav demo` on the built-in room
 #   scripts/setup.sh test     ... then run the test suite (ctest)
 #   scripts/setup.sh bench    ... then run the benchmarks
+#   scripts/setup.sh fuzz [s] builds the libFuzzer targets of tests/fuzz with clang, AddressSanitizer
+#                             and UBSan in build-fuzz/ (FUZZ_BUILD_DIR), then runs each for s
+#                             seconds (60) from its seed corpus; stops at the first finding
 #
 # Environment: BUILD_DIR (default build), BUILD_TYPE (Release), SANITIZE=1 for an
-# AddressSanitizer + UndefinedBehaviorSanitizer build, CI=true turns warnings into errors.
+# AddressSanitizer + UndefinedBehaviorSanitizer build, CI=true turns warnings into errors (and
+# makes `test` also run `fuzz 15`: each fuzz target for 15 seconds).
 # It is idempotent: run it again and it only rebuilds what changed.
 set -euo pipefail
 
@@ -24,6 +28,11 @@ packages=(
   libsqlite3-dev libyaml-cpp-dev libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev
   libembree-dev libtinyobjloader-dev
 )
+
+# clang and libFuzzer only for the fuzz action (and CI's test, which runs it).
+if [ "$action" = fuzz ] || { [ "$action" = test ] && [ "${CI:-}" = true ]; }; then
+  packages+=(clang libclang-rt-14-dev)
+fi
 
 install_missing_packages() {
   local missing=()
@@ -48,14 +57,46 @@ configure_and_build() {
   cmake --build "$build_dir" --parallel "$(nproc)"
 }
 
+# Builds the fuzz targets (tests/fuzz) in their own clang build and runs each for $1 seconds.
+# A target's new inputs go to build-fuzz/corpus/<target>, so that the seeds in the repository
+# stay the small hand-made ones; a finding is saved in build-fuzz/findings/ and stops the run.
+run_fuzzers() {
+  local seconds=${1:-60}
+  local fuzz_dir=${FUZZ_BUILD_DIR:-$root/build-fuzz}
+  local options=(-DCMAKE_BUILD_TYPE=RelWithDebInfo -DOMNINAV_FUZZ=ON -DOMNINAV_BUILD_TESTS=OFF
+                 -DOMNINAV_BUILD_BENCHMARKS=OFF)
+  [ "${CI:-}" = true ] && options+=(-DOMNINAV_WERROR=ON)
+  CC=clang CXX=clang++ cmake -S "$root" -B "$fuzz_dir" -G Ninja "${options[@]}" >/dev/null
+  cmake --build "$fuzz_dir" --target omninav_fuzzers --parallel "$(nproc)"
+  mkdir -p "$fuzz_dir/findings"
+  for source in "$root"/tests/fuzz/*_fuzz.cpp; do
+    local target seeds corpus
+    target=$(basename "$source" _fuzz.cpp)
+    seeds=$root/tests/fuzz/corpus/$target
+    corpus=$fuzz_dir/corpus/$target
+    mkdir -p "$corpus"
+    echo "fuzz: $target for ${seconds} s" >&2
+    # -timeout: an input that takes 10 s is a hang; -rss_limit_mb: one that needs 2 GB, a leak
+    # or a missing size check.
+    "$fuzz_dir/bin/${target}_fuzz" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
+      -print_final_stats=1 -artifact_prefix="$fuzz_dir/findings/${target}-" "$corpus" "$seeds"
+  done
+}
+
 install_missing_packages
+if [ "$action" = fuzz ]; then
+  run_fuzzers "$@"
+  exit
+fi
 configure_and_build
 
 case "$action" in
   build) ;;
   demo) cd "$root" && exec "$build_dir/bin/omninav" demo "$@" ;;
-  test) exec ctest --test-dir "$build_dir" --output-on-failure --parallel "$(nproc)" "$@" ;;
+  test)
+    ctest --test-dir "$build_dir" --output-on-failure --parallel "$(nproc)" "$@"
+    if [ "${CI:-}" = true ]; then run_fuzzers 15; fi ;;
   bench)
     for program in "$build_dir"/bin/*_bench; do "$program" "$@"; done ;;
-  *) echo "usage: scripts/setup.sh [build|demo|test|bench]" >&2; exit 2 ;;
+  *) echo "usage: scripts/setup.sh [build|demo|test|bench|fuzz [seconds]]" >&2; exit 2 ;;
 esac

@@ -102,6 +102,31 @@ TEST(ConfigReader, BadYamlAndMissingFilesAreErrorsNamingTheFile) {
   EXPECT_THROW(ConfigReader::from_string("- 1\n- 2\n", "list.yaml"), ConfigError);
 }
 
+TEST(ConfigReader, AKeyWrittenTwiceIsAnErrorNamingBothLines) {
+  // yaml-cpp keeps both, and a lookup finds one: the other value was dropped without a word.
+  EXPECT_EQ(message_of([] {
+              ConfigReader::from_string("a: 1\nsection:\n  x: 2\n  y: 3\n  x: 4\n", "dup.yaml");
+            }),
+            "dup.yaml:5: key 'x' appears twice in the same map (first on line 3)");
+  EXPECT_EQ(message_of([] { ConfigReader::from_string("{a: 1, b: 2, a: 3}", "flow.yaml"); }),
+            "flow.yaml:1: key 'a' appears twice in the same map (first on line 1)");
+  // The same key in two maps is two keys.
+  EXPECT_EQ(message_of([] { ConfigReader::from_string("a: {x: 1}\nb: {x: 2}\n", "ok.yaml"); }),
+            "(no ConfigError)");
+}
+
+TEST(ConfigReader, KeysThatAreNotTextAndAliasesAreErrors) {
+  EXPECT_NE(message_of([] {
+              ConfigReader::from_string("? [a, b]\n: 1\n", "k.yaml");
+            }).find("k.yaml:1: a key must be plain text"),
+            std::string::npos);
+  // Aliases could nest into billions of keys; a configuration needs none.
+  EXPECT_NE(message_of([] {
+              ConfigReader::from_string("a: &x 1\nb: *x\n", "alias.yaml");
+            }).find("alias.yaml:2: aliases"),
+            std::string::npos);
+}
+
 TEST(ConfigReader, ReadsFromAFile) {
   const std::filesystem::path file =
       std::filesystem::temp_directory_path() / "omninav_config_test.yaml";

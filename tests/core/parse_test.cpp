@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
+
 #include "omninav/core/errors.hpp"
 
 namespace omninav {
@@ -23,6 +25,20 @@ TEST(Parse, GarbageNamesWhere) {
   EXPECT_THROW(parse_double("", "x"), InputError);
   EXPECT_THROW(parse_double("nan", "x"), InputError);
   EXPECT_THROW(parse_int("4.5", "x"), InputError);
+}
+
+TEST(Parse, CoordinatesBeyondTenThousandKilometresAreRefused) {
+  EXPECT_DOUBLE_EQ(check_coordinate_m(-1e7, "x"), -1e7);
+  EXPECT_DOUBLE_EQ(check_coordinate_m(12.5, "x"), 12.5);
+  try {
+    check_coordinate_m(1e157, "entries.csv:3: column 'X [mm]'");  // 1e160 mm
+    FAIL();
+  } catch (const InputError& error) {
+    EXPECT_STREQ(error.what(),
+                 "entries.csv:3: column 'X [mm]': 1e+157 m is not a position (beyond ±1e+07 m)");
+  }
+  EXPECT_THROW(check_coordinate_m(std::numeric_limits<double>::infinity(), "x"), InputError);
+  EXPECT_THROW(check_coordinate_m(std::numeric_limits<double>::quiet_NaN(), "x"), InputError);
 }
 
 TEST(Split, KeepsEmptyFieldsAndTrims) {

@@ -33,11 +33,14 @@ const char* const kExampleRouteEntries =
     "6293.58, 8442.34, 10, 219.962, image_00001.png\n"
     "6287.26, 8434.58, 10, 219.159, image_00002.png\n";
 
+// The resolution the examples' metadata states, which their images must have.
+const cv::Size kExampleSize(720, 150);
+
 void write_example_route(const TempDir& dir) {
   write_text(dir / kBobMetadataFile, kExampleRouteMetadata);
   write_text(dir / kBobEntriesFile, kExampleRouteEntries);
   for (int i = 0; i < 3; ++i)
-    write_image(dir / ("image_0000" + std::to_string(i) + ".png"), make_image(i));
+    write_image(dir / ("image_0000" + std::to_string(i) + ".png"), make_image(i, kExampleSize));
 }
 
 TEST(BobDatabaseReader, ReadsBobExampleRoute) {
@@ -89,10 +92,10 @@ TEST(BobDatabaseReader, ReadsBobExampleGrid) {
              "1000, 0, 10, 0, image_+001000_+000000_+000010.png, 1, 0, 0\n"
              "0, 1000, 10, 0, image_+000000_+001000_+000010.png, 0, 1, 0\n"
              "1000, 1000, 10, 0, image_+001000_+001000_+000010.png, 1, 1, 0\n");
-  write_image(dir / "image_+000000_+000000_+000010.png", make_image(0));
-  write_image(dir / "image_+001000_+000000_+000010.png", make_image(1));
-  write_image(dir / "image_+000000_+001000_+000010.png", make_image(2));
-  write_image(dir / "image_+001000_+001000_+000010.png", make_image(3));
+  write_image(dir / "image_+000000_+000000_+000010.png", make_image(0, kExampleSize));
+  write_image(dir / "image_+001000_+000000_+000010.png", make_image(1, kExampleSize));
+  write_image(dir / "image_+000000_+001000_+000010.png", make_image(2, kExampleSize));
+  write_image(dir / "image_+001000_+001000_+000010.png", make_image(3, kExampleSize));
 
   BobDatabaseReader reader(dir.path());
   EXPECT_TRUE(reader.info().is_grid);
@@ -289,10 +292,81 @@ TEST(BobDatabaseReader, CorruptImageIsInputErrorNamingIt) {
 TEST(BobDatabaseReader, MixedSizesNameTheFileAndBothSizes) {
   const TempDir dir;
   write_example_route(dir);
+  std::filesystem::remove(dir / kBobMetadataFile);  // no stated resolution: the first image's
   write_image(dir / "image_00001.png", make_image(1, {72, 16}));
   BobDatabaseReader reader(dir.path());
   ASSERT_TRUE(reader.next());
-  EXPECT_INPUT_ERROR(reader.next(), (dir / "image_00001.png").string(), "72x16", "36x8");
+  EXPECT_INPUT_ERROR(reader.next(), (dir / "image_00001.png").string(), "72x16", "720x150");
+}
+
+TEST(BobDatabaseReader, ImagesOfAnotherSizeThanTheMetadataStatesAreInputErrors) {
+  const TempDir dir;
+  write_example_route(dir);
+  for (int i = 0; i < 3; ++i) {
+    write_image(dir / ("image_0000" + std::to_string(i) + ".png"), make_image(i, {36, 8}));
+  }
+  BobDatabaseReader reader(dir.path());
+  EXPECT_INPUT_ERROR(reader.next(), (dir / "image_00000.png").string(), "36x8",
+                     (dir / kBobMetadataFile).string(), "camera.resolution is [720, 150]");
+}
+
+TEST(BobDatabaseReader, DeeplyNestedMetadataIsInputErrorNotAStackOverflow) {
+  const TempDir dir;
+  write_example_route(dir);
+  // 50,000 nested brackets (100 kB) overflowed the stack inside OpenCV's YAML parser.
+  write_text(dir / kBobMetadataFile,
+             "metadata:\n  description: " + std::string(50000, '[') + std::string(50000, ']'));
+  EXPECT_INPUT_ERROR(BobDatabaseReader{dir.path()}, (dir / kBobMetadataFile).string(), "bytes");
+  // Small but deep, in flow style and in block style ("- - - ..." opens a sequence each).
+  write_text(dir / kBobMetadataFile, "metadata:\n  description: " + std::string(2000, '{'));
+  EXPECT_INPUT_ERROR(BobDatabaseReader{dir.path()}, (dir / kBobMetadataFile).string(), "nested");
+  std::string dashes = "metadata:\n  description:\n";
+  for (int i = 0; i < 5000; ++i) dashes += "- ";
+  write_text(dir / kBobMetadataFile, dashes + "x\n");
+  EXPECT_INPUT_ERROR(BobDatabaseReader{dir.path()}, (dir / kBobMetadataFile).string(), "nested");
+  // Brackets in quotes and comments are text, not nesting.
+  write_text(dir / kBobMetadataFile, std::string(kExampleRouteMetadata) + "   description: \"" +
+                                         std::string(100, '[') + "\" # " + std::string(100, '{') +
+                                         "\n");
+  EXPECT_EQ(BobDatabaseReader(dir.path()).info().description, std::string(100, '['));
+}
+
+// Found by tests/fuzz/bob_metadata_fuzz.cpp: OpenCV's parser threw std::length_error on the
+// key ":r" (a valid YAML name, which BoB does not use).
+TEST(BobDatabaseReader, MetadataWithAKeyOpenCvFailedOnIsRead) {
+  const TempDir dir;
+  write_example_route(dir);
+  write_text(dir / kBobMetadataFile, "%YAML:1.0\n---\nmetadata:\n   type: grid\n   :r\n");
+  EXPECT_INPUT_ERROR(BobDatabaseReader{dir.path()}, "missing column 'Grid X'");  // type was read
+}
+
+// Found by tests/fuzz/bob_metadata_fuzz.cpp: OpenCV's YAML parser looped forever on these.
+TEST(BobDatabaseReader, MetadataThatHungOpenCvIsInputError) {
+  const TempDir dir;
+  write_example_route(dir);
+  for (const std::string text : {" - a\nt\"\nb", "  - a\nt\"\n  - "}) {
+    write_text(dir / kBobMetadataFile, text);
+    EXPECT_INPUT_ERROR(BobDatabaseReader{dir.path()}, (dir / kBobMetadataFile).string());
+  }
+}
+
+TEST(BobDatabaseReader, NonFiniteMetadataNumberIsInputError) {
+  const TempDir dir;
+  write_example_route(dir);
+  write_text(dir / kBobMetadataFile, "metadata:\n  type: route\n  frameRate: .nan\n");
+  EXPECT_INPUT_ERROR(BobDatabaseReader{dir.path()}, (dir / kBobMetadataFile).string(),
+                     "metadata.frameRate is not a finite number");
+}
+
+TEST(BobDatabaseReader, AbsurdPositionIsInputErrorNamingLineAndColumn) {
+  const TempDir dir;
+  write_example_route(dir);
+  write_text(dir / kBobEntriesFile,
+             "X [mm], Y [mm], Z [mm], Heading [degrees], Filename\n"
+             "6300, 8450, 10, 219.962, image_00000.png\n"
+             "6300, 1e160, 10, 219.962, image_00001.png\n");
+  EXPECT_INPUT_ERROR(BobDatabaseReader{dir.path()}, (dir / kBobEntriesFile).string() + ":3",
+                     "'Y [mm]'", "not a position");
 }
 
 TEST(BobDatabaseReader, UnknownDatabaseTypeIsInputErrorNamingMetadata) {

@@ -79,6 +79,19 @@ TEST(CsvSequence, NonNumericFieldIsInputErrorNamingFileAndLine) {
                      "'two'");
 }
 
+TEST(CsvSequence, NonFiniteOrAbsurdPositionIsInputErrorNamingFileAndLine) {
+  const TempDir dir;
+  write_image(dir / "a.png", make_image(1));
+  write_text(dir / "poses.csv", "file,x_m,y_m,heading_deg\na.png,1,2,3\na.png,1e157,2,3\n");
+  EXPECT_INPUT_ERROR(CsvSequence{dir / "poses.csv"}, (dir / "poses.csv").string() + ":3", "'x_m'",
+                     "not a position");
+  for (const std::string bad : {"nan", "inf", "-inf"}) {
+    write_text(dir / "poses.csv", "file,x_m,y_m,heading_deg\na.png,1," + bad + ",3\n");
+    EXPECT_INPUT_ERROR(CsvSequence{dir / "poses.csv"}, (dir / "poses.csv").string() + ":2",
+                       "'y_m'");
+  }
+}
+
 TEST(CsvSequence, MissingImageIsInputErrorNamingImageAndLine) {
   const TempDir dir;
   write_image(dir / "a.png", make_image(1));

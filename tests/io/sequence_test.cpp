@@ -41,6 +41,14 @@ TEST(OpenSequence, FolderWithEntriesIsABobDatabase) {
   EXPECT_NE(dynamic_cast<BobDatabaseReader*>(open_sequence(dir.path()).get()), nullptr);
 }
 
+TEST(OpenSequence, FolderWithMetadataButNoEntriesIsInputErrorNotAPlainFolder) {
+  const TempDir dir;
+  write_image(dir / "a.png", make_image(0));
+  write_text(dir / kBobMetadataFile, "metadata:\n  type: route\n");
+  EXPECT_INPUT_ERROR(open_sequence(dir.path()), dir.path().string(), kBobMetadataFile,
+                     std::string("no ") + kBobEntriesFile);
+}
+
 TEST(OpenSequence, CsvFileInAnyCase) {
   const TempDir dir;
   write_image(dir / "a.png", make_image(0));

@@ -527,5 +527,35 @@ TEST_F(MapFileTest, EachBadFileGivesItsError) {
   EXPECT_NE(load_error(folder).find("not a regular file"), std::string::npos);
 }
 
+// A map whose numbers are not finite (NaN, infinite) or absurd (a truth 1e160 mm away) is
+// damaged: such values overflow the arithmetic of figures and lattices later.
+TEST_F(MapFileTest, NonFiniteAndAbsurdValuesAreCorrupt) {
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"UPDATE places SET magnitude = x'0000C07F' || substr(magnitude, 5) WHERE id = 2",
+       "place 2: its signature holds a value that is not finite"},
+      {"UPDATE places SET phase_rad = substr(phase_rad, 1, 8) || x'0000807F' || "
+       "substr(phase_rad, 13) WHERE id = 1",
+       "place 1: its signature holds a value that is not finite"},
+      {"UPDATE place_truth SET x_m = 1e999 WHERE place_id = 2", "place_truth of place 2: x_m"},
+      {"UPDATE place_truth SET y_m = 1e157 WHERE place_id = 4", "place_truth of place 4: y_m"},
+      {"UPDATE place_truth SET heading_rad = -1e999 WHERE place_id = 0",
+       "place_truth of place 0: heading_rad"},
+      {"INSERT INTO lattice_positions VALUES (1, -1e999, 0)", "lattice position of place 1: x"},
+      {"UPDATE edges SET dissimilarity = 1e999 WHERE id = 2", "edge 2 dissimilarity"},
+      {"UPDATE places SET time_s = 1e999 WHERE id = 1", "place 1 time_s"},
+  };
+  for (const auto& [statement, expected] : cases) {
+    const fs::path map = dir_ / "damaged.vmem";
+    VisualMemory memory = synthetic_memory(5);
+    SaveOptions replace;
+    replace.overwrite = true;
+    save_map(memory, map, replace);
+    sql(map, statement);
+    const std::string error = load_error(map);
+    EXPECT_NE(error.find("corrupt map: " + expected), std::string::npos)
+        << statement << " gave: " << error;
+  }
+}
+
 }  // namespace
 }  // namespace omninav::memory

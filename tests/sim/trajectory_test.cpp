@@ -4,6 +4,8 @@
 
 #include <cmath>
 #include <fstream>
+#include <string>
+#include <vector>
 
 #include "omninav/core/angles.hpp"
 #include "omninav/core/errors.hpp"
@@ -159,6 +161,15 @@ TEST(Trajectory, ReadsPosesFromCsv) {
     EXPECT_NE(std::string(error.what()).find(file.string() + ":2"), std::string::npos)
         << error.what();
   }
+  std::ofstream(file) << "x_m,y_m,heading_deg\n1,2,3\n1e157,2,3\n";  // 1e160 mm
+  try {
+    make_trajectory("csv:path=" + file.string(), empty_room());
+    FAIL();
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what()).find(file.string() + ":3: 1e+157 m is not a position"),
+              std::string::npos)
+        << error.what();
+  }
   std::filesystem::remove(file);
 }
 
@@ -177,6 +188,39 @@ TEST(Trajectory, BadSpecsNameTheProblem) {
     EXPECT_NE(std::string(error.what()).find("sped_m_s"), std::string::npos);
     EXPECT_NE(std::string(error.what()).find("speed_m_s"), std::string::npos);
   }
+}
+
+// Every substring of the error `make_trajectory(spec)` throws (as an omninav::Error), or a
+// failure when it throws none.
+void expect_error(const std::string& spec, const std::vector<std::string>& fragments) {
+  try {
+    make_trajectory(spec, empty_room());
+    ADD_FAILURE() << "no error for " << spec;
+  } catch (const Error& error) {
+    for (const std::string& fragment : fragments) {
+      EXPECT_NE(std::string(error.what()).find(fragment), std::string::npos)
+          << spec << " gave: " << error.what();
+    }
+  }
+}
+
+TEST(Trajectory, AKeyGivenTwiceIsAnError) {
+  expect_error("grid:nx=2,nx=3", {"grid:nx=2,nx=3", "'nx' is given twice"});
+  expect_error("line: speed_m_s=0.2 , speed_m_s = 0.3", {"'speed_m_s' is given twice"});
+}
+
+TEST(Trajectory, NonFiniteAbsurdAndFractionalCountsAreErrors) {
+  expect_error("line:x0=nan", {"x0", "'nan' is not a number"});
+  expect_error("line:x1=inf", {"x1"});
+  expect_error("circle:cx=1e160", {"cx", "beyond"});
+  expect_error("grid:nx=2.5", {"nx", "whole number"});
+  // Counts that would overflow an int, or fill memory with poses.
+  expect_error("rotate:turns=1e6,rate_deg_s=1e-6", {"more than 1000000 poses"});
+  expect_error("grid:nx=100000,ny=100000", {"more than 1000000 poses"});
+  expect_error("walk:steps=2000000", {"more than 1000000 poses"});
+  expect_error("line:x0=0,x1=1e6,speed_m_s=1e-6", {"more than 1000000 poses"});
+  // A negative seed is still a seed.
+  EXPECT_EQ(make_trajectory("walk:steps=5,seed=-3", empty_room()).poses.size(), 5u);
 }
 
 }  // namespace

@@ -1,11 +1,14 @@
 #include "omninav/core/config.hpp"
 
+#include <yaml-cpp/eventhandler.h>
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <map>
 #include <sstream>
+#include <vector>
 
 #include "omninav/core/angles.hpp"
 #include "omninav/core/errors.hpp"
@@ -43,6 +46,67 @@ void for_each_key(const std::string& name, const YAML::Node& node, const std::st
   }
 }
 
+// yaml-cpp keeps both values of a key written twice in a map (and lookups find the first),
+// so a configuration's second value would be dropped without a word. This pass over the
+// parser's events, before the document is built, refuses repeated keys, keys that are not
+// plain text, and aliases (a configuration needs none, and a few nested aliases make a
+// document whose keys number in the billions).
+class KeyChecker : public YAML::EventHandler {
+ public:
+  explicit KeyChecker(std::string name) : name_(std::move(name)) {}
+
+  void OnDocumentStart(const YAML::Mark&) override {}
+  void OnDocumentEnd() override {}
+  void OnNull(const YAML::Mark& mark, YAML::anchor_t) override { node(mark, nullptr); }
+  void OnAlias(const YAML::Mark& mark, YAML::anchor_t) override {
+    fail(mark, "aliases (*name) are not supported in configuration files");
+  }
+  void OnScalar(const YAML::Mark& mark, const std::string&, YAML::anchor_t,
+                const std::string& value) override {
+    node(mark, &value);
+  }
+  void OnSequenceStart(const YAML::Mark& mark, const std::string&, YAML::anchor_t,
+                       YAML::EmitterStyle::value) override {
+    node(mark, nullptr);
+    levels_.emplace_back();
+  }
+  void OnSequenceEnd() override { levels_.pop_back(); }
+  void OnMapStart(const YAML::Mark& mark, const std::string&, YAML::anchor_t,
+                  YAML::EmitterStyle::value) override {
+    node(mark, nullptr);
+    levels_.emplace_back().is_map = true;
+  }
+  void OnMapEnd() override { levels_.pop_back(); }
+
+ private:
+  struct Level {
+    bool is_map = false;
+    bool expects_key = true;
+    std::map<std::string, int> key_lines;  // 1-based
+  };
+
+  // A node starts: in a map, alternately a key (`text` when it is a scalar) and its value.
+  void node(const YAML::Mark& mark, const std::string* text) {
+    if (levels_.empty() || !levels_.back().is_map) return;
+    Level& map = levels_.back();
+    map.expects_key = !map.expects_key;
+    if (map.expects_key) return;  // that was a value
+    if (text == nullptr) fail(mark, "a key must be plain text");
+    const auto [found, inserted] = map.key_lines.emplace(*text, mark.line + 1);
+    if (!inserted) {
+      fail(mark, "key '" + *text + "' appears twice in the same map (first on line " +
+                     std::to_string(found->second) + ")");
+    }
+  }
+
+  [[noreturn]] void fail(const YAML::Mark& mark, const std::string& problem) const {
+    throw ConfigError(name_ + ":" + std::to_string(mark.line + 1) + ": " + problem);
+  }
+
+  std::string name_;
+  std::vector<Level> levels_;
+};
+
 }  // namespace
 
 ConfigReader::ConfigReader(std::shared_ptr<Shared> shared, std::shared_ptr<const YAML::Node> node,
@@ -53,6 +117,10 @@ ConfigReader ConfigReader::from_string(const std::string& yaml, const std::strin
   auto shared = std::make_shared<Shared>();
   shared->name = name;
   try {
+    std::istringstream stream(yaml);
+    YAML::Parser parser(stream);
+    KeyChecker checker(name);
+    parser.HandleNextDocument(checker);
     shared->root = YAML::Load(yaml);
   } catch (const YAML::Exception& error) {
     throw ConfigError(name + ":" + std::to_string(error.mark.line + 1) +

@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <sstream>
 
 #include "omninav/core/errors.hpp"
 
@@ -62,6 +63,16 @@ int parse_int_argument(std::string_view text, const std::string& where) {
   } catch (const InputError& error) {
     throw UsageError(error.what());
   }
+}
+
+double check_coordinate_m(double value_m, const std::string& where) {
+  if (!std::isfinite(value_m) || std::abs(value_m) > kMaxCoordinateM) {
+    std::ostringstream text;
+    text << where << ": " << value_m << " m is not a position (beyond ±" << kMaxCoordinateM
+         << " m)";
+    throw InputError(text.str());
+  }
+  return value_m;
 }
 
 }  // namespace omninav

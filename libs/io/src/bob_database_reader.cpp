@@ -54,9 +54,9 @@ class EntryParser {
     const double pitch_deg = pitch_ ? number(row, *pitch_).value_or(0.0) : 0.0;
     const double roll_deg = roll_ ? number(row, *roll_).value_or(0.0) : 0.0;
     if (x_mm && y_mm && z_mm && heading_deg) {
-      entry.truth =
-          CameraPose{*x_mm / 1000.0,           *y_mm / 1000.0,        *z_mm / 1000.0,
-                     deg_to_rad(*heading_deg), deg_to_rad(pitch_deg), deg_to_rad(roll_deg)};
+      entry.truth = CameraPose{position_m(row, x_, *x_mm), position_m(row, y_, *y_mm),
+                               position_m(row, z_, *z_mm), deg_to_rad(*heading_deg),
+                               deg_to_rad(pitch_deg),      deg_to_rad(roll_deg)};
     }
     if (grid_) {
       entry.grid = std::array{index_in(row, (*grid_)[0]), index_in(row, (*grid_)[1]),
@@ -91,6 +91,10 @@ class EntryParser {
     const std::string& field = row.fields[column];
     if (is_missing(field)) return std::nullopt;
     return parse_double(field, where(row, column));
+  }
+
+  double position_m(const CsvTable::Row& row, std::size_t column, double value_mm) const {
+    return check_coordinate_m(value_mm / 1000.0, where(row, column));
   }
 
   int index_in(const CsvTable::Row& row, std::size_t column) const {
@@ -150,6 +154,12 @@ std::optional<Frame> BobDatabaseReader::next() {
   } else {
     frame.image = read_image(entry.image_file);
     frame.source = entry.image_file.string();
+  }
+  if (!info_.image_size.empty() && frame.image.size() != info_.image_size) {
+    throw InputError(frame.source + ": image is " + size_text(frame.image.size()) + ", but " +
+                     (folder_ / kBobMetadataFile).string() + " says camera.resolution is [" +
+                     std::to_string(info_.image_size.width) + ", " +
+                     std::to_string(info_.image_size.height) + "]");
   }
   size_check_.check(frame.image, frame.source);
   ++next_index_;

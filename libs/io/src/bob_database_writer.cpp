@@ -24,10 +24,6 @@ std::string format_number(double value) {
   return std::string(buffer, end);
 }
 
-std::string size_text(const cv::Size& size) {
-  return std::to_string(size.width) + "x" + std::to_string(size.height) + " px";
-}
-
 std::string route_file_name(std::size_t index) {
   char name[32];
   std::snprintf(name, sizeof name, "image_%05zu.png", index);

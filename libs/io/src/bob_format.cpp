@@ -1,5 +1,9 @@
 #include "bob_format.hpp"
 
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <cstring>
 #include <fstream>
 #include <opencv2/core/persistence.hpp>
 #include <sstream>
@@ -9,9 +13,15 @@
 namespace omninav::io::bob {
 namespace {
 
+// Reads the `metadata` map of database_metadata.yaml. BoB writes and reads the file with
+// OpenCV's cv::FileStorage; omninav reads it with yaml-cpp instead, because OpenCV's YAML parser
+// is not safe on damaged input: it overflowed its stack on deep nesting, threw
+// std::length_error on a key with no name, and looped forever on the 12 bytes " - a\nt\"\nb"
+// (the last two found by tests/fuzz/bob_metadata_fuzz.cpp). The keys BoB writes are plain
+// YAML, which both read alike.
 class MetadataParser {
  public:
-  MetadataParser(const std::filesystem::path& file, cv::FileNode metadata)
+  MetadataParser(const std::filesystem::path& file, YAML::Node metadata)
       : file_(file), metadata_(std::move(metadata)) {}
 
   Metadata parse() const {
@@ -34,8 +44,8 @@ class MetadataParser {
       parsed.info.needs_unwrapping = *flag != 0.0;
     }
 
-    const cv::FileNode camera = metadata_["camera"];
-    if (camera.isMap()) {
+    const YAML::Node camera = metadata_["camera"];
+    if (camera.IsDefined() && camera.IsMap()) {
       parsed.info.camera_name = text("name", camera).value_or("");
       parsed.info.image_size = resolution(camera["resolution"]);
       // BoB: "If needsUnwrapping is not explicitly set then assume that if the camera used was
@@ -45,33 +55,42 @@ class MetadataParser {
           parsed.info.needs_unwrapping = *panoramic != 0.0;
         }
       }
-    } else if (!camera.empty()) {
+    } else if (camera.IsDefined() && !camera.IsNull()) {
       fail("camera", "is not a map");
     }
     return parsed;
   }
 
  private:
-  std::optional<std::string> text(const char* key, const cv::FileNode& parent) const {
-    const cv::FileNode node = parent[key];
-    if (node.empty()) return std::nullopt;
-    if (!node.isString()) fail(key, "is not text");
-    return static_cast<std::string>(node);
+  static bool absent(const YAML::Node& node) { return !node.IsDefined() || node.IsNull(); }
+
+  std::optional<std::string> text(const char* key, const YAML::Node& parent) const {
+    const YAML::Node node = parent[key];
+    if (absent(node)) return std::nullopt;
+    if (!node.IsScalar()) fail(key, "is not text");
+    return node.Scalar();
   }
 
-  std::optional<double> number(const char* key, const cv::FileNode& parent) const {
-    const cv::FileNode node = parent[key];
-    if (node.empty()) return std::nullopt;
-    if (!node.isInt() && !node.isReal()) fail(key, "is not a number");
-    return static_cast<double>(node);
-  }
-
-  cv::Size resolution(const cv::FileNode& node) const {
-    if (node.empty()) return {};
-    if (!node.isSeq() || node.size() != 2 || !node[0].isInt() || !node[1].isInt()) {
-      fail("camera.resolution", "is not [width, height]");
+  std::optional<double> number(const char* key, const YAML::Node& parent) const {
+    const YAML::Node node = parent[key];
+    if (absent(node)) return std::nullopt;
+    double value = 0.0;
+    if (!node.IsScalar() || !YAML::convert<double>::decode(node, value)) {
+      fail(key, "is not a number");
     }
-    return {static_cast<int>(node[0]), static_cast<int>(node[1])};
+    if (!std::isfinite(value)) fail(key, "is not a finite number");  // YAML has .nan and .inf
+    return value;
+  }
+
+  cv::Size resolution(const YAML::Node& node) const {
+    if (absent(node)) return {};
+    int width = 0, height = 0;
+    if (!node.IsSequence() || node.size() != 2 || !node[0].IsScalar() || !node[1].IsScalar() ||
+        !YAML::convert<int>::decode(node[0], width) ||
+        !YAML::convert<int>::decode(node[1], height) || width < 1 || height < 1) {
+      fail("camera.resolution", "is not [width, height] in pixels");
+    }
+    return {width, height};
   }
 
   [[noreturn]] void fail(const std::string& key, const std::string& problem) const {
@@ -79,8 +98,71 @@ class MetadataParser {
   }
 
   std::filesystem::path file_;
-  cv::FileNode metadata_;
+  YAML::Node metadata_;
 };
+
+// BoB's metadata is a few hundred bytes, nested three levels deep. YAML parsers recurse once
+// per level of nesting (OpenCV's overflowed its stack on a file of 50,000 brackets; yaml-cpp
+// stops at 2,000 levels): the size and depth are bounded here, before any parser sees the
+// text, with a message that says what is wrong.
+constexpr std::size_t kMaxMetadataBytes = 64 * 1024;
+constexpr int kMaxMetadataDepth = 32;
+
+// An upper bound of the nesting a parser would follow: flow brackets ([ and {) still open, plus,
+// at the start of each line, its indentation and its "- " sequence markers (each of which can
+// open a block collection). Brackets inside a quoted scalar or a comment are text; a quote or
+// comment ends at the end of its line here, so that the bound errs only on the safe side.
+void check_nesting(const std::string& text, const std::filesystem::path& file) {
+  if (text.size() > kMaxMetadataBytes) {
+    throw InputError(file.string() + ": " + std::to_string(text.size()) +
+                     " bytes, too large for BoB metadata (at most " +
+                     std::to_string(kMaxMetadataBytes) + ")");
+  }
+  int flow_depth = 0;
+  int line_depth = 0;  // indentation and sequence markers of the current line
+  bool line_start = true;
+  char quote = 0;     // the quote character of a quoted scalar being read
+  char previous = 0;  // the last character outside quotes on this line that was not blank
+  bool blank_before = true;
+  bool comment = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    const bool blank = c == ' ' || c == '\t' || c == '\r';
+    if (c == '\n') {
+      line_start = blank_before = true;
+      line_depth = 0;
+      quote = previous = 0;
+      comment = false;
+      continue;
+    }
+    if (line_start) {
+      if (blank ||
+          (c == '-' && i + 1 < text.size() && (text[i + 1] == ' ' || text[i + 1] == '\t'))) {
+        ++line_depth;
+      } else {
+        line_start = false;
+      }
+    }
+    if (comment) continue;
+    if (quote != 0) {
+      if (c == quote) quote = 0;
+    } else if ((c == '"' || c == '\'') && (previous == 0 || std::strchr(":-[{,", previous))) {
+      quote = c;
+    } else if (c == '#' && blank_before) {
+      comment = true;
+    } else if (c == '[' || c == '{') {
+      ++flow_depth;
+    } else if ((c == ']' || c == '}') && flow_depth > 0) {
+      --flow_depth;
+    }
+    if (!blank && quote == 0) previous = c;
+    blank_before = blank;
+    if (flow_depth + line_depth > kMaxMetadataDepth) {
+      throw InputError(file.string() + ": nested more than " + std::to_string(kMaxMetadataDepth) +
+                       " levels deep (indentation included), not BoB metadata");
+    }
+  }
+}
 
 }  // namespace
 
@@ -89,18 +171,24 @@ std::optional<Metadata> read_metadata(const std::filesystem::path& yaml_file) {
   if (!std::filesystem::exists(yaml_file, error)) return std::nullopt;
   std::ifstream stream(yaml_file, std::ios::binary);
   if (!stream) throw InputError(yaml_file.string() + ": cannot open");
-  std::ostringstream content;
-  // As BoB does: prepend the directive, so that files written without it (by hand, or by BoB's
-  // unwrap()) parse too; OpenCV skips the file's own directive line if it has one.
-  content << "%YAML:1.0\n" << stream.rdbuf();
+  std::ostringstream file_text;
+  file_text << stream.rdbuf();
+  if (stream.bad()) throw InputError(yaml_file.string() + ": read error");
+  std::string content = file_text.str();
+  check_nesting(content, yaml_file);
+  // OpenCV's own directive, "%YAML:1.0" (not YAML's "%YAML 1.0"), which BoB's files may or may
+  // not start with, is not YAML: it is dropped, as OpenCV itself skips it.
+  if (content.starts_with("%YAML:")) content.erase(0, content.find('\n'));
   try {
-    const cv::FileStorage storage(content.str(), cv::FileStorage::READ | cv::FileStorage::MEMORY |
-                                                     cv::FileStorage::FORMAT_YAML);
-    const cv::FileNode metadata = storage["metadata"];
-    if (!metadata.isMap()) throw InputError(yaml_file.string() + ": no 'metadata' map");
-    return MetadataParser(yaml_file, metadata).parse();
-  } catch (const cv::Exception& e) {
-    throw InputError(yaml_file.string() + ": cannot parse YAML (" + e.err + ")");
+    const YAML::Node root = YAML::Load(content);
+    // (A missing key's node is undefined, and asking it anything else throws.)
+    if (!root.IsMap() || !root["metadata"].IsDefined() || !root["metadata"].IsMap()) {
+      throw InputError(yaml_file.string() + ": no 'metadata' map");
+    }
+    return MetadataParser(yaml_file, root["metadata"]).parse();
+  } catch (const YAML::Exception& e) {
+    const std::string line = e.mark.is_null() ? "" : ":" + std::to_string(e.mark.line + 1);
+    throw InputError(yaml_file.string() + line + ": cannot parse YAML (" + e.msg + ")");
   }
 }
 

@@ -20,14 +20,20 @@ CsvSequence::CsvSequence(const std::filesystem::path& csv_file) : csv_file_(csv_
   const std::filesystem::path folder = csv_file.parent_path();
   for (const CsvTable::Row& row : table.rows()) {
     const std::string where = table.where(row);
+    const auto in_column = [&](std::size_t column) {
+      return where + ": column '" + table.columns()[column] + "'";
+    };
     const auto number = [&](std::size_t column) {
-      return parse_double(row.fields[column], where + ": column '" + table.columns()[column] + "'");
+      return parse_double(row.fields[column], in_column(column));
     };
     Row parsed;
     parsed.image_file = folder / row.fields[file_column];
-    parsed.truth.x_m = number(x_column);
-    parsed.truth.y_m = number(y_column);
-    if (z_column) parsed.truth.z_m = number(*z_column);
+    const auto position_m = [&](std::size_t column) {
+      return check_coordinate_m(number(column), in_column(column));
+    };
+    parsed.truth.x_m = position_m(x_column);
+    parsed.truth.y_m = position_m(y_column);
+    if (z_column) parsed.truth.z_m = position_m(*z_column);
     parsed.truth.heading_rad = deg_to_rad(number(heading_column));
     if (time_column) parsed.time_s = number(*time_column);
     std::error_code error;

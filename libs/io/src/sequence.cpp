@@ -30,6 +30,11 @@ std::unique_ptr<SequenceReader> open_sequence(const std::filesystem::path& path)
     if (std::filesystem::exists(path / kBobEntriesFile, error)) {
       return std::make_unique<BobDatabaseReader>(path);
     }
+    // Read as a plain folder, a database missing its entries would lose every pose.
+    if (std::filesystem::exists(path / kBobMetadataFile, error)) {
+      throw InputError(path.string() + ": has " + kBobMetadataFile + " but no " + kBobEntriesFile +
+                       ": a BoB database missing its entries (the poses of its images)");
+    }
     return std::make_unique<FolderSequence>(path);
   }
   if (has_csv_extension(path)) return std::make_unique<CsvSequence>(path);

@@ -5,8 +5,10 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <bit>
 #include <cerrno>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <set>
@@ -119,6 +121,30 @@ CREATE TABLE lattice_positions (
 
 std::string corrupt(const std::filesystem::path& file, const std::string& what) {
   return file.string() + ": corrupt map: " + what;
+}
+
+// A stored number that is not finite (SQLite keeps infinities; NaN comes back as 0) would
+// poison every later sum, comparison and drawing: it is damage.
+double finite(double value, const std::filesystem::path& file, const std::string& what) {
+  if (!std::isfinite(value)) {
+    throw InputError(corrupt(file, what + " is " + std::to_string(value) + ", not a number"));
+  }
+  return value;
+}
+
+std::optional<double> finite(const std::optional<double>& value, const std::filesystem::path& file,
+                             const std::string& what) {
+  if (value) finite(*value, file, what);
+  return value;
+}
+
+// A position (truth or lattice), finite and within ±kMaxCoordinateM.
+double position(double value, const std::filesystem::path& file, const std::string& what) {
+  try {
+    return check_coordinate_m(value, what);
+  } catch (const InputError& e) {
+    throw InputError(corrupt(file, e.what()));
+  }
 }
 
 std::map<std::string, std::string> parameter_rows(const VisualMemory& memory) {
@@ -403,8 +429,9 @@ Place read_place(const Statement& row, const std::filesystem::path& file, std::s
   p.run = static_cast<int>(row.integer(1));
   p.source = row.text(2);
   p.frame_index = static_cast<int>(row.integer(3));
-  p.time_s = row.optional_real(4);
-  p.heading_rad = row.optional_real(5);
+  const std::string place = "place " + std::to_string(id);
+  p.time_s = finite(row.optional_real(4), file, place + " time_s");
+  p.heading_rad = finite(row.optional_real(5), file, place + " heading_rad");
   try {
     p.heading_source = heading_source_from_string(row.text(6));
   } catch (const InputError& error) {
@@ -432,6 +459,11 @@ Place read_place(const Statement& row, const std::filesystem::path& file, std::s
   }
   s.magnitude = floats_from_le_bytes(magnitude, magnitude_bytes);
   s.phase_rad = floats_from_le_bytes(phase, phase_bytes);
+  for (const std::vector<float>* values : {&s.magnitude, &s.phase_rad}) {
+    if (!std::all_of(values->begin(), values->end(), [](float v) { return std::isfinite(v); })) {
+      throw InputError(corrupt(file, place + ": its signature holds a value that is not finite"));
+    }
+  }
   p.thumbnail_png = row.blob(13);
   return p;
 }
@@ -562,16 +594,24 @@ VisualMemory load_map(const std::filesystem::path& file) {
     Statement rows = db.prepare(
         "SELECT place_id, x_m, y_m, z_m, heading_rad, pitch_rad, roll_rad FROM place_truth");
     while (rows.step()) {
-      CameraPose pose{rows.real(1), rows.real(2), rows.real(3),
-                      rows.real(4), rows.real(5), rows.real(6)};
-      memory.place(require_place(rows.integer(0), "place_truth")).truth = pose;
+      const PlaceIndex place = require_place(rows.integer(0), "place_truth");
+      const std::string what = "place_truth of place " + std::to_string(place);
+      CameraPose pose{position(rows.real(1), file, what + ": x_m"),
+                      position(rows.real(2), file, what + ": y_m"),
+                      position(rows.real(3), file, what + ": z_m"),
+                      finite(rows.real(4), file, what + ": heading_rad"),
+                      finite(rows.real(5), file, what + ": pitch_rad"),
+                      finite(rows.real(6), file, what + ": roll_rad")};
+      memory.place(place).truth = pose;
     }
   }
   {
     Statement rows = db.prepare("SELECT place_id, x, y FROM lattice_positions");
     while (rows.step()) {
-      memory.place(require_place(rows.integer(0), "lattice_positions")).lattice =
-          LatticePosition{rows.real(1), rows.real(2)};
+      const PlaceIndex place = require_place(rows.integer(0), "lattice_positions");
+      const std::string what = "lattice position of place " + std::to_string(place);
+      memory.place(place).lattice = LatticePosition{position(rows.real(1), file, what + ": x"),
+                                                    position(rows.real(2), file, what + ": y")};
     }
   }
   {
@@ -579,7 +619,7 @@ VisualMemory load_map(const std::filesystem::path& file) {
         "SELECT from_place, to_place, kind, dissimilarity, relative_heading_rad, "
         "heading_confidence, motion_bearing_rad, motion_bearing_stddev_rad, parallax_rad "
         "FROM edges ORDER BY id");
-    while (rows.step()) {
+    for (std::size_t index = 0; rows.step(); ++index) {
       Edge edge;
       try {
         edge.kind = edge_kind_from_string(rows.text(2));
@@ -589,12 +629,14 @@ VisualMemory load_map(const std::filesystem::path& file) {
       } catch (const InputError& e) {
         throw InputError(corrupt(file, e.what()));
       }
-      edge.dissimilarity = rows.real(3);
-      edge.relative_heading_rad = rows.real(4);
-      edge.heading_confidence = rows.real(5);
-      edge.motion_bearing_rad = rows.optional_real(6);
-      edge.motion_bearing_stddev_rad = rows.real(7);
-      edge.parallax_rad = rows.real(8);
+      const std::string what = "edge " + std::to_string(index);
+      edge.dissimilarity = finite(rows.real(3), file, what + " dissimilarity");
+      edge.relative_heading_rad = finite(rows.real(4), file, what + " relative_heading_rad");
+      edge.heading_confidence = finite(rows.real(5), file, what + " heading_confidence");
+      edge.motion_bearing_rad = finite(rows.optional_real(6), file, what + " motion_bearing_rad");
+      edge.motion_bearing_stddev_rad =
+          finite(rows.real(7), file, what + " motion_bearing_stddev_rad");
+      edge.parallax_rad = finite(rows.real(8), file, what + " parallax_rad");
       memory.add_edge(require_place(rows.integer(0), "edges"),
                       require_place(rows.integer(1), "edges"), edge);
     }

@@ -25,16 +25,33 @@ class SpecArguments {
       if (equals == std::string::npos) {
         throw UsageError("trajectory '" + spec_ + "': expected key=value, got '" + pair + "'");
       }
-      values_[std::string(trim(pair.substr(0, equals)))] =
-          std::string(trim(pair.substr(equals + 1)));
+      const std::string key(trim(pair.substr(0, equals)));
+      if (!values_.emplace(key, trim(pair.substr(equals + 1))).second) {
+        throw UsageError("trajectory '" + spec_ + "': key '" + key + "' is given twice");
+      }
     }
   }
 
+  // Any number of a spec is a position, length, speed, rate, angle or count: beyond
+  // ±kMaxCoordinateM (10,000 km) it is a mistake, and would overflow the frame counts.
   double number(const std::string& key, double fallback) {
     asked_.insert(key);
     const auto found = values_.find(key);
     if (found == values_.end()) return fallback;
-    return parse_double_argument(found->second, "trajectory '" + spec_ + "', key " + key);
+    const std::string where = "trajectory '" + spec_ + "', key " + key;
+    const double value = parse_double_argument(found->second, where);
+    if (std::abs(value) > kMaxCoordinateM) {
+      throw UsageError(where + ": " + found->second + " is beyond ±1e7");
+    }
+    return value;
+  }
+
+  // A count or seed: a whole number.
+  int whole(const std::string& key, int fallback) {
+    asked_.insert(key);
+    const auto found = values_.find(key);
+    if (found == values_.end()) return fallback;
+    return parse_int_argument(found->second, "trajectory '" + spec_ + "', key " + key);
   }
 
   std::string text(const std::string& key, const std::string& fallback) {
@@ -60,6 +77,19 @@ class SpecArguments {
   std::set<std::string> asked_;
 };
 
+// The most poses a trajectory may have: more than a day at 10 frames per second.
+constexpr double kMaxPoses = 1e6;
+
+// `count` frames (or poses, steps) as an int, 0 when negative; throws UsageError when a spec
+// asks for more than kMaxPoses.
+int pose_count(double count, const std::string& spec) {
+  if (!(count <= kMaxPoses)) {
+    throw UsageError("trajectory '" + spec + "': more than " +
+                     std::to_string(static_cast<int>(kMaxPoses)) + " poses");
+  }
+  return count > 0.0 ? static_cast<int>(count) : 0;
+}
+
 void require_positive(double value, const std::string& key, const std::string& spec) {
   if (!(value > 0.0)) throw UsageError("trajectory '" + spec + "': " + key + " must be positive");
 }
@@ -68,7 +98,7 @@ void require_positive(double value, const std::string& key, const std::string& s
 // spot at turn_rate_rad_s at most (frames keep coming while it turns, so that a visual compass
 // can follow), or at once when the rate is 0.
 void walk_polyline(const std::vector<cv::Point2d>& points, double speed_m_s, double fps,
-                   double turn_rate_rad_s, std::vector<TimedPose>& poses) {
+                   double turn_rate_rad_s, const std::string& spec, std::vector<TimedPose>& poses) {
   const double step_m = speed_m_s / fps;
   double time_s = 0.0;
   const auto add = [&](const cv::Point2d& at, double heading) {
@@ -88,10 +118,11 @@ void walk_polyline(const std::vector<cv::Point2d>& points, double speed_m_s, dou
       const double previous = poses.back().pose.heading_rad;
       const double turn = signed_difference(heading, previous);
       const int frames =
-          static_cast<int>(std::ceil(std::abs(turn) / (turn_rate_rad_s / fps) - 1e-9));
+          pose_count(std::ceil(std::abs(turn) / (turn_rate_rad_s / fps) - 1e-9), spec);
       for (int k = 0; k < frames; ++k) add(from, wrap_angle(previous + turn * k / frames));
     }
-    const int steps = std::max(1, static_cast<int>(std::floor(length / step_m + 1e-9)));
+    const int steps = std::max(1, pose_count(std::floor(length / step_m + 1e-9), spec));
+    pose_count(static_cast<double>(poses.size()) + steps, spec);
     const bool last_leg = leg + 2 == points.size();
     for (int i = 0; i < steps + (last_leg ? 1 : 0); ++i) {
       add(from + (to - from) * (std::min(length, i * step_m) / length), heading);
@@ -127,11 +158,11 @@ std::vector<TimedPose> read_csv_poses(const std::string& path) {
       return fields[index];
     };
     TimedPose pose;
-    pose.pose.x_m = parse_double(field(x), where);
-    pose.pose.y_m = parse_double(field(y), where);
+    pose.pose.x_m = check_coordinate_m(parse_double(field(x), where), where);
+    pose.pose.y_m = check_coordinate_m(parse_double(field(y), where), where);
     pose.pose.heading_rad = deg_to_rad(parse_double(field(heading), where));
     pose.time_s = time >= 0 ? parse_double(field(time), where) : -1.0;
-    if (z >= 0) pose.pose.z_m = parse_double(field(z), where);
+    if (z >= 0) pose.pose.z_m = check_coordinate_m(parse_double(field(z), where), where);
     if (pitch >= 0) pose.pose.pitch_rad = deg_to_rad(parse_double(field(pitch), where));
     if (roll >= 0) pose.pose.roll_rad = deg_to_rad(parse_double(field(roll), where));
     poses.push_back(pose);
@@ -296,7 +327,7 @@ Trajectory make_trajectory(const std::string& spec, const World& world) {
     const double rate = deg_to_rad(args.number("rate_deg_s", 30.0));
     if (rate == 0.0) throw UsageError("trajectory '" + spec + "': rate_deg_s must not be 0");
     const int frames =
-        static_cast<int>(std::floor(turns * kTwoPi / std::abs(rate) * fps + 1e-9)) + 1;
+        pose_count(std::floor(turns * kTwoPi / std::abs(rate) * fps + 1e-9) + 1, spec);
     for (int i = 0; i < frames; ++i) {
       poses.push_back({i / fps, {x, y, 0.0, wrap_angle(start + rate * i / fps), 0.0, 0.0}, {}});
     }
@@ -314,7 +345,7 @@ Trajectory make_trajectory(const std::string& spec, const World& world) {
       throw UsageError("trajectory '" + spec + "': turn_rate_deg_s must not be negative");
     std::vector<cv::Point2d> points{{x0, y0}, {x1, y1}};
     if (trajectory.kind == "zigzag") {
-      const int rows = static_cast<int>(args.number("rows", 4));
+      const int rows = pose_count(args.whole("rows", 4), spec);
       if (rows < 2) throw UsageError("trajectory '" + spec + "': rows must be at least 2");
       points.clear();
       for (int row = 0; row < rows; ++row) {
@@ -326,7 +357,7 @@ Trajectory make_trajectory(const std::string& spec, const World& world) {
     if (cv::norm(points.back() - points.front()) == 0.0 && points.size() == 2) {
       throw UsageError("trajectory '" + spec + "': the line has zero length");
     }
-    walk_polyline(points, speed, fps, turn_rate, poses);
+    walk_polyline(points, speed, fps, turn_rate, spec, poses);
   } else if (trajectory.kind == "circle") {
     const double cx = args.number("cx", centre_x), cy = args.number("cy", centre_y);
     const double radius = args.number("radius_m", 1.0);
@@ -336,7 +367,7 @@ Trajectory make_trajectory(const std::string& spec, const World& world) {
     if (speed == 0.0) throw UsageError("trajectory '" + spec + "': speed_m_s must not be 0");
     const double angular_rate = speed / radius;  // rad/s, signed
     const int frames =
-        static_cast<int>(std::floor(turns * kTwoPi / std::abs(angular_rate) * fps + 1e-9)) + 1;
+        pose_count(std::floor(turns * kTwoPi / std::abs(angular_rate) * fps + 1e-9) + 1, spec);
     for (int i = 0; i < frames; ++i) {
       const double angle = angular_rate * i / fps;
       const double tangent = angle + (angular_rate > 0 ? kPi / 2 : -kPi / 2);
@@ -348,10 +379,10 @@ Trajectory make_trajectory(const std::string& spec, const World& world) {
   } else if (trajectory.kind == "walk") {
     double x = args.number("x", centre_x), y = args.number("y", centre_y);
     double heading = deg_to_rad(args.number("heading_deg", 0.0));
-    const int steps = static_cast<int>(args.number("steps", 200));
+    const int steps = pose_count(args.whole("steps", 200), spec);
     const double step_m = args.number("step_m", 0.05);
     const double turn_sd = deg_to_rad(args.number("turn_deg", 20.0));
-    cv::RNG rng(static_cast<std::uint64_t>(args.number("seed", 1)));
+    cv::RNG rng(static_cast<std::uint64_t>(args.whole("seed", 1)));
     require_positive(step_m, "step_m", spec);
     constexpr double kClearance = 0.3;
     for (int i = 0; i < steps; ++i) {
@@ -372,8 +403,8 @@ Trajectory make_trajectory(const std::string& spec, const World& world) {
   } else if (trajectory.kind == "grid") {
     const double x0 = args.number("x0", world.floor.min_x_m + margin);
     const double y0 = args.number("y0", world.floor.min_y_m + margin);
-    const int nx = static_cast<int>(args.number("nx", 10)),
-              ny = static_cast<int>(args.number("ny", 8));
+    const int nx = args.whole("nx", 10), ny = args.whole("ny", 8);
+    pose_count(static_cast<double>(nx) * ny, spec);
     const double spacing = args.number("spacing_m", 0.3);
     const double heading = deg_to_rad(args.number("heading_deg", 0.0));
     if (nx < 1 || ny < 1)
@@ -403,7 +434,7 @@ Trajectory make_trajectory(const std::string& spec, const World& world) {
   const double z = args.number("z_m", 1.0);
   const double pitch_sd = deg_to_rad(args.number("pitch_noise_deg", 0.0));
   const double roll_sd = deg_to_rad(args.number("roll_noise_deg", 0.0));
-  const auto noise_seed = static_cast<std::uint64_t>(args.number("noise_seed", 1));
+  const auto noise_seed = static_cast<std::uint64_t>(args.whole("noise_seed", 1));
   args.require_all_known();
   for (TimedPose& pose : poses) {
     if (trajectory.kind != "csv" || pose.pose.z_m == 0.0) pose.pose.z_m = z;

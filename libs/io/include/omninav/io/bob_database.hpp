@@ -7,7 +7,9 @@
 //     and any extra columns a recorder adds, such as "Timestamp [ms]";
 //   - database_metadata.yaml (optional): an OpenCV FileStorage YAML file whose `metadata` map
 //     holds `type` (route or grid), `camera` {name, resolution [w, h], isPanoramic},
-//     `needsUnwrapping`, `isGreyscale`, and for video databases `videoFile` and `frameRate`;
+//     `needsUnwrapping`, `isGreyscale`, and for video databases `videoFile` and `frameRate`
+//     (read with yaml-cpp, at most 64 KiB and 32 levels deep; the images must have the stated
+//     resolution). A folder with this file but no database_entries.csv is an error;
 //   - the images, named by the recorder: routes "image_00000.png"... (BoB's ant-world example
 //     databases; newer BoB recorders write "image00001.png"...), grids
 //     "image_+001000_+000000_+000010.png" (the position in whole mm, sign and 6 digits each).

@@ -8,10 +8,24 @@
 
 namespace omninav::io {
 
+// The most pixels an input image may have: 8192 x 8192 (192 MB as 8-bit BGR), far beyond any
+// omnidirectional camera's frame. More is a damaged or hostile file (a 1 MB PNG can declare
+// 20000 x 20000 pixels, 1.2 GB once decoded).
+inline constexpr long long kMaxImagePixels = 8192LL * 8192LL;
+
 // Reads `file` as 8-bit BGR (cv::IMREAD_COLOR, so grey files come back as three equal
 // channels: one pixel type for every sequence, whatever its source). Throws InputError naming
-// the file when it is missing, unreadable or not a decodable image.
+// the file when it is missing, unreadable, not a decodable image, or has more than
+// kMaxImagePixels (for PNG and JPEG found from the header, before anything is decoded). Every
+// image file omninav reads goes through here.
 cv::Mat read_image(const std::filesystem::path& file);
+
+// The size a PNG or JPEG file declares in its header (PNG's IHDR, JPEG's start-of-frame), or
+// nothing for other formats and for headers too short or malformed to say.
+std::optional<cv::Size> declared_image_size(const std::filesystem::path& file);
+
+// "<width>x<height> px", as messages about image sizes say it.
+std::string size_text(const cv::Size& size);
 
 // Remembers the size of the first image of a sequence and rejects any other size: a sequence
 // of panoramas of mixed sizes cannot be compared column by column.
