@@ -212,10 +212,8 @@ std::vector<TimedPose> wander(SpecArguments& args, const World& world, const std
   const double wobble = deg_to_rad(args.number("wobble_deg", 15.0));
   const double wobble_period = args.number("wobble_period_s", 2.0);
   const double clearance = args.number("clearance_m", 0.25);
-  const double seed = args.number("seed", 1);
-  if (!(seed >= 0.0 && seed <= 1e9 && seed == std::floor(seed))) {
-    throw UsageError("trajectory '" + spec + "': seed must be a whole number in [0, 1e9]");
-  }
+  const int seed = args.whole("seed", 1);
+  if (seed < 0) throw UsageError("trajectory '" + spec + "': seed must not be negative");
   cv::RNG rng(static_cast<std::uint64_t>(seed) * 2654435761ULL + 7);
   if (mean_turn_rate < 0.0 || wobble < 0.0 || clearance < 0.0) {
     throw UsageError("trajectory '" + spec +
@@ -235,11 +233,7 @@ std::vector<TimedPose> wander(SpecArguments& args, const World& world, const std
     log_warning("trajectory '" + spec + "': the start is closer than clearance_m to an obstacle");
   }
 
-  constexpr double kMaxFrames = 1e6;  // more than a day at 10 frames per second
-  if (!(seconds * fps < kMaxFrames)) {
-    throw UsageError("trajectory '" + spec + "': more than 1000000 poses");
-  }
-  const int frames = static_cast<int>(std::floor(seconds * fps + 1e-9)) + 1;
+  const int frames = pose_count(std::floor(seconds * fps + 1e-9) + 1, spec);
   const double step = speed / fps;
   const double lookahead = std::max(0.5 * speed, 2.0 * step);
   double turn_rate = 0.0, next_change_s = 0.0;
