@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "omninav/compass/frame.hpp"
 #include "omninav/core/errors.hpp"
 #include "omninav/core/statistics.hpp"
 
@@ -125,8 +126,8 @@ TiltEstimate estimate_relative_tilt(const cv::Mat& first, const cv::Mat& second,
   if (params.blocks < 4 || params.blocks > width) {
     throw UsageError("tilt blocks must be in [4, width], not " + std::to_string(params.blocks));
   }
-  if (!(params.max_tilt_rad > 0.0) || params.refinement_steps < 0 ||
-      params.reweighting_steps < 0 || !(params.outlier_rows > 0.0)) {
+  if (!(params.max_tilt_rad > 0.0) || params.refinement_steps < 0 || params.reweighting_steps < 0 ||
+      !(params.outlier_rows > 0.0)) {
     throw UsageError("tilt parameters out of range");
   }
   const double rad_per_row = geometry.rad_per_row();
@@ -149,7 +150,8 @@ TiltEstimate estimate_relative_tilt(const cv::Mat& first, const cv::Mat& second,
     }
     const BlockShift shift = block_shift(profile, second_profiles[static_cast<std::size_t>(b)],
                                          gradient, max_shift, params.refinement_steps);
-    if (shift.weight <= 0.0 || std::abs(shift.shift_rows) > max_shift) continue;
+    // A minimum at the end of the searched range is no measurement.
+    if (shift.weight <= 0.0 || std::abs(shift.shift_rows) > max_shift - 0.5) continue;
     // The block's centre column in the first, and where the second looks there.
     const double first_centre = (static_cast<double>(b) * width / params.blocks +
                                  static_cast<double>(b + 1) * width / params.blocks - 1.0) /
@@ -179,8 +181,8 @@ TiltEstimate estimate_relative_tilt(const cv::Mat& first, const cv::Mat& second,
     estimate.pitch_rad = (a22 * b1 - a12 * b2) / determinant;
     estimate.roll_rad = (a11 * b2 - a12 * b1) / determinant;
     for (std::size_t k = 0; k < n; ++k) {
-      residual[k] = (delta_rad[k] - (-estimate.pitch_rad * cos_azimuth[k] +
-                                     estimate.roll_rad * sin_azimuth[k])) /
+      residual[k] = (delta_rad[k] -
+                     (-estimate.pitch_rad * cos_azimuth[k] + estimate.roll_rad * sin_azimuth[k])) /
                     rad_per_row;
     }
     if (iteration == params.reweighting_steps) break;
@@ -202,8 +204,8 @@ TiltEstimate estimate_relative_tilt(const cv::Mat& first, const cv::Mat& second,
   return estimate;
 }
 
-cv::Mat level_panorama(const cv::Mat& panorama, const PanoramaGeometry& geometry,
-                       double pitch_rad, double roll_rad) {
+cv::Mat level_panorama(const cv::Mat& panorama, const PanoramaGeometry& geometry, double pitch_rad,
+                       double roll_rad) {
   require_layout(panorama, geometry, "panorama");
   if (pitch_rad == 0.0 && roll_rad == 0.0) return panorama.clone();
   const int width = geometry.width_px, height = geometry.height_px;
@@ -213,11 +215,12 @@ cv::Mat level_panorama(const cv::Mat& panorama, const PanoramaGeometry& geometry
   // smooth: its second derivative is of the order of the tilt times the grid spacing squared).
   const double cp = std::cos(pitch_rad), sp = std::sin(pitch_rad);
   const double cr = std::cos(roll_rad), sr = std::sin(roll_rad);
-  const cv::Matx33d rotation = cv::Matx33d(cp, 0, sp, 0, 1, 0, -sp, 0, cp) *
-                               cv::Matx33d(1, 0, 0, 0, cr, -sr, 0, sr, cr);
+  const cv::Matx33d rotation =
+      cv::Matx33d(cp, 0, sp, 0, 1, 0, -sp, 0, cp) * cv::Matx33d(1, 0, 0, 0, cr, -sr, 0, sr, cr);
   const cv::Matx33d inverse = rotation.t();
   constexpr int step = 8;
-  const int grid_columns = (width + step - 1) / step + 1, grid_rows = (height + step - 1) / step + 1;
+  const int grid_columns = (width + step - 1) / step + 1,
+            grid_rows = (height + step - 1) / step + 1;
   cv::Mat grid_dx(grid_rows, grid_columns, CV_64F), grid_y(grid_rows, grid_columns, CV_64F);
   for (int gr = 0; gr < grid_rows; ++gr) {
     const double row = static_cast<double>(gr) * step;
@@ -232,8 +235,7 @@ cv::Mat level_panorama(const cv::Mat& panorama, const PanoramaGeometry& geometry
       double dx = (azimuth - source_azimuth) * width / kTwoPi;  // columns grow as azimuth falls
       dx -= width * std::round(dx / width);
       grid_dx.at<double>(gr, gc) = dx;
-      grid_y.at<double>(gr, gc) =
-          geometry.row_of_elevation(std::asin(std::clamp(u[2], -1.0, 1.0)));
+      grid_y.at<double>(gr, gc) = geometry.row_of_elevation(std::asin(std::clamp(u[2], -1.0, 1.0)));
     }
   }
   // Source columns stay within ±pad of their own column: the tilt's azimuth change is at most
@@ -255,8 +257,10 @@ cv::Mat level_panorama(const cv::Mat& panorama, const PanoramaGeometry& geometry
       const int gc = c / step;
       const double tc = static_cast<double>(c - gc * step) / step;
       const auto blend = [&](const cv::Mat& grid) {
-        return (1.0 - tr) * ((1.0 - tc) * grid.at<double>(gr, gc) + tc * grid.at<double>(gr, gc + 1)) +
-               tr * ((1.0 - tc) * grid.at<double>(gr + 1, gc) + tc * grid.at<double>(gr + 1, gc + 1));
+        return (1.0 - tr) *
+                   ((1.0 - tc) * grid.at<double>(gr, gc) + tc * grid.at<double>(gr, gc + 1)) +
+               tr * ((1.0 - tc) * grid.at<double>(gr + 1, gc) +
+                     tc * grid.at<double>(gr + 1, gc + 1));
       };
       mx[c] = static_cast<float>(c + pad + blend(grid_dx));
       my[c] = static_cast<float>(blend(grid_y));
@@ -265,6 +269,21 @@ cv::Mat level_panorama(const cv::Mat& panorama, const PanoramaGeometry& geometry
   cv::Mat levelled;
   cv::remap(padded, levelled, map_x, map_y, cv::INTER_LINEAR, cv::BORDER_REPLICATE);
   return levelled;
+}
+
+TurnAndTilt match_levelled(const PairMatcher& matcher, const cv::Mat& first, const cv::Mat& second,
+                           const PanoramaGeometry& geometry, const TiltParams& params, int rounds) {
+  if (rounds < 1) throw UsageError("match_levelled needs at least one round");
+  const CompassFrame first_frame(first);
+  TurnAndTilt result;
+  result.match = matcher.match(first_frame, CompassFrame(second));
+  for (int round = 0; round < rounds; ++round) {
+    result.tilt =
+        estimate_relative_tilt(first, second, geometry, result.match.subpixel_shift_px, params);
+    result.levelled = level_panorama(second, geometry, result.tilt.pitch_rad, result.tilt.roll_rad);
+    result.match = matcher.match(first_frame, CompassFrame(result.levelled), result.match.shift_px);
+  }
+  return result;
 }
 
 }  // namespace omninav::compass

@@ -25,18 +25,19 @@
 
 #include <opencv2/core.hpp>
 
+#include "omninav/compass/pair_matcher.hpp"
 #include "omninav/core/angles.hpp"
 #include "omninav/core/panorama.hpp"
 
 namespace omninav::compass {
 
 struct TiltParams {
-  int blocks = 36;                          // blocks of columns round the circle (4..W)
-  double max_tilt_rad = deg_to_rad(8.0);    // searched row shifts: ±max_tilt / rad_per_row
-  int refinement_steps = 3;                 // Gauss-Newton steps per block after the search
-  double outlier_rows = 1.5;                // Tukey biweight scale, rows (× the robust sigma
-                                            // of the residuals, but at least this)
-  int reweighting_steps = 4;                // iteratively re-weighted least-squares steps
+  int blocks = 36;                        // blocks of columns round the circle (4..W)
+  double max_tilt_rad = deg_to_rad(8.0);  // searched row shifts: ±max_tilt / rad_per_row
+  int refinement_steps = 3;               // Gauss-Newton steps per block after the search
+  double outlier_rows = 1.5;              // Tukey biweight scale, rows (× the robust sigma
+                                          // of the residuals, but at least this)
+  int reweighting_steps = 4;              // iteratively re-weighted least-squares steps
 };
 
 struct TiltEstimate {
@@ -61,7 +62,22 @@ TiltEstimate estimate_relative_tilt(const cv::Mat& first, const cv::Mat& second,
 // renderer draws it), bilinear; rows that would come from outside the panorama's elevation band
 // repeat its first or last row. level_panorama(tilted, g, p, r) of a panorama rendered with
 // pitch p and roll r is the level one.
-cv::Mat level_panorama(const cv::Mat& panorama, const PanoramaGeometry& geometry,
-                       double pitch_rad, double roll_rad);
+cv::Mat level_panorama(const cv::Mat& panorama, const PanoramaGeometry& geometry, double pitch_rad,
+                       double roll_rad);
+
+// The turn and the tilt of a pair together. The tilt is estimated at the turn the matcher
+// finds, the second is levelled by it, and the levelled second is matched again (starting at
+// the previous shift); `rounds` times. A tilt of a few degrees can move the unlevelled match
+// far off (a 26 degree error in the field at 10 cm, docs/compass.md "Tilt"); the second round
+// re-estimates the tilt at the corrected turn. Throws as estimate_relative_tilt and
+// PairMatcher::match, and UsageError for rounds < 1.
+struct TurnAndTilt {
+  PairMatch match;    // of the levelled second against the first
+  TiltEstimate tilt;  // of the second relative to the first
+  cv::Mat levelled;   // the second, levelled by `tilt`
+};
+TurnAndTilt match_levelled(const PairMatcher& matcher, const cv::Mat& first, const cv::Mat& second,
+                           const PanoramaGeometry& geometry, const TiltParams& params = {},
+                           int rounds = 2);
 
 }  // namespace omninav::compass
