@@ -1,6 +1,7 @@
 #include "omninav/compass/tilt.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -28,31 +29,36 @@ void require_layout(const cv::Mat& panorama, const PanoramaGeometry& geometry,
 }
 
 // Vertical profiles of `blocks` blocks of columns: profile b, row i is the mean grey (mean of
-// the channels) of columns [edge(b) − offset, edge(b + 1) − offset) (mod W) in row i.
+// the channels) of columns [edge(b) − offset, edge(b + 1) − offset) (mod W) in row i. Each
+// block is at most two contiguous runs of bytes per row, summed as integers (vectorised).
 std::vector<std::vector<double>> block_profiles(const cv::Mat& image, int blocks, int offset_px) {
   const int width = image.cols, height = image.rows, channels = image.channels();
-  std::vector<int> block_of_column(static_cast<std::size_t>(width));
-  std::vector<double> count(static_cast<std::size_t>(blocks), 0.0);
-  for (int c = 0; c < width; ++c) {
-    const int source = ((c - offset_px) % width + width) % width;
-    const int block = static_cast<int>(static_cast<long long>(c) * blocks / width);
-    block_of_column[static_cast<std::size_t>(source)] = block;
-    count[static_cast<std::size_t>(block)] += channels;
+  struct Run {
+    int begin, end;  // bytes within a row
+  };
+  std::vector<std::array<Run, 2>> runs(static_cast<std::size_t>(blocks));
+  std::vector<double> scale(static_cast<std::size_t>(blocks));
+  const int shift = ((-offset_px) % width + width) % width;
+  for (int b = 0; b < blocks; ++b) {
+    const int begin = static_cast<int>(static_cast<long long>(b) * width / blocks);
+    const int end = static_cast<int>(static_cast<long long>(b + 1) * width / blocks);
+    const int source = (begin + shift) % width, length = end - begin;
+    const int first_length = std::min(length, width - source);
+    runs[static_cast<std::size_t>(b)] = {Run{source * channels, (source + first_length) * channels},
+                                         Run{0, (length - first_length) * channels}};
+    scale[static_cast<std::size_t>(b)] = 1.0 / (static_cast<double>(length) * channels);
   }
   std::vector<std::vector<double>> profiles(static_cast<std::size_t>(blocks),
                                             std::vector<double>(static_cast<std::size_t>(height)));
-  std::vector<double> sums(static_cast<std::size_t>(blocks));
   for (int r = 0; r < height; ++r) {
-    std::fill(sums.begin(), sums.end(), 0.0);
     const std::uint8_t* row = image.ptr<std::uint8_t>(r);
-    for (int c = 0; c < width; ++c) {
-      int sum = 0;
-      for (int k = 0; k < channels; ++k) sum += row[c * channels + k];
-      sums[static_cast<std::size_t>(block_of_column[static_cast<std::size_t>(c)])] += sum;
-    }
     for (int b = 0; b < blocks; ++b) {
+      std::uint32_t sum = 0;
+      for (const Run& run : runs[static_cast<std::size_t>(b)]) {
+        for (int k = run.begin; k < run.end; ++k) sum += row[k];
+      }
       profiles[static_cast<std::size_t>(b)][static_cast<std::size_t>(r)] =
-          sums[static_cast<std::size_t>(b)] / count[static_cast<std::size_t>(b)];
+          sum * scale[static_cast<std::size_t>(b)];
     }
   }
   return profiles;
@@ -247,23 +253,32 @@ cv::Mat level_panorama(const cv::Mat& panorama, const PanoramaGeometry& geometry
   const int pad = static_cast<int>(std::ceil(max_dx)) + 2;
   cv::Mat padded;
   cv::copyMakeBorder(panorama, padded, 0, 0, pad, pad, cv::BORDER_WRAP);
+  // The grid interpolated to each row first, then along the row.
   cv::Mat map_x(height, width, CV_32F), map_y(height, width, CV_32F);
+  std::vector<float> line_dx(static_cast<std::size_t>(grid_columns)),
+      line_y(static_cast<std::size_t>(grid_columns));
   for (int r = 0; r < height; ++r) {
     const int gr = r / step;
     const double tr = static_cast<double>(r - gr * step) / step;
+    for (int gc = 0; gc < grid_columns; ++gc) {
+      line_dx[static_cast<std::size_t>(gc)] = static_cast<float>(
+          (1.0 - tr) * grid_dx.at<double>(gr, gc) + tr * grid_dx.at<double>(gr + 1, gc));
+      line_y[static_cast<std::size_t>(gc)] = static_cast<float>(
+          (1.0 - tr) * grid_y.at<double>(gr, gc) + tr * grid_y.at<double>(gr + 1, gc));
+    }
     float* mx = map_x.ptr<float>(r);
     float* my = map_y.ptr<float>(r);
-    for (int c = 0; c < width; ++c) {
-      const int gc = c / step;
-      const double tc = static_cast<double>(c - gc * step) / step;
-      const auto blend = [&](const cv::Mat& grid) {
-        return (1.0 - tr) *
-                   ((1.0 - tc) * grid.at<double>(gr, gc) + tc * grid.at<double>(gr, gc + 1)) +
-               tr * ((1.0 - tc) * grid.at<double>(gr + 1, gc) +
-                     tc * grid.at<double>(gr + 1, gc + 1));
-      };
-      mx[c] = static_cast<float>(c + pad + blend(grid_dx));
-      my[c] = static_cast<float>(blend(grid_y));
+    for (int gc = 0; gc + 1 < grid_columns; ++gc) {
+      const std::size_t g = static_cast<std::size_t>(gc);
+      const int begin = gc * step, end = std::min(width, begin + step);
+      const float x0 = static_cast<float>(begin + pad) + line_dx[g];
+      const float x_slope = 1.0f + (line_dx[g + 1] - line_dx[g]) / step;
+      const float y_slope = (line_y[g + 1] - line_y[g]) / step;
+      for (int c = begin; c < end; ++c) {
+        const float k = static_cast<float>(c - begin);
+        mx[c] = x0 + k * x_slope;
+        my[c] = line_y[g] + k * y_slope;
+      }
     }
   }
   cv::Mat levelled;
