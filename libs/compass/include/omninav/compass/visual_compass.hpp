@@ -39,6 +39,7 @@
 
 #include "omninav/compass/frame.hpp"
 #include "omninav/compass/pair_matcher.hpp"
+#include "omninav/compass/tilt.hpp"
 
 namespace omninav::compass {
 
@@ -64,9 +65,22 @@ struct SamplingParams {
   double parallax_ratio = 0.08;
 };
 
+// Levelling each frame against its reference before matching (tilt.hpp, docs/compass.md
+// "Tilt"): match_levelled replaces the match of line 9, and the levelled frame is kept (so a
+// frame that becomes the reference is level with the one before it).
+struct TiltLevellingParams {
+  bool enabled = false;  // measured off by default: see docs/compass.md "Tilt"
+  TiltParams tilt;
+  // The elevations the panoramas' rows cover (camera.yaml's panorama section); their size is
+  // the frames'.
+  double elevation_min_rad = deg_to_rad(-30.0);
+  double elevation_max_rad = deg_to_rad(15.0);
+};
+
 struct CompassParams {
   PairMatcherParams matcher;
   SamplingParams sampling;
+  TiltLevellingParams levelling;
 };
 
 // What the compass says about one frame.
@@ -78,6 +92,9 @@ struct CompassEstimate {
   int reference_index = 0;      // CompassFrame::index() of the reference I_r used
   bool new_reference = false;   // the reference changed at this frame (lines 11-13)
   double shift_px = 0.0;        // α_m of that pair (sub-pixel)
+  // With levelling: the frame's tilt relative to the reference of line 9 (tilt.hpp); 0 without.
+  double pitch_rad = 0.0;
+  double roll_rad = 0.0;
   ConfidenceFlags flags;
   int evaluations = 0;  // distance evaluations spent on this frame
 };
@@ -104,6 +121,9 @@ class VisualCompass {
  private:
   // Whether the match of line 9 passes the rotation cap (ours, see above).
   bool beyond_rotation_cap(const PairMatch& match, double rotation_ref_previous_rad) const;
+  // Line 9's match; with levelling, of the frame levelled against the reference, which then
+  // replaces `frame` (and the tilt goes into `estimate`).
+  PairMatch match_reference(CompassFrame& frame, int start_shift, CompassEstimate& estimate) const;
 
   CompassParams params_;
   PairMatcher matcher_;
