@@ -66,8 +66,10 @@ struct SamplingParams {
 };
 
 // Levelling each frame against its reference before matching (tilt.hpp, docs/compass.md
-// "Tilt"): match_levelled replaces the match of line 9, and the levelled frame is kept (so a
-// frame that becomes the reference is level with the one before it).
+// "Tilt"): the frame is levelled against the reference of line 9 (or the previous frame of
+// line 12) and matched again. The frames are kept as they came: levelling a frame that later
+// becomes a reference would chain the tilt estimates, and their small biases (forward motion
+// reads as pitch, docs/compass.md) would add up along the route.
 struct TiltLevellingParams {
   bool enabled = false;  // measured off by default: see docs/compass.md "Tilt"
   TiltParams tilt;
@@ -92,7 +94,8 @@ struct CompassEstimate {
   int reference_index = 0;      // CompassFrame::index() of the reference I_r used
   bool new_reference = false;   // the reference changed at this frame (lines 11-13)
   double shift_px = 0.0;        // α_m of that pair (sub-pixel)
-  // With levelling: the frame's tilt relative to the reference of line 9 (tilt.hpp); 0 without.
+  // With levelling: the frame's tilt relative to the reference of the match that gave r_rc
+  // (tilt.hpp); 0 without.
   double pitch_rad = 0.0;
   double roll_rad = 0.0;
   ConfidenceFlags flags;
@@ -121,9 +124,10 @@ class VisualCompass {
  private:
   // Whether the match of line 9 passes the rotation cap (ours, see above).
   bool beyond_rotation_cap(const PairMatch& match, double rotation_ref_previous_rad) const;
-  // Line 9's match; with levelling, of the frame levelled against the reference, which then
-  // replaces `frame` (and the tilt goes into `estimate`).
-  PairMatch match_reference(CompassFrame& frame, int start_shift, CompassEstimate& estimate) const;
+  // The match of lines 9 and 12; with levelling, of the frame levelled against `reference`
+  // (the tilt goes into `estimate`).
+  PairMatch match_levelled(const CompassFrame& reference, const CompassFrame& frame,
+                           int start_shift, CompassEstimate& estimate) const;
 
   CompassParams params_;
   PairMatcher matcher_;
