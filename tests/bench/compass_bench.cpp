@@ -97,11 +97,12 @@ void pairs(benchmark::State& state, MinimiserKind kind, bool variant, int width,
 
 // Algorithm 1 (Table 2's parameters) over the sequence, frames made as a camera would hand
 // them over (fresh CompassFrames); Fx 0 is the successive-pair compass.
-void algorithm1(benchmark::State& state, MinimiserKind kind, int width, int height,
-                bool fixed_skip) {
+void algorithm1(benchmark::State& state, MinimiserKind kind, int width, int height, bool fixed_skip,
+                bool level = false) {
   const std::vector<cv::Mat>& images = frames(width, height);
   omninav::compass::CompassParams params;
   params.matcher.minimiser.kind = kind;
+  params.levelling.enabled = level;
   if (fixed_skip) {
     params.sampling.policy = omninav::compass::SamplingPolicy::kFixedSkip;
     params.sampling.fixed_skip_frames = 0;
@@ -169,11 +170,16 @@ void register_all() {
     for (const auto& [name, kind] : {std::make_pair("local_scan", MinimiserKind::kLocalScan),
                                      std::make_pair("fft", MinimiserKind::kFft)}) {
       benchmark::RegisterBenchmark(("algorithm1/" + std::string(name) + "/" + size).c_str(),
-                                   algorithm1, kind, width, height, false)
+                                   algorithm1, kind, width, height, false, false)
           ->Unit(benchmark::kMicrosecond);
     }
     benchmark::RegisterBenchmark(("fx0/fft/" + size).c_str(), algorithm1, MinimiserKind::kFft,
-                                 width, height, true)
+                                 width, height, true, false)
+        ->Unit(benchmark::kMicrosecond);
+    // Algorithm 1 with compass.yaml's tilt.level on: every frame pays the estimate, the warp
+    // and a second match (the estimate is small on these level frames, but never exactly 0).
+    benchmark::RegisterBenchmark(("algorithm1_level/local_scan/" + size).c_str(), algorithm1,
+                                 MinimiserKind::kLocalScan, width, height, false, true)
         ->Unit(benchmark::kMicrosecond);
     for (const auto& [name, estimate, level] :
          {std::make_tuple("estimate", true, false), std::make_tuple("level", false, true),
@@ -220,6 +226,11 @@ class RatioReporter : public benchmark::ConsoleReporter {
       if (alg1_local > 0) {
         std::printf("  %-15s Algorithm 1: local_scan %8.0f frames/s, fft %8.0f frames/s\n", size,
                     kFrames / alg1_local, kFrames / alg1_fft);
+      }
+      const double alg1_level = get(std::string("algorithm1_level/local_scan/") + size);
+      if (alg1_level > 0) {
+        std::printf("  %-15s Algorithm 1 with tilt.level: local_scan %8.0f frames/s\n", size,
+                    kFrames / alg1_level);
       }
       const double tilt_step = get(std::string("tilt/step/") + size);
       if (tilt_step > 0 && alg1_local > 0) {
