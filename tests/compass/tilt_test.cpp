@@ -176,23 +176,24 @@ TEST(Tilt, LevellingByTheTrueTiltGivesTheLevelPanorama) {
 // pair matcher finds it within 0.5 degrees (issue 15), and without levelling it is worse.
 TEST(Tilt, LevellingKeepsTheTurnWithinHalfADegree) {
   const PairMatcher matcher(exhaustive());
-  const int width = 360, height = 45;
-  const PanoramaGeometry geometry = geometry_of(width, height);
   double worst_before = 0.0, worst_after = 0.0;
-  for (const Family& family : families()) {
-    const int turn_columns = 50;
-    const double turn_deg = 360.0 * turn_columns / width;
-    const RenderedPair pair = render_pair(family, width, height, 75.0, turn_columns, 4.0, 3.0);
-    const TurnAndTilt levelled = match_levelled(matcher, pair.level, pair.tilted, geometry);
-    const double before = std::abs(turn_error_deg(matcher, pair.level, pair.tilted, turn_deg));
-    const double after =
-        std::abs(rad_to_deg(wrap_angle(levelled.match.rotation_rad - deg_to_rad(turn_deg))));
-    std::printf("  %-10s turn error without levelling %.3f deg, with %.3f deg\n",
-                family.name.c_str(), before, after);
-    SCOPED_TRACE(family.name);
-    EXPECT_LT(after, 0.5);
-    worst_before = std::max(worst_before, before);
-    worst_after = std::max(worst_after, after);
+  for (const auto& [width, height] : {std::make_pair(360, 45), std::make_pair(1080, 135)}) {
+    const PanoramaGeometry geometry = geometry_of(width, height);
+    for (const Family& family : families()) {
+      const int turn_columns = width * 5 / 36;  // 50 degrees
+      const double turn_deg = 360.0 * turn_columns / width;
+      const RenderedPair pair = render_pair(family, width, height, 75.0, turn_columns, 4.0, 3.0);
+      const TurnAndTilt levelled = match_levelled(matcher, pair.level, pair.tilted, geometry);
+      const double before = std::abs(turn_error_deg(matcher, pair.level, pair.tilted, turn_deg));
+      const double after =
+          std::abs(rad_to_deg(wrap_angle(levelled.match.rotation_rad - deg_to_rad(turn_deg))));
+      std::printf("  %-10s %4dx%-3d turn error without levelling %.3f deg, with %.3f deg\n",
+                  family.name.c_str(), width, height, before, after);
+      SCOPED_TRACE(family.name + " " + std::to_string(width));
+      EXPECT_LT(after, 0.5);
+      worst_before = std::max(worst_before, before);
+      worst_after = std::max(worst_after, after);
+    }
   }
   EXPECT_LT(worst_after, worst_before);
 }
