@@ -35,8 +35,9 @@ struct TiltParams {
   int blocks = 36;                        // blocks of columns round the circle (4..W)
   double max_tilt_rad = deg_to_rad(8.0);  // searched row shifts: ±max_tilt / rad_per_row
   int refinement_steps = 3;               // Gauss-Newton steps per block after the search
-  double outlier_rows = 1.5;              // Tukey biweight scale, rows (× the robust sigma
-                                          // of the residuals, but at least this)
+  double outlier_rows = 1.5;              // Tukey biweight scale, rows: 4.685 × the robust
+                                          // sigma (1.4826 × MAD) of the residuals, but at
+                                          // least this
   int reweighting_steps = 4;              // iteratively re-weighted least-squares steps
 };
 
