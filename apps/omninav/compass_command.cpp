@@ -92,7 +92,7 @@ struct Row {
 
 void write_csv(std::ostream& out, const std::vector<Row>& rows, bool with_truth) {
   out << "frame,source,time_s,heading_deg,heading_unwrapped_deg,rotation_deg,amplitude_norm,"
-         "reference_frame,confidence,shift_px,evaluations";
+         "reference_frame,confidence,shift_px,evaluations,pitch_deg,roll_deg";
   if (with_truth) out << ",truth_heading_deg,error_deg,distance_m";
   out << '\n';
   double travelled = 0.0;
@@ -104,7 +104,8 @@ void write_csv(std::ostream& out, const std::vector<Row>& rows, bool with_truth)
         << fixed(rad_to_deg(wrap_angle(e.heading_rad)), 4) << ','
         << fixed(rad_to_deg(e.heading_rad), 4) << ',' << fixed(rad_to_deg(e.rotation_rad), 4) << ','
         << fixed(e.amplitude_norm, 4) << ',' << e.reference_index << ',' << e.flags.describe()
-        << ',' << fixed(e.shift_px, 4) << ',' << e.evaluations;
+        << ',' << fixed(e.shift_px, 4) << ',' << e.evaluations << ','
+        << fixed(rad_to_deg(e.pitch_rad), 4) << ',' << fixed(rad_to_deg(e.roll_rad), 4);
     if (with_truth) {
       if (row.truth) {
         if (last_truth) {
@@ -132,6 +133,11 @@ void run_compass(const GlobalOptions& global, const CompassOptions& options) {
   }
   compass::CompassConfig config = load_compass_config(global.config_dir);
   compass::CompassParams params = config.compass;
+  if (params.levelling.enabled) {
+    const PanoramaGeometry camera = load_camera_config(global.config_dir).panorama;
+    params.levelling.elevation_min_rad = camera.elevation_min_rad;
+    params.levelling.elevation_max_rad = camera.elevation_max_rad;
+  }
   apply_method(options.method, params);
   if (!options.minimiser.empty()) {
     params.matcher.minimiser.kind = compass::minimiser_kind_of(options.minimiser);
@@ -336,11 +342,13 @@ void add_compass_command(CLI::App& app, const GlobalOptions& global) {
                     "The input is raw omnidirectional images: unwrap them with camera.yaml "
                     "(automatic for BoB databases marked needsUnwrapping)");
   command
-      ->add_option("-o,--out", options->out,
-                   "Write one CSV row per frame (frame, source, time_s, heading_deg,\n"
-                   "heading_unwrapped_deg, rotation_deg, amplitude_norm, reference_frame,\n"
-                   "confidence, shift_px, evaluations; truth_heading_deg, error_deg, distance_m\n"
-                   "when the input has ground truth); '-' for standard output")
+      ->add_option(
+          "-o,--out", options->out,
+          "Write one CSV row per frame (frame, source, time_s, heading_deg,\n"
+          "heading_unwrapped_deg, rotation_deg, amplitude_norm, reference_frame,\n"
+          "confidence, shift_px, evaluations, pitch_deg, roll_deg (relative to the\n"
+          "reference, with compass.yaml tilt.level); truth_heading_deg, error_deg, distance_m\n"
+          "when the input has ground truth); '-' for standard output")
       ->type_name("FILE");
   command->add_option("--plot", options->plot, "Write a PNG of heading and error against frame")
       ->type_name("FILE.png");

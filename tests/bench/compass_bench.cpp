@@ -23,9 +23,11 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "omninav/compass/pair_matcher.hpp"
+#include "omninav/compass/tilt.hpp"
 #include "omninav/compass/visual_compass.hpp"
 #include "omninav/core/angles.hpp"
 #include "omninav/sim/renderer.hpp"
@@ -95,11 +97,12 @@ void pairs(benchmark::State& state, MinimiserKind kind, bool variant, int width,
 
 // Algorithm 1 (Table 2's parameters) over the sequence, frames made as a camera would hand
 // them over (fresh CompassFrames); Fx 0 is the successive-pair compass.
-void algorithm1(benchmark::State& state, MinimiserKind kind, int width, int height,
-                bool fixed_skip) {
+void algorithm1(benchmark::State& state, MinimiserKind kind, int width, int height, bool fixed_skip,
+                bool level = false) {
   const std::vector<cv::Mat>& images = frames(width, height);
   omninav::compass::CompassParams params;
   params.matcher.minimiser.kind = kind;
+  params.levelling.enabled = level;
   if (fixed_skip) {
     params.sampling.policy = omninav::compass::SamplingPolicy::kFixedSkip;
     params.sampling.fixed_skip_frames = 0;
@@ -121,6 +124,33 @@ void algorithm1(benchmark::State& state, MinimiserKind kind, int width, int heig
       benchmark::Counter(static_cast<double>(frames_done), benchmark::Counter::kIsRate);
 }
 
+// The tilt step (tilt.hpp) per frame: the tilt of a frame relative to the previous one at a
+// known turn, and levelling it. The frames of the circle are level, so the warp is run with
+// the estimate plus 1 degree of pitch (a zero tilt would return a copy, measuring nothing).
+// "estimate" and "level" alone, and "step" both.
+void tilt(benchmark::State& state, int width, int height, bool estimate, bool level) {
+  const std::vector<cv::Mat>& images = frames(width, height);
+  omninav::PanoramaGeometry geometry;
+  geometry.width_px = width;
+  geometry.height_px = height;
+  int next = 1;
+  for (auto _ : state) {
+    const cv::Mat& first = images[static_cast<std::size_t>(next - 1)];
+    const cv::Mat& second = images[static_cast<std::size_t>(next)];
+    omninav::compass::TiltEstimate estimate_now;
+    if (estimate) {
+      estimate_now = omninav::compass::estimate_relative_tilt(first, second, geometry, 0.0);
+    }
+    if (level) {
+      benchmark::DoNotOptimize(omninav::compass::level_panorama(
+          second, geometry, estimate_now.pitch_rad + omninav::deg_to_rad(1.0),
+          estimate_now.roll_rad));
+    }
+    benchmark::DoNotOptimize(estimate_now);
+    next = next % (kFrames - 1) + 1;
+  }
+}
+
 void register_all() {
   for (const auto& [width, height] : {std::make_pair(360, 45), std::make_pair(1080, 135)}) {
     const std::string size = std::to_string(width) + "x" + std::to_string(height);
@@ -140,12 +170,24 @@ void register_all() {
     for (const auto& [name, kind] : {std::make_pair("local_scan", MinimiserKind::kLocalScan),
                                      std::make_pair("fft", MinimiserKind::kFft)}) {
       benchmark::RegisterBenchmark(("algorithm1/" + std::string(name) + "/" + size).c_str(),
-                                   algorithm1, kind, width, height, false)
+                                   algorithm1, kind, width, height, false, false)
           ->Unit(benchmark::kMicrosecond);
     }
     benchmark::RegisterBenchmark(("fx0/fft/" + size).c_str(), algorithm1, MinimiserKind::kFft,
-                                 width, height, true)
+                                 width, height, true, false)
         ->Unit(benchmark::kMicrosecond);
+    // Algorithm 1 with compass.yaml's tilt.level on: every frame pays the estimate, the warp
+    // and a second match (the estimate is small on these level frames, but never exactly 0).
+    benchmark::RegisterBenchmark(("algorithm1_level/local_scan/" + size).c_str(), algorithm1,
+                                 MinimiserKind::kLocalScan, width, height, false, true)
+        ->Unit(benchmark::kMicrosecond);
+    for (const auto& [name, estimate, level] :
+         {std::make_tuple("estimate", true, false), std::make_tuple("level", false, true),
+          std::make_tuple("step", true, true)}) {
+      benchmark::RegisterBenchmark(("tilt/" + std::string(name) + "/" + size).c_str(), tilt, width,
+                                   height, estimate, level)
+          ->Unit(benchmark::kMicrosecond);
+    }
   }
 }
 
@@ -184,6 +226,20 @@ class RatioReporter : public benchmark::ConsoleReporter {
       if (alg1_local > 0) {
         std::printf("  %-15s Algorithm 1: local_scan %8.0f frames/s, fft %8.0f frames/s\n", size,
                     kFrames / alg1_local, kFrames / alg1_fft);
+      }
+      const double alg1_level = get(std::string("algorithm1_level/local_scan/") + size);
+      if (alg1_level > 0) {
+        std::printf("  %-15s Algorithm 1 with tilt.level: local_scan %8.0f frames/s\n", size,
+                    kFrames / alg1_level);
+      }
+      const double tilt_step = get(std::string("tilt/step/") + size);
+      if (tilt_step > 0 && alg1_local > 0) {
+        std::printf(
+            "  %-15s tilt step (estimate + level) %6.0f us = %.2fx an Algorithm 1 frame "
+            "(local_scan)",
+            size, tilt_step * 1e6, tilt_step / (alg1_local / kFrames));
+        if (alg1_fft > 0) std::printf(", %.2fx (fft)", tilt_step / (alg1_fft / kFrames));
+        std::printf("\n");
       }
     }
   }

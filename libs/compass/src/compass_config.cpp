@@ -64,6 +64,12 @@ void load_compass_config(const ConfigReader& config, CompassConfig& out) {
                       180.0);
   confidence.read("competing_depth_ratio", confidence_params.competing_depth_ratio, 0.0, 1.0);
 
+  const ConfigReader tilt = config.section("tilt");
+  TiltLevellingParams& levelling = out.compass.levelling;
+  tilt.read("level", levelling.enabled);
+  tilt.read("blocks", levelling.tilt.blocks, 4, 4096);
+  tilt.read_deg("max_tilt_deg", levelling.tilt.max_tilt_rad, 0.5, 30.0);
+
   const ConfigReader input = config.section("input");
   std::optional<double> width = out.width_px ? std::optional<double>(*out.width_px) : std::nullopt;
   input.read("width_px", width, 8, 16384);

@@ -48,6 +48,28 @@ bool VisualCompass::beyond_rotation_cap(const PairMatch& match,
   return std::abs(rotation_rad) > sampling.max_reference_rotation_rad && parallax;
 }
 
+PairMatch VisualCompass::match_levelled(const CompassFrame& reference, const CompassFrame& frame,
+                                        int start_shift, CompassEstimate& estimate) const {
+  if (!params_.levelling.enabled) return matcher_.match(reference, frame, start_shift);
+  PanoramaGeometry geometry;
+  geometry.width_px = frame.width();
+  geometry.height_px = frame.height();
+  geometry.elevation_min_rad = params_.levelling.elevation_min_rad;
+  geometry.elevation_max_rad = params_.levelling.elevation_max_rad;
+  const PairMatch first = matcher_.match(reference, frame, start_shift);
+  const TiltEstimate tilt = estimate_relative_tilt(reference.image(), frame.image(), geometry,
+                                                   first.subpixel_shift_px, params_.levelling.tilt);
+  estimate.pitch_rad = tilt.pitch_rad;
+  estimate.roll_rad = tilt.roll_rad;
+  if (tilt.pitch_rad == 0.0 && tilt.roll_rad == 0.0) return first;
+  const CompassFrame levelled(
+      level_panorama(frame.image(), geometry, tilt.pitch_rad, tilt.roll_rad), frame.index(),
+      frame.source());
+  PairMatch second = matcher_.match(reference, levelled, first.shift_px);
+  second.evaluations += first.evaluations;
+  return second;
+}
+
 CompassEstimate VisualCompass::push(const CompassFrame& frame) {
   CompassEstimate estimate;
   estimate.frame_index = frame.index();
@@ -89,7 +111,7 @@ CompassEstimate VisualCompass::push(const CompassFrame& frame) {
     // Line 9, started from the shift of r_rp (§3.5, "In the actual implementation").
     const int start_shift =
         static_cast<int>(std::lround(-shift_px_of_rotation(rotation_ref_previous_rad, width)));
-    match = matcher_.match(*reference_, frame, start_shift);
+    match = match_levelled(*reference_, frame, start_shift, estimate);
     estimate.evaluations = match.evaluations;
     // Line 10, and the rotation cap (visual_compass.hpp: ours, not the paper's).
     switch_reference = !fixed_skip && (match.amplitude_norm < params_.sampling.threshold_norm_amp ||
@@ -98,8 +120,9 @@ CompassEstimate VisualCompass::push(const CompassFrame& frame) {
   if (switch_reference) {
     if (!previous_is_reference) {
       reference_heading_rad_ += rotation_ref_previous_rad;  // line 11, the firewall
-      match = matcher_.match(previous, frame, 0);           // line 12, started from 0
-      estimate.evaluations += match.evaluations;
+      const int evaluations = estimate.evaluations;
+      match = match_levelled(previous, frame, 0, estimate);  // line 12, started from 0
+      estimate.evaluations = evaluations + match.evaluations;
       reference_ = previous;  // line 13
       reference_position_ = frame_count_ - 2;
       ++reference_count_;

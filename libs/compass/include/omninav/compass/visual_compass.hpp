@@ -39,6 +39,7 @@
 
 #include "omninav/compass/frame.hpp"
 #include "omninav/compass/pair_matcher.hpp"
+#include "omninav/compass/tilt.hpp"
 
 namespace omninav::compass {
 
@@ -64,9 +65,24 @@ struct SamplingParams {
   double parallax_ratio = 0.08;
 };
 
+// Levelling each frame against its reference before matching (tilt.hpp, docs/compass.md
+// "Tilt"): the frame is levelled against the reference of line 9 (or the previous frame of
+// line 12) and matched again. The frames are kept as they came: levelling a frame that later
+// becomes a reference would chain the tilt estimates, and their small biases (forward motion
+// reads as pitch, docs/compass.md) would add up along the route.
+struct TiltLevellingParams {
+  bool enabled = false;  // measured off by default: see docs/compass.md "Tilt"
+  TiltParams tilt;
+  // The elevations the panoramas' rows cover (camera.yaml's panorama section); their size is
+  // the frames'.
+  double elevation_min_rad = deg_to_rad(-30.0);
+  double elevation_max_rad = deg_to_rad(15.0);
+};
+
 struct CompassParams {
   PairMatcherParams matcher;
   SamplingParams sampling;
+  TiltLevellingParams levelling;
 };
 
 // What the compass says about one frame.
@@ -78,6 +94,10 @@ struct CompassEstimate {
   int reference_index = 0;      // CompassFrame::index() of the reference I_r used
   bool new_reference = false;   // the reference changed at this frame (lines 11-13)
   double shift_px = 0.0;        // α_m of that pair (sub-pixel)
+  // With levelling: the frame's tilt relative to the reference of the match that gave r_rc
+  // (tilt.hpp); 0 without.
+  double pitch_rad = 0.0;
+  double roll_rad = 0.0;
   ConfidenceFlags flags;
   int evaluations = 0;  // distance evaluations spent on this frame
 };
@@ -104,6 +124,10 @@ class VisualCompass {
  private:
   // Whether the match of line 9 passes the rotation cap (ours, see above).
   bool beyond_rotation_cap(const PairMatch& match, double rotation_ref_previous_rad) const;
+  // The match of lines 9 and 12; with levelling, of the frame levelled against `reference`
+  // (the tilt goes into `estimate`).
+  PairMatch match_levelled(const CompassFrame& reference, const CompassFrame& frame,
+                           int start_shift, CompassEstimate& estimate) const;
 
   CompassParams params_;
   PairMatcher matcher_;
