@@ -84,7 +84,7 @@ TEST_F(Reliability, NonFiniteNumbersAreRefusedByEveryNumberOption) {
   // Numbers inside a value are arguments too: exit status 2, as for an option's own.
   EXPECT_EQ(run_omninav({"compass", "-i", in, "--method", "fx:nan"}), 2) << errors_;
   EXPECT_EQ(run_omninav({"render", "--trajectory", "grid:nx=nan", "--out", out}), 2) << errors_;
-  EXPECT_NE(errors_.find("key nx: 'nan' is not a number"), std::string::npos) << errors_;
+  EXPECT_NE(errors_.find("key nx: 'nan' is not a whole number"), std::string::npos) << errors_;
   EXPECT_FALSE(fs::exists(out));
 }
 
@@ -157,14 +157,17 @@ TEST_F(Reliability, OrganiseChecksItsOutputsBeforeChangingTheMap) {
   EXPECT_NE(output_.find("vs truth: RMSE"), std::string::npos) << output_;
   EXPECT_EQ(output_.find("nan"), std::string::npos) << output_;  // "no interior places"
 
-  // A truth of 1e12 mm is not compared with (OpenCV's triangulation threw on it, after the
-  // map had been changed); the lattice itself does not need it.
+  // A truth of 1e12 mm (OpenCV's triangulation threw on it, after the map had been changed) is
+  // refused where the map is read, so organise fails before it changes anything.
   memory::VisualMemory memory = memory::load_map(map_);
   memory.place(2).truth->x_m = 1e9;
   memory::save_map(memory, map_, {.overwrite = true, .after_place = {}});
-  EXPECT_EQ(run_omninav({"organise", map_.string(), "--step-m", "0.3"}), 0) << errors_;
-  EXPECT_NE(errors_.find("place 2's true position (1e+09"), std::string::npos) << errors_;
-  EXPECT_TRUE(memory::load_map(map_).all_have_lattice());
+  const std::string absurd = read_bytes(map_);
+  EXPECT_EQ(run_omninav({"organise", map_.string(), "--step-m", "0.3"}), 1) << errors_;
+  EXPECT_NE(errors_.find("place_truth of place 2: x_m: 1e+09 m is not a position"),
+            std::string::npos)
+      << errors_;
+  EXPECT_EQ(read_bytes(map_), absurd);
 }
 
 TEST_F(Reliability, EveryCommandChecksItsOutputPathsBeforeTheWork) {
@@ -193,7 +196,9 @@ TEST_F(Reliability, FiguresRefuseAnAbsurdTruthInsteadOfSpinning) {
   EXPECT_EQ(run_omninav({"export", map_.string(), "--what", "figures", "--out",
                          (folder_ / "figures").string()}),
             1);
-  EXPECT_NE(errors_.find("place 2 has a true position of (1e+160"), std::string::npos) << errors_;
+  EXPECT_NE(errors_.find("place_truth of place 2: x_m: 1e+160 m is not a position"),
+            std::string::npos)
+      << errors_;
   EXPECT_FALSE(fs::exists(folder_ / "figures"));
 }
 

@@ -85,7 +85,7 @@ std::optional<LatticeEvaluation> evaluate_against_truth(const memory::VisualMemo
     if (!plausible_position(pose)) {
       std::ostringstream message;
       message << "place " << i << "'s true position (" << pose.x_m << ", " << pose.y_m
-              << ") m is not finite or farther than " << kMaxPlausibleCoordinate_m / 1000
+              << ") m is not finite or farther than " << kMaxCoordinateM / 1000
               << " km from the origin: the lattice is not compared with the truth";
       log_warning(message.str());
       return std::nullopt;

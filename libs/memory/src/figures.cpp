@@ -228,7 +228,7 @@ SignatureFigures write_signature_figures(const VisualMemory& memory,
     if (!plausible_position(truth)) {
       std::ostringstream message;  // %g: 1e+160, not 161 digits
       message << "place " << i << " has a true position of (" << truth.x_m << ", " << truth.y_m
-              << ") m: not finite or farther than " << kMaxPlausibleCoordinate_m / 1000
+              << ") m: not finite or farther than " << kMaxCoordinateM / 1000
               << " km from the origin";
       throw InputError(message.str());
     }

@@ -5,6 +5,8 @@
 #include <string_view>
 #include <vector>
 
+#include "omninav/core/pose.hpp"
+
 namespace omninav {
 
 // Parses the whole of `text` (surrounding blanks allowed) as a finite number; otherwise throws
@@ -15,11 +17,6 @@ int parse_int(std::string_view text, const std::string& where);
 // option or spec it came in.
 double parse_double_argument(std::string_view text, const std::string& where);
 int parse_int_argument(std::string_view text, const std::string& where);
-
-// The farthest from the origin a position may be, in metres, along any axis: 10,000 km, beyond
-// any map a robot makes. Farther is a typing mistake or damage (a truth of 1e160 mm), and the
-// arithmetic that measures and draws maps would overflow on it.
-inline constexpr double kMaxCoordinateM = 1e7;
 
 // Returns `value_m` when it is finite and within ±kMaxCoordinateM; otherwise throws InputError
 // "<where>: <value> m is not a position (beyond ±1e+07 m)".

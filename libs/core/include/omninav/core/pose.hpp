@@ -26,15 +26,15 @@ struct CameraPose {
   Pose2 on_floor() const { return {x_m, y_m, heading_rad}; }
 };
 
-// Ground truth describes one room or building: a coordinate that is not finite or lies farther
-// than this from the origin is a damaged input, refused where distances are measured (figures,
-// the lattice's evaluation) instead of overflowing them.
-inline constexpr double kMaxPlausibleCoordinate_m = 1e6;
+// The farthest from the origin a position may be, in metres, along any axis: 10,000 km, beyond
+// any map a robot makes. Farther is a typing mistake or damage (a truth of 1e160 mm): refused
+// where positions are read (check_coordinate_m in parse.hpp), and where distances are measured
+// (figures, the lattice's evaluation) for maps built in memory, instead of overflowing them.
+inline constexpr double kMaxCoordinateM = 1e7;
 
 inline bool plausible_position(const CameraPose& pose) {
-  return std::fabs(pose.x_m) <= kMaxPlausibleCoordinate_m &&
-         std::fabs(pose.y_m) <= kMaxPlausibleCoordinate_m &&
-         std::fabs(pose.z_m) <= kMaxPlausibleCoordinate_m;  // false for NaN
+  return std::fabs(pose.x_m) <= kMaxCoordinateM && std::fabs(pose.y_m) <= kMaxCoordinateM &&
+         std::fabs(pose.z_m) <= kMaxCoordinateM;  // false for NaN
 }
 
 }  // namespace omninav
