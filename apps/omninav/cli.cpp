@@ -47,6 +47,7 @@ int run(const std::vector<std::string>& args) {
   add_route_command(app, global);
   add_navigate_command(app, global);
   add_demo_command(app, global);
+  add_evaluate_command(app, global);
 
   try {
     std::vector<std::string> reversed(args.rbegin(),

@@ -1,12 +1,10 @@
 // omninav explore: a stream of panoramas into places of a visual memory (a .vmem map).
 #include <iostream>
-#include <sstream>
 
 #include "app_config.hpp"
 #include "cli.hpp"
 #include "omninav/core/errors.hpp"
 #include "omninav/core/log.hpp"
-#include "omninav/core/progress.hpp"
 #include "omninav/memory/exploration.hpp"
 #include "omninav/memory/map_file.hpp"
 #include "panorama_input.hpp"
@@ -36,11 +34,7 @@ void run_explore(const GlobalOptions& global, const ExploreOptions& options) {
   if (options.every_n_frames >= 0) params.every_n_frames = options.every_n_frames;
   if (options.every_m >= 0.0) params.every_m = options.every_m;
   if (!options.heading_source.empty()) params.heading_source = options.heading_source;
-  if (params.heading_source == "compass" || params.heading_source == "auto") {
-    const compass::CompassConfig compass = load_compass_config(global.config_dir);
-    params.compass = compass.compass;
-    params.compass_width_px = compass.width_px;
-  }
+  use_compass_config(global.config_dir, params);
   if (!options.colour.empty()) {
     config.map.signature.colour = signature::colour_mode_from_string(options.colour);
   }
@@ -71,43 +65,22 @@ void run_explore(const GlobalOptions& global, const ExploreOptions& options) {
 
   PanoramaInput input(options.input, global.config_dir, options.unwrap);
   const bool every_frame = options.all_frames || input.is_grid();
-  std::ostringstream description;
-  description << "omninav explore --input " << options.input.string() << "; "
-              << (every_frame ? std::string("every frame a place")
-                              : "new_place_dissimilarity " +
-                                    std::to_string(params.new_place_dissimilarity) +
-                                    ", every_n_frames " + std::to_string(params.every_n_frames) +
-                                    ", every_m " + std::to_string(params.every_m))
-              << ", heading_source " << params.heading_source;
   log_info("exploring " + input.describe() + (extending ? " into " : " into a new map ") +
            options.out.string() +
            (every_frame
                 ? " (every frame a place: " +
                       std::string(input.is_grid() ? "a grid database" : "--all-frames") + ")"
                 : ""));
-  memory::Explorer explorer(
-      memory, params, options.input.string(), description.str(),
-      input.is_grid() ? memory::FrameOrder::kUnordered : memory::FrameOrder::kStream);
-  {
-    Progress progress("explore", input.size());
-    while (std::optional<io::Frame> frame = input.next()) {
-      if (every_frame) {
-        explorer.add_place(*frame);
-      } else {
-        explorer.add(*frame);
-      }
-      progress.advance();
-    }
-  }
-  if (explorer.frames_seen() == 0) throw InputError(options.input.string() + ": no frames");
+  const memory::Run run =
+      memory::explore_frames(memory, params, options.input.string(), input.is_grid(),
+                             options.all_frames, input.size(), [&input] { return input.next(); });
   memory::save_map(memory, options.out, {.overwrite = options.overwrite, .after_place = {}});
   const std::size_t added = memory.place_count() - places_before;
-  std::cout << "explored " << explorer.frames_seen() << " frames of " << options.input.string()
-            << ": added " << added << (added == 1 ? " place" : " places") << " ("
-            << memory.place_count() << " in the map, " << memory.edge_count() << " edges, "
-            << memory.runs().size() << (memory.runs().size() == 1 ? " run" : " runs")
-            << ", headings: " << explorer.run().heading_source << ") to " << options.out.string()
-            << "\n";
+  std::cout << "explored " << run.frames << " frames of " << options.input.string() << ": added "
+            << added << (added == 1 ? " place" : " places") << " (" << memory.place_count()
+            << " in the map, " << memory.edge_count() << " edges, " << memory.runs().size()
+            << (memory.runs().size() == 1 ? " run" : " runs")
+            << ", headings: " << run.heading_source << ") to " << options.out.string() << "\n";
 }
 
 }  // namespace

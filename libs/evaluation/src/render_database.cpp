@@ -1,11 +1,11 @@
-#include "render_job.hpp"
+#include "omninav/evaluation/render_database.hpp"
 
 #include <opencv2/core/utility.hpp>
 
 #include "omninav/core/progress.hpp"
 #include "omninav/io/bob_database.hpp"
 
-namespace omninav::cli {
+namespace omninav::evaluation {
 
 std::vector<cv::Mat> render_database(const sim::Renderer& renderer,
                                      const sim::Trajectory& trajectory,
@@ -56,4 +56,4 @@ std::vector<cv::Mat> render_database(const sim::Renderer& renderer,
   return previews;
 }
 
-}  // namespace omninav::cli
+}  // namespace omninav::evaluation

@@ -1,6 +1,6 @@
 #pragma once
 // Rendering a trajectory into a BoB database: the renderer (libs/sim) feeding the dataset
-// writer (libs/io). Used by `omninav render` and `omninav demo`.
+// writer (libs/io). Used by `omninav render` and `omninav evaluate`.
 
 #include <filesystem>
 #include <string>
@@ -9,7 +9,7 @@
 #include "omninav/sim/renderer.hpp"
 #include "omninav/sim/trajectory.hpp"
 
-namespace omninav::cli {
+namespace omninav::evaluation {
 
 // Renders every pose, frames in parallel on all cores (each frame is independent and the
 // renderer is thread-safe, so the result does not depend on the number of threads), and
@@ -21,4 +21,4 @@ std::vector<cv::Mat> render_database(const sim::Renderer& renderer,
                                      const std::string& description, bool overwrite,
                                      std::size_t preview_frames = 12);
 
-}  // namespace omninav::cli
+}  // namespace omninav::evaluation

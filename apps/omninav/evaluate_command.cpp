@@ -1,0 +1,93 @@
+// omninav evaluate: every capability measured on every world of a suite (libs/evaluation).
+#include <chrono>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+
+#include "cli.hpp"
+#include "omninav/core/errors.hpp"
+#include "omninav/core/log.hpp"
+#include "omninav/eval/png.hpp"
+#include "omninav/evaluation/evaluate.hpp"
+
+namespace omninav::cli {
+namespace {
+
+struct EvaluateOptions {
+  std::string suite = "quick";
+  std::filesystem::path out;  // empty: evaluation/<suite name>
+};
+
+void write_text(const std::filesystem::path& file, const std::string& text) {
+  std::ofstream out(file);
+  out << text;
+  if (!out.flush()) throw InputError(file.string() + ": cannot be written");
+}
+
+void run_evaluate(const GlobalOptions& global, const EvaluateOptions& options) {
+  const evaluation::Suite suite = evaluation::load_suite(options.suite, global.config_dir);
+  const evaluation::ConfigFolder config = evaluation::load_config_folder(global.config_dir);
+  const std::filesystem::path out =
+      options.out.empty() ? std::filesystem::path("evaluation") / suite.name : options.out;
+  std::filesystem::create_directories(out);
+  log_info("evaluate: suite " + suite.name + " (" + suite.file.string() + "), " +
+           std::to_string(suite.worlds.size()) + " worlds, outputs in " + out.string());
+  const auto start = std::chrono::steady_clock::now();
+  const evaluation::SuiteEvaluation result = evaluation::evaluate_suite(
+      suite, config, out, [&](const evaluation::Row& row, std::size_t index) {
+        const double minutes =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / 60;
+        std::ostringstream text;
+        text << std::fixed << std::setprecision(1) << "evaluate: " << row.world << " done ("
+             << index + 1 << " of " << suite.worlds.size() << ", " << minutes << " min)";
+        log_info(text.str());
+      });
+  const std::vector<evaluation::Measure>& columns = evaluation::measures();
+  const std::filesystem::path csv = out / "evaluation.csv";
+  const std::filesystem::path picture = out / "evaluation.png";
+  const std::filesystem::path commands = out / "commands.sh";
+  write_text(csv, evaluation::table_csv(result.rows, columns));
+  eval::save_png(
+      evaluation::table_picture(result.rows, columns, "omninav evaluate --suite " + suite.name),
+      picture);
+  std::string script = "#!/bin/sh\n# The commands that remake every figure of " + csv.string() +
+                       " (omninav evaluate --suite " + options.suite + ")\nset -e\n";
+  for (const std::string& line : result.commands) script += line + "\n";
+  write_text(commands, script);
+
+  std::cout << "omninav evaluate --suite " << options.suite << ": " << result.rows.size()
+            << " worlds\n\n"
+            << evaluation::table_text(result.rows, columns);
+  for (const evaluation::Row& row : result.rows) {
+    for (const std::string& note : row.notes)
+      std::cout << "note: " << row.world << ": " << note << "\n";
+  }
+  std::cout << "table: " << csv.string() << ", picture: " << picture.string()
+            << "; the commands that remake each figure: " << commands.string() << "\n";
+}
+
+}  // namespace
+
+void add_evaluate_command(CLI::App& app, const GlobalOptions& global) {
+  auto options = std::make_shared<EvaluateOptions>();
+  CLI::App* command = app.add_subcommand(
+      "evaluate",
+      "Measure every capability on every world of a suite (docs/evaluation.md): for each world, "
+      "render the routes and run what the commands run (compass --truth on a rotation, a "
+      "circle, a wander and a bumpy wander; explore, organise and localise on a grid; organise "
+      "on zig-zag streams; navigate --trials), then print one table (a row per world, a column "
+      "per measure, a last row WORST naming the worst family of each column) and write "
+      "evaluation.csv, evaluation.png and commands.sh (the command lines that remake each "
+      "figure) into --out. The same suite gives the same table.");
+  command
+      ->add_option("--suite", options->suite,
+                   "quick (CI, a few minutes), full (the benchmark, about an hour) or a YAML file "
+                   "(config/suites/*.yaml document the keys)")
+      ->capture_default_str();
+  command->add_option("--out", options->out,
+                      "Folder for the table, pictures, databases and maps (default: "
+                      "evaluation/<suite name>)");
+  command->callback([&global, options] { run_evaluate(global, *options); });
+}
+
+}  // namespace omninav::cli
