@@ -311,6 +311,7 @@ class WorldRun {
     const auto rmse = [](double value) {
       return std::isfinite(value) ? Cell::of(value) : Cell::not_applicable();
     };
+    set("lattice_" + key + "_rmse", evaluation->rmse.all);
     set("lattice_" + key + "_rmse_interior", rmse(evaluation->rmse.interior));
     set("lattice_" + key + "_rmse_boundary", rmse(evaluation->rmse.boundary));
     set("lattice_" + key + "_folds", static_cast<double>(evaluation->folded.size()));
@@ -325,7 +326,7 @@ class WorldRun {
     try {
       map_file = explore(render("grid", grid_spec()), "grid", 0.0);
     } catch (const Error& error) {
-      for (const char* key : {"rmse_interior", "rmse_boundary", "folds"}) {
+      for (const char* key : {"rmse", "rmse_interior", "rmse_boundary", "folds"}) {
         set(std::string("lattice_grid_") + key, Cell::failed());
       }
       fail_group("memory", std::string("grid: ") + error.what());

@@ -105,11 +105,9 @@ std::string with_key(const std::string& spec, const std::string& key, const std:
   return spec + (spec.find(':') == std::string::npos ? ":" : ",") + key + "=" + value;
 }
 
+// A camera height as a row label: whole centimetres ("h10cm").
 std::string height_label(double height_m) {
-  std::ostringstream text;
-  text << std::fixed << std::setprecision(height_m < 0.1 ? 2 : (height_m < 1.0 ? 1 : 1))
-       << height_m;
-  return text.str();
+  return "-h" + std::to_string(static_cast<long>(std::lround(height_m * 100.0))) + "cm";
 }
 
 }  // namespace
@@ -121,7 +119,8 @@ std::string family_of(const std::string& spec) {
   return path ? "obj" : head;
 }
 
-Suite parse_suite(const std::string& yaml, const std::string& name) {
+Suite parse_suite(const std::string& yaml, const std::string& name,
+                  const std::filesystem::path& base_dir) {
   YAML::Node root;
   try {
     root = YAML::Load(yaml);
@@ -176,6 +175,9 @@ Suite parse_suite(const std::string& yaml, const std::string& name) {
     entry.read("world", spec);
     if (spec.empty()) entry.fail("world", "required: the --world spec");
     if (label.empty()) label = family_of(spec);
+    if (family_of(spec) == "obj" && !base_dir.empty() && std::filesystem::path(spec).is_relative()) {
+      spec = (base_dir / spec).lexically_normal().string();
+    }
     double spacing_m = p.spacing_m;
     entry.read("spacing_m", spacing_m, 0.001, 100.0);
     int grid_nx = p.grid_nx, grid_ny = p.grid_ny;
@@ -201,7 +203,7 @@ Suite parse_suite(const std::string& yaml, const std::string& name) {
         world.obj_scale_to_m = obj_scale_to_m;
         world.seed = static_cast<std::uint32_t>(seed);
         world.label = label + (seeds.size() > 1 ? "-s" + std::to_string(seed) : "") +
-                      (heights.size() > 1 ? "-h" + height_label(height) : "");
+                      (heights.size() > 1 ? height_label(height) : "");
         if (!labels.insert(world.label).second) {
           entry.fail("name", "two rows named '" + world.label + "': give the worlds names");
         }
@@ -230,7 +232,7 @@ Suite load_suite(const std::string& name_or_path, const std::filesystem::path& c
   if (!in) throw InputError(file.string() + ": cannot be read");
   std::stringstream text;
   text << in.rdbuf();
-  return parse_suite(text.str(), file.string());
+  return parse_suite(text.str(), file.string(), std::filesystem::absolute(file).parent_path());
 }
 
 }  // namespace omninav::evaluation

@@ -15,8 +15,8 @@
 //     worlds with regions, the share whose best place lies in the query's region;
 //   lattice: that grid, and two zig-zag streams over the grid's rectangle, rows as far apart as
 //     their places, explored with a place every 1 and every 2 spacings (--every-m,
-//     --dissimilarity 0), organised with the map's spacing: RMSE after Procrustes (interior,
-//     boundary) in spacings (not applicable when no place is interior), and folds;
+//     --dissimilarity 0), organised with the map's spacing: RMSE after Procrustes (all places,
+//     interior, boundary) in spacings (interior not applicable when no place is), and folds;
 //   navigation: `navigate --trials` on the organised grid map: share reached, mean path over
 //     straight line (reached trials), and how far the robot went outside the mapped area: the
 //     largest distance from a true position of the robot (at any step of any trial) to the

@@ -35,7 +35,7 @@ struct SuiteParams {
 
 // One row of the table.
 struct SuiteWorld {
-  std::string label;   // the row's name, e.g. "room-s2-h0.10"
+  std::string label;   // the row's name, e.g. "room-s2-h10cm"
   std::string family;  // room, house, field, office or obj
   std::string spec;    // what --world takes
   double camera_height_m = 1.0;
@@ -58,8 +58,10 @@ struct Suite {
 // an unknown suite name.
 Suite load_suite(const std::string& name_or_path, const std::filesystem::path& config_dir);
 
-// The same from YAML text (`name` in messages).
-Suite parse_suite(const std::string& yaml, const std::string& name);
+// The same from YAML text (`name` in messages). A relative OBJ path is taken relative to
+// `base_dir` (load_suite: the suite file's folder) when one is given.
+Suite parse_suite(const std::string& yaml, const std::string& name,
+                  const std::filesystem::path& base_dir = {});
 
 // The family of a world spec: the text before ':' (`room`, `field`, ...), "obj" for a path.
 std::string family_of(const std::string& spec);
