@@ -1,4 +1,5 @@
 // omninav evaluate: every capability measured on every world of a suite (libs/evaluation).
+#include <algorithm>
 #include <chrono>
 #include <fstream>
 #include <iomanip>
@@ -15,7 +16,8 @@ namespace {
 
 struct EvaluateOptions {
   std::string suite = "quick";
-  std::filesystem::path out;  // empty: evaluation/<suite name>
+  std::filesystem::path out;        // empty: evaluation/<suite name>
+  std::vector<std::string> worlds;  // empty: all of the suite's
 };
 
 void write_text(const std::filesystem::path& file, const std::string& text) {
@@ -25,16 +27,38 @@ void write_text(const std::filesystem::path& file, const std::string& text) {
 }
 
 void run_evaluate(const GlobalOptions& global, const EvaluateOptions& options) {
-  const evaluation::Suite suite = evaluation::load_suite(options.suite, global.config_dir);
+  evaluation::Suite suite = evaluation::load_suite(options.suite, global.config_dir);
+  if (!options.worlds.empty()) {
+    std::vector<evaluation::SuiteWorld> chosen;
+    for (const std::string& label : options.worlds) {
+      const auto found =
+          std::find_if(suite.worlds.begin(), suite.worlds.end(),
+                       [&](const evaluation::SuiteWorld& w) { return w.label == label; });
+      if (found == suite.worlds.end()) {
+        std::string known;
+        for (const evaluation::SuiteWorld& w : suite.worlds)
+          known += (known.empty() ? "" : ", ") + w.label;
+        throw UsageError("--worlds: the suite has no world " + label + " (it has " + known + ")");
+      }
+      chosen.push_back(*found);
+    }
+    suite.worlds = chosen;
+  }
   const evaluation::ConfigFolder config = evaluation::load_config_folder(global.config_dir);
   const std::filesystem::path out =
       options.out.empty() ? std::filesystem::path("evaluation") / suite.name : options.out;
   std::filesystem::create_directories(out);
   log_info("evaluate: suite " + suite.name + " (" + suite.file.string() + "), " +
            std::to_string(suite.worlds.size()) + " worlds, outputs in " + out.string());
+  const std::vector<evaluation::Measure>& columns = evaluation::measures();
+  const std::filesystem::path csv = out / "evaluation.csv";
   const auto start = std::chrono::steady_clock::now();
+  std::vector<evaluation::Row> done;
   const evaluation::SuiteEvaluation result = evaluation::evaluate_suite(
       suite, config, out, [&](const evaluation::Row& row, std::size_t index) {
+        // The table so far, so that an interrupted run leaves its finished worlds.
+        done.push_back(row);
+        write_text(csv, evaluation::table_csv(done, columns));
         const double minutes =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / 60;
         std::ostringstream text;
@@ -42,8 +66,6 @@ void run_evaluate(const GlobalOptions& global, const EvaluateOptions& options) {
              << index + 1 << " of " << suite.worlds.size() << ", " << minutes << " min)";
         log_info(text.str());
       });
-  const std::vector<evaluation::Measure>& columns = evaluation::measures();
-  const std::filesystem::path csv = out / "evaluation.csv";
   const std::filesystem::path picture = out / "evaluation.png";
   const std::filesystem::path commands = out / "commands.sh";
   write_text(csv, evaluation::table_csv(result.rows, columns));
@@ -87,6 +109,11 @@ void add_evaluate_command(CLI::App& app, const GlobalOptions& global) {
   command->add_option("--out", options->out,
                       "Folder for the table, pictures, databases and maps (default: "
                       "evaluation/<suite name>)");
+  command
+      ->add_option("--worlds", options->worlds,
+                   "Only these rows of the suite (their labels, comma-separated), e.g. to resume "
+                   "an interrupted run into another --out")
+      ->delimiter(',');
   command->callback([&global, options] { run_evaluate(global, *options); });
 }
 

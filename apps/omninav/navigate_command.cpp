@@ -282,8 +282,7 @@ void add_navigate_command(CLI::App& app, const GlobalOptions& global) {
       ->required()
       ->check(CLI::ExistingFile);
   CLI::Option* world =
-      command->add_option("--world", options->world, "'room' or a Wavefront .obj file")
-          ->capture_default_str();
+      command->add_option("--world", options->world, kWorldOptionHelp)->capture_default_str();
   command
       ->add_option("--database", options->database,
                    "A grid of stored panoramas with poses (a BoB grid database) to navigate in, "

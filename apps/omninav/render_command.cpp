@@ -75,10 +75,7 @@ void add_render_command(CLI::App& app, const GlobalOptions& global) {
       "Render synthetic panoramas along a trajectory, with exact ground truth, into a BoB "
       "robotics image database (images, database_entries.csv, database_metadata.yaml) and a "
       "contact_sheet.png preview.");
-  command
-      ->add_option("--world", options->world,
-                   "'room' (the built-in room of worlds.yaml) or a Wavefront .obj file")
-      ->capture_default_str();
+  command->add_option("--world", options->world, kWorldOptionHelp)->capture_default_str();
   command
       ->add_option(
           "--trajectory", options->trajectory,
@@ -87,6 +84,9 @@ void add_render_command(CLI::App& app, const GlobalOptions& global) {
           "  line (x0, y0, x1, y1, speed_m_s)\n"
           "  circle (cx, cy, radius_m, turns, speed_m_s)\n"
           "  walk (x, y, heading_deg, steps, step_m, turn_deg, seed)\n"
+          "  wander (x, y, heading_deg, length_m or duration_s, speed_m_s, turn_rate_deg_s, "
+          "wobble_deg, wobble_period_s, clearance_m, seed: an animal's route, turns of varying "
+          "sharpness and a wobbling heading, in the free space)\n"
           "  grid (x0, y0, nx, ny, spacing_m, heading_deg)\n"
           "  zigzag (x0, y0, x1, y1, rows, speed_m_s, turn_rate_deg_s: turns on the spot at "
           "corners)\n"

@@ -75,7 +75,8 @@ TEST_F(EvaluateCommand, WritesATableWithEveryMeasureForEveryWorldTheSameTwice) {
     EXPECT_EQ(rows[3][2 + c], "room") << measures[c].key;
   }
   // Shares are shares.
-  for (const std::string key : {"memory_within_spacing", "memory_at_nearest", "navigation_reached"}) {
+  for (const std::string key :
+       {"memory_within_spacing", "memory_at_nearest", "navigation_reached"}) {
     const auto at = std::find(rows[0].begin(), rows[0].end(), key) - rows[0].begin();
     const double share = parse_double(room[at], key);
     EXPECT_GE(share, 0.0);
@@ -120,9 +121,9 @@ TEST_F(EvaluateCommand, TheCommandsItWritesRemakeItsFigures) {
     if (arg == (out / "room" / "circle").string()) arg = again.string();
   }
   ASSERT_EQ(run(circle[0]), 0);
-  std::vector<std::string> compass = {circle[1][0], circle[1][1], "compass",  "--input",
-                                      again.string(), "--truth",  "--stats",
-                                      (folder_ / "stats.csv").string()};
+  std::vector<std::string> compass = {
+      circle[1][0],   circle[1][1], "compass", "--input",
+      again.string(), "--truth",    "--stats", (folder_ / "stats.csv").string()};
   ::testing::internal::CaptureStdout();
   ::testing::internal::CaptureStderr();
   const int status = run(compass);

@@ -57,8 +57,7 @@ TEST(Suite, UnknownKeysAndBadValuesAreConfigErrorsNamingTheKey) {
             std::string::npos);
   EXPECT_NE(error_of("worlds: []").find("worlds"), std::string::npos);
   EXPECT_NE(error_of("worlds: [{name: a}]").find("world"), std::string::npos);
-  EXPECT_NE(error_of("worlds: [{world: room}, {world: room}]").find("two rows"),
-            std::string::npos);
+  EXPECT_NE(error_of("worlds: [{world: room}, {world: room}]").find("two rows"), std::string::npos);
 }
 
 TEST(Suite, FamiliesAreTheSpecsHeadsAndPathsAreObj) {

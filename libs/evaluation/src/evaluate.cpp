@@ -59,11 +59,6 @@ std::string shell_quoted(const std::string& arg) {
   return quoted + "'";
 }
 
-// The index of the world's region (a house's room) holding (x, y); -1 in none.
-int region_of(const sim::World& /*world*/, double /*x_m*/, double /*y_m*/) {
-  return -1;
-}
-
 std::size_t column(const std::string& key) {
   const std::vector<Measure>& all = measures();
   for (std::size_t i = 0; i < all.size(); ++i) {
@@ -241,13 +236,11 @@ class WorldRun {
                                        ",noise_seed=" + std::to_string(suite_world_.seed)));
   }
 
-  // A wandering route of wander_length_m from the centre, one frame per step.
+  // The wandering route (sim's `wander`) of wander_length_m from the centre.
   std::string wander_spec(const std::string& at, double speed_m_s) const {
-    const double step_m = speed_m_s / params_.fps;
-    const int steps =
-        std::max(2, static_cast<int>(std::lround(params_.wander_length_m * scale_ / step_m)));
-    return "walk:" + at + ",steps=" + std::to_string(steps) + ",step_m=" + num(step_m, 4) +
-           ",turn_deg=5,seed=" + std::to_string(suite_world_.seed) + ",fps=" + num(params_.fps);
+    return "wander:" + at + ",length_m=" + num(params_.wander_length_m * scale_) +
+           ",speed_m_s=" + num(speed_m_s) + ",seed=" + std::to_string(suite_world_.seed) +
+           ",fps=" + num(params_.fps);
   }
 
   std::string grid_spec() const {
@@ -374,11 +367,11 @@ class WorldRun {
       const memory::Localisation result = localiser.localise(signature);
       const memory::LocalisationScore::Query q = score.add(result, *frame->truth);
       if (q.outside || result.best.empty()) continue;
-      const int truth = region_of(world_, frame->truth->x_m, frame->truth->y_m);
-      if (truth < 0) continue;
+      const sim::Region* truth = world_.region_at(frame->truth->x_m, frame->truth->y_m);
+      if (truth == nullptr) continue;  // in a doorway or a wall
       const CameraPose& best = *map.place(result.best.front().place).truth;
       ++in_regions;
-      right_region += region_of(world_, best.x_m, best.y_m) == truth ? 1 : 0;
+      right_region += world_.region_at(best.x_m, best.y_m) == truth ? 1 : 0;
     }
     command({"localise", map_file.string(), queries.string(), "--format", "csv"});
     if (score.queries() == 0) throw InputError("no query lay within the grid: none scored");

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "omninav/core/errors.hpp"
+#include "omninav/sim/world_loader.hpp"
 
 namespace omninav::evaluation {
 namespace {
@@ -113,10 +114,7 @@ std::string height_label(double height_m) {
 }  // namespace
 
 std::string family_of(const std::string& spec) {
-  const std::size_t colon = spec.find(':');
-  const std::string head = spec.substr(0, colon);
-  const bool path = head.find('/') != std::string::npos || head.find('.') != std::string::npos;
-  return path ? "obj" : head;
+  return sim::is_obj_path(spec) ? "obj" : sim::WorldSpec(spec).family();
 }
 
 Suite parse_suite(const std::string& yaml, const std::string& name,
@@ -175,7 +173,8 @@ Suite parse_suite(const std::string& yaml, const std::string& name,
     entry.read("world", spec);
     if (spec.empty()) entry.fail("world", "required: the --world spec");
     if (label.empty()) label = family_of(spec);
-    if (family_of(spec) == "obj" && !base_dir.empty() && std::filesystem::path(spec).is_relative()) {
+    if (family_of(spec) == "obj" && !base_dir.empty() &&
+        std::filesystem::path(spec).is_relative()) {
       spec = (base_dir / spec).lexically_normal().string();
     }
     double spacing_m = p.spacing_m;

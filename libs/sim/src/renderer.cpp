@@ -8,6 +8,7 @@
 #include <limits>
 #include <numeric>
 #include <opencv2/imgproc.hpp>
+#include <optional>
 
 #include "omninav/core/angles.hpp"
 #include "omninav/core/config.hpp"
@@ -124,6 +125,7 @@ struct Renderer::Impl {
   std::vector<Surface> surfaces;
   std::vector<TexturePyramid> textures;
   cv::Vec3f background;
+  std::optional<cv::Vec3f> sky_zenith;  // see World::sky_zenith_bgr
 
   // The pixel's sample pattern (N-rooks, see the header): ray k is offset by column_offsets[k]
   // across, and its elevation in row r has cosine and sine cos/sin_elevation[k·H + r].
@@ -140,6 +142,7 @@ Renderer::Renderer(const World& world, const RenderParams& params)
   Impl& impl = *impl_;
   impl.params = params;
   impl.background = world.background_bgr;
+  impl.sky_zenith = world.sky_zenith_bgr;
   if (world.triangles.empty())
     throw UsageError("renderer: the world '" + world.name + "' is empty");
 
@@ -227,6 +230,12 @@ Hit Renderer::Impl::shade(const RTCRayHit& ray) const {
   Hit hit;
   if (ray.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
     hit.colour = background;
+    if (sky_zenith && direction[2] > 0.f) {
+      // Blends with the square root of the elevation's sine: the sky is pale only near the
+      // horizon, as a clear sky is.
+      const float blend = std::sqrt(std::min(direction[2], 1.f));
+      hit.colour = (1.f - blend) * background + blend * *sky_zenith;
+    }
     return hit;
   }
   hit.distance_m = ray.ray.tfar;

@@ -6,67 +6,9 @@
 #include "omninav/core/errors.hpp"
 #include "omninav/core/log.hpp"
 #include "room_textures.hpp"
+#include "world_builder.hpp"
 
 namespace omninav::sim {
-namespace {
-
-int add_material(World& world, std::string name, cv::Mat texture) {
-  world.textures.push_back(std::move(texture));
-  world.materials.push_back(
-      {std::move(name), {255.f, 255.f, 255.f}, static_cast<int>(world.textures.size()) - 1});
-  return static_cast<int>(world.materials.size()) - 1;
-}
-
-// A planar quad a-b-c-d (in order around its edge) as two triangles, with the texture
-// coordinates of its corners.
-void add_quad(World& world, const std::array<cv::Vec3f, 4>& corners,
-              const std::array<cv::Vec2f, 4>& uv, int material) {
-  const int first = static_cast<int>(world.vertices.size());
-  world.vertices.insert(world.vertices.end(), corners.begin(), corners.end());
-  world.triangles.push_back({{first, first + 1, first + 2}, {uv[0], uv[1], uv[2]}, material});
-  world.triangles.push_back({{first, first + 2, first + 3}, {uv[0], uv[2], uv[3]}, material});
-}
-
-// A vertical wall from (x0, y0) to (x1, y1), floor to `height`, its texture spanning it once.
-void add_wall(World& world, cv::Vec2f from, cv::Vec2f to, float height, int material) {
-  add_quad(world,
-           {cv::Vec3f(from[0], from[1], 0.f), cv::Vec3f(to[0], to[1], 0.f),
-            cv::Vec3f(to[0], to[1], height), cv::Vec3f(from[0], from[1], height)},
-           {cv::Vec2f(0.f, 0.f), cv::Vec2f(1.f, 0.f), cv::Vec2f(1.f, 1.f), cv::Vec2f(0.f, 1.f)},
-           material);
-}
-
-// A furniture box: four sides and a top, its 1 m texture tiled in metres along each face.
-void add_box(World& world, const FloorBox& box, float height, int material) {
-  const float x0 = static_cast<float>(box.min_x_m), x1 = static_cast<float>(box.max_x_m);
-  const float y0 = static_cast<float>(box.min_y_m), y1 = static_cast<float>(box.max_y_m);
-  const std::array<cv::Vec2f, 5> ring{cv::Vec2f(x0, y0), cv::Vec2f(x1, y0), cv::Vec2f(x1, y1),
-                                      cv::Vec2f(x0, y1), cv::Vec2f(x0, y0)};
-  float along = 0.f;  // texture continues around the box
-  for (int side = 0; side < 4; ++side) {
-    const cv::Vec2f from = ring[side], to = ring[side + 1];
-    const float length = static_cast<float>(cv::norm(to - from));
-    add_quad(world,
-             {cv::Vec3f(from[0], from[1], 0.f), cv::Vec3f(to[0], to[1], 0.f),
-              cv::Vec3f(to[0], to[1], height), cv::Vec3f(from[0], from[1], height)},
-             {cv::Vec2f(along, 0.f), cv::Vec2f(along + length, 0.f),
-              cv::Vec2f(along + length, height), cv::Vec2f(along, height)},
-             material);
-    along += length;
-  }
-  add_quad(world,
-           {cv::Vec3f(x0, y0, height), cv::Vec3f(x1, y0, height), cv::Vec3f(x1, y1, height),
-            cv::Vec3f(x0, y1, height)},
-           {cv::Vec2f(x0, y0), cv::Vec2f(x1, y0), cv::Vec2f(x1, y1), cv::Vec2f(x0, y1)}, material);
-}
-
-bool overlaps(const FloorBox& a, const FloorBox& b, double gap_m) {
-  return a.min_x_m < b.max_x_m + gap_m && b.min_x_m < a.max_x_m + gap_m &&
-         a.min_y_m < b.max_y_m + gap_m && b.min_y_m < a.max_y_m + gap_m;
-}
-
-}  // namespace
-
 void load_room_params(const ConfigReader& section, RoomParams& params) {
   section.read("size_x_m", params.size_x_m, 1.0, 100.0);
   section.read("size_y_m", params.size_y_m, 1.0, 100.0);
@@ -77,6 +19,9 @@ void load_room_params(const ConfigReader& section, RoomParams& params) {
   section.read("furniture_min_height_m", params.furniture_min_height_m, 0.05, 20.0);
   section.read("furniture_max_height_m", params.furniture_max_height_m, 0.05, 20.0);
   section.read("furniture_gap_m", params.furniture_gap_m, 0.0, 10.0);
+  std::string walls = params.plain_walls ? "plain" : "textured";
+  section.read("walls", walls, {"plain", "textured"});
+  params.plain_walls = walls == "plain";
   section.read("texture_px_per_m", params.texture_px_per_m, 10.0, 1000.0);
   int seed = static_cast<int>(params.seed);
   section.read("seed", seed, 0, 1'000'000'000);
@@ -89,6 +34,11 @@ void load_room_params(const ConfigReader& section, RoomParams& params) {
 }
 
 World make_room(const RoomParams& params) {
+  using build::add_box;
+  using build::add_material;
+  using build::add_quad;
+  using build::add_wall;
+  using build::overlaps;
   World world;
   world.name = "room";
   cv::RNG rng(params.seed);
@@ -102,8 +52,14 @@ World make_room(const RoomParams& params) {
                                          cv::Vec2f(0.f, ly), cv::Vec2f(0.f, 0.f)};
   for (int side = 0; side < 4; ++side) {
     const double length_m = cv::norm(corners[side + 1] - corners[side]);
-    const int material = add_material(world, "wall " + std::to_string(side),
-                                      textures::wall(length_m, params.height_m, ppm, rng));
+    cv::Mat texture;
+    if (params.plain_walls) {
+      const cv::Scalar paint = textures::random_colour(rng, 140, 235);
+      texture = textures::painted_wall(length_m, params.height_m, ppm, paint, false, rng);
+    } else {
+      texture = textures::wall(length_m, params.height_m, ppm, rng);
+    }
+    const int material = add_material(world, "wall " + std::to_string(side), std::move(texture));
     add_wall(world, corners[side], corners[side + 1], height, material);
   }
   const int floor_material =

@@ -11,6 +11,8 @@ int px(double metres, double px_per_m) {
   return std::max(1, static_cast<int>(std::lround(metres * px_per_m)));
 }
 
+}  // namespace
+
 cv::Scalar random_colour(cv::RNG& rng, int low, int high) {
   return cv::Scalar(rng.uniform(low, high), rng.uniform(low, high), rng.uniform(low, high));
 }
@@ -62,6 +64,8 @@ void draw_picture(cv::Mat& image, cv::Rect frame, cv::RNG& rng) {
   }
 }
 
+namespace {
+
 void draw_door(cv::Mat& image, int x, double px_per_m, cv::RNG& rng) {
   const cv::Rect door(x, image.rows - px(2.05, px_per_m), px(0.9, px_per_m), px(2.05, px_per_m));
   const cv::Scalar wood = random_colour(rng, 30, 110);
@@ -97,10 +101,15 @@ void draw_window(cv::Mat& image, int x, double px_per_m, cv::RNG& rng) {
 }  // namespace
 
 cv::Mat wall(double width_m, double height_m, double px_per_m, cv::RNG& rng) {
-  cv::Mat image(px(height_m, px_per_m), px(width_m, px_per_m), CV_8UC3,
-                random_colour(rng, 140, 235));
+  const cv::Scalar paint = random_colour(rng, 140, 235);
+  return painted_wall(width_m, height_m, px_per_m, paint, true, rng);
+}
+
+cv::Mat painted_wall(double width_m, double height_m, double px_per_m, const cv::Scalar& paint,
+                     bool decorated, cv::RNG& rng) {
+  cv::Mat image(px(height_m, px_per_m), px(width_m, px_per_m), CV_8UC3, paint);
   // Wallpaper: vertical stripes of a random period, or none.
-  if (rng.uniform(0, 2) == 1) {
+  if (decorated && rng.uniform(0, 2) == 1) {
     const int period = px(rng.uniform(0.06, 0.3), px_per_m);
     const cv::Scalar stripe = cv::Scalar(image.at<cv::Vec3b>(0, 0)) * rng.uniform(0.75, 0.92);
     for (int x = 0; x < image.cols; x += period) {
@@ -109,7 +118,7 @@ cv::Mat wall(double width_m, double height_m, double px_per_m, cv::RNG& rng) {
   }
   add_smooth_noise(image, 0.4, px_per_m, 10.0, rng);
   // Openings and pictures, placed left to right without overlap.
-  int x = px(rng.uniform(0.2, 0.8), px_per_m);
+  int x = decorated ? px(rng.uniform(0.2, 0.8), px_per_m) : image.cols;
   while (x < image.cols - px(0.6, px_per_m)) {
     const double kind = rng.uniform(0.0, 1.0);
     const int remaining = image.cols - x;
@@ -156,6 +165,47 @@ cv::Mat floor(double width_m, double depth_m, double px_per_m, cv::RNG& rng) {
     draw_picture(image, cv::Rect(rug.x + width / 4, rug.y + height / 4, width / 2, height / 2),
                  rng);
   }
+  return image;
+}
+
+cv::Mat planks(double width_m, double depth_m, double px_per_m, cv::RNG& rng) {
+  const cv::Scalar wood(rng.uniform(30, 110), rng.uniform(70, 150), rng.uniform(110, 200));
+  cv::Mat image(px(depth_m, px_per_m), px(width_m, px_per_m), CV_8UC3, wood);
+  const int plank_width = px(rng.uniform(0.12, 0.22), px_per_m);
+  for (int y = 0; y < image.rows; y += plank_width) {
+    int x = -rng.uniform(0, px(1.5, px_per_m));  // staggered joints
+    while (x < image.cols) {
+      const int length = px(rng.uniform(0.8, 2.0), px_per_m);
+      const cv::Rect plank(x, y, length, plank_width);
+      cv::rectangle(image, plank, wood * rng.uniform(0.8, 1.2), cv::FILLED);
+      for (int grain = 0; grain < 3; ++grain) {  // a few streaks of grain
+        const int gy = y + rng.uniform(1, std::max(2, plank_width - 1));
+        cv::line(image, {x, gy}, {x + length, gy + rng.uniform(-2, 3)}, wood * 0.7, 1, cv::LINE_AA);
+      }
+      cv::rectangle(image, plank, wood * 0.45, 1);
+      x += length;
+    }
+  }
+  add_smooth_noise(image, 0.5, px_per_m, 6.0, rng);
+  return image;
+}
+
+cv::Mat carpet(double width_m, double depth_m, double px_per_m, cv::RNG& rng) {
+  const cv::Scalar pile = random_colour(rng, 40, 200);
+  cv::Mat image(px(depth_m, px_per_m), px(width_m, px_per_m), CV_8UC3, pile);
+  // A border a little in from the walls, and a pattern of motifs inside it.
+  const int inset = px(rng.uniform(0.2, 0.5), px_per_m);
+  const cv::Scalar border = random_colour(rng, 20, 230);
+  cv::rectangle(image, cv::Rect(inset, inset, image.cols - 2 * inset, image.rows - 2 * inset),
+                border, std::max(2, px(0.12, px_per_m)));
+  const int motif = px(rng.uniform(0.3, 0.7), px_per_m);
+  const cv::Scalar ink = random_colour(rng, 20, 230);
+  for (int y = inset + motif; y < image.rows - inset - motif / 2; y += motif) {
+    for (int x = inset + motif; x < image.cols - inset - motif / 2; x += motif) {
+      cv::circle(image, {x, y}, std::max(1, motif / 5), ink, cv::FILLED, cv::LINE_AA);
+    }
+  }
+  add_smooth_noise(image, 0.2, px_per_m, 10.0, rng);
   return image;
 }
 

@@ -158,6 +158,97 @@ void add_tilt_noise(std::vector<TimedPose>& poses, double pitch_sd_rad, double r
   }
 }
 
+// An animal's or a small robot's route (kind `wander`): the direction of travel turns at a
+// rate that changes at random moments, mostly gently and now and then sharply (the rate's
+// magnitude is exponential with mean turn_rate_deg_s), and the body's heading wobbles about
+// the direction of travel (a sinusoid of amplitude wobble_deg and period wobble_period_s,
+// its amplitude and period jittered by ±30 % per cycle). Looking ahead 0.5 s, the walker turns
+// away from walls, obstacles and the floor's edge by the smallest turn that keeps it
+// clearance_m clear, so that every pose is in the free space.
+std::vector<TimedPose> wander(SpecArguments& args, const World& world, const std::string& spec,
+                              double centre_x, double centre_y, double fps) {
+  double x = args.number("x", centre_x), y = args.number("y", centre_y);
+  double travel = deg_to_rad(args.number("heading_deg", 0.0));
+  const double speed = args.number("speed_m_s", 0.2);
+  require_positive(speed, "speed_m_s", spec);
+  const double length = args.number("length_m", 0.0);
+  const double duration = args.number("duration_s", 0.0);
+  if (length < 0.0 || duration < 0.0 || (length > 0.0 && duration > 0.0)) {
+    throw UsageError("trajectory '" + spec + "': give length_m or duration_s (positive), not both");
+  }
+  const double seconds = duration > 0.0 ? duration : (length > 0.0 ? length : 10.0) / speed;
+  const double mean_turn_rate = deg_to_rad(args.number("turn_rate_deg_s", 30.0));
+  const double wobble = deg_to_rad(args.number("wobble_deg", 15.0));
+  const double wobble_period = args.number("wobble_period_s", 2.0);
+  const double clearance = args.number("clearance_m", 0.25);
+  cv::RNG rng(static_cast<std::uint64_t>(args.number("seed", 1)) * 2654435761ULL + 7);
+  if (mean_turn_rate < 0.0 || wobble < 0.0 || clearance < 0.0) {
+    throw UsageError("trajectory '" + spec +
+                     "': turn_rate_deg_s, wobble_deg and clearance_m must not be negative");
+  }
+  require_positive(wobble_period, "wobble_period_s", spec);
+  if (!world.is_free(x, y, clearance)) {
+    log_warning("trajectory '" + spec + "': the start is closer than clearance_m to an obstacle");
+  }
+
+  const int frames = static_cast<int>(std::floor(seconds * fps + 1e-9)) + 1;
+  const double step = speed / fps;
+  const double lookahead = std::max(0.5 * speed, 2.0 * step);
+  double turn_rate = 0.0, next_change_s = 0.0;
+  double wobble_phase = rng.uniform(0.0, kTwoPi);
+  double wobble_amplitude = wobble, wobble_rate = kTwoPi / wobble_period;
+  std::vector<TimedPose> poses;
+  for (int frame = 0; frame < frames; ++frame) {
+    const double time = frame / fps;
+    poses.push_back(
+        {time,
+         {x, y, 0.0, wrap_angle(travel + wobble_amplitude * std::sin(wobble_phase)), 0.0, 0.0},
+         {}});
+    if (time >= next_change_s) {  // a new turn: mostly gentle, sometimes sharp
+      const double sign = rng.uniform(0, 2) == 0 ? -1.0 : 1.0;
+      turn_rate = sign * mean_turn_rate * -std::log(1.0 - rng.uniform(0.0, 1.0));
+      next_change_s = time + rng.uniform(0.5, 3.0);
+    }
+    const double previous_phase = wobble_phase;
+    wobble_phase += wobble_rate / fps;
+    if (std::floor(wobble_phase / kTwoPi) != std::floor(previous_phase / kTwoPi)) {
+      wobble_amplitude = wobble * rng.uniform(0.7, 1.3);  // each cycle a little different
+      wobble_rate = kTwoPi / (wobble_period * rng.uniform(0.7, 1.3));
+    }
+    travel = wrap_angle(travel + turn_rate / fps);
+    // Steer away from what lies ahead: the smallest turn, either way, that leaves the path
+    // ahead free; stand and turn when none does.
+    const auto clear = [&](double direction) {
+      for (double ahead = step; ahead <= lookahead + 1e-9; ahead += step) {
+        if (!world.is_free(x + ahead * std::cos(direction), y + ahead * std::sin(direction),
+                           clearance)) {
+          return false;
+        }
+      }
+      return true;
+    };
+    bool moving = clear(travel);
+    for (int k = 1; !moving && k <= 18; ++k) {
+      for (const double side : {1.0, -1.0}) {
+        const double direction = wrap_angle(travel + side * k * deg_to_rad(10.0));
+        if (clear(direction)) {
+          travel = direction;
+          turn_rate = side * std::abs(turn_rate);  // keep turning away
+          moving = true;
+          break;
+        }
+      }
+    }
+    if (moving) {
+      x += step * std::cos(travel);
+      y += step * std::sin(travel);
+    } else {
+      travel = wrap_angle(travel + kPi / 2.0 / fps);
+    }
+  }
+  return poses;
+}
+
 }  // namespace
 
 double Trajectory::length_m() const {
@@ -261,6 +352,8 @@ Trajectory make_trajectory(const std::string& spec, const World& world) {
       x += step_m * std::cos(heading);
       y += step_m * std::sin(heading);
     }
+  } else if (trajectory.kind == "wander") {
+    poses = wander(args, world, spec, centre_x, centre_y, fps);
   } else if (trajectory.kind == "grid") {
     const double x0 = args.number("x0", world.floor.min_x_m + margin);
     const double y0 = args.number("y0", world.floor.min_y_m + margin);
@@ -289,7 +382,7 @@ Trajectory make_trajectory(const std::string& spec, const World& world) {
     }
   } else {
     throw UsageError("trajectory '" + spec + "': unknown kind '" + trajectory.kind +
-                     "' (rotate, line, circle, walk, grid, zigzag, csv)");
+                     "' (rotate, line, circle, walk, wander, grid, zigzag, csv)");
   }
 
   const double z = args.number("z_m", 1.0);

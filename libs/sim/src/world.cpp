@@ -14,4 +14,11 @@ bool World::is_free(double x_m, double y_m, double clearance_m) const {
   return true;
 }
 
+const Region* World::region_at(double x_m, double y_m) const {
+  for (const Region& region : regions) {
+    if (region.area.contains(x_m, y_m)) return &region;
+  }
+  return nullptr;
+}
+
 }  // namespace omninav::sim

@@ -25,7 +25,8 @@ struct CameraConfig {
 // <config_dir>/camera.yaml: sections panorama and unwrap.
 CameraConfig load_camera_config(const std::filesystem::path& config_dir);
 
-// <config_dir>/worlds.yaml: sections room, obj and render; the render geometry is `panorama`.
+// <config_dir>/worlds.yaml: sections room, house, field, office, obj and render; the render
+// geometry is `panorama`.
 sim::WorldsConfig load_worlds_config(const std::filesystem::path& config_dir,
                                      const PanoramaGeometry& panorama);
 

@@ -24,6 +24,7 @@ struct RoomParams {
   double furniture_min_height_m = 0.3;
   double furniture_max_height_m = 1.8;
   double furniture_gap_m = 0.5;     // free space kept between boxes and from the walls
+  bool plain_walls = false;         // plain paint instead of pictures, doors and windows
   double texture_px_per_m = 100.0;  // resolution of the generated textures
   std::uint32_t seed = 1;           // same seed, same room
 };

@@ -8,6 +8,11 @@
 //                           counter-clockwise (negative speed: clockwise)
 //   walk    random walk:    x, y, heading_deg, steps (200), step_m (0.05), turn_deg (20), seed (1);
 //                           turns away from walls and furniture
+//   wander  animal-like:    x, y, heading_deg, length_m (10) or duration_s, speed_m_s (0.2),
+//                           turn_rate_deg_s (30: mean of the exponentially distributed turn
+//                           rates, changed every 0.5-3 s), wobble_deg (15) and wobble_period_s
+//                           (2: heading oscillation about the direction of travel),
+//                           clearance_m (0.25), seed (1); steers clear of obstacles
 //   grid    grid sweep:     x0, y0, nx (10), ny (8), spacing_m (0.3), heading_deg (0); points
 //                           inside furniture are left out (their grid index is skipped)
 //   zigzag  boustrophedon:  x0, y0, x1, y1, rows (4), speed_m_s (0.2): rows from y0 to y1, each

@@ -5,6 +5,7 @@
 #include <array>
 #include <filesystem>
 #include <opencv2/core.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -30,6 +31,13 @@ struct FloorBox {
   }
 };
 
+// A named part of the floor (a room or corridor of a house), so that evaluation can tell
+// whether a place was recognised in the right room.
+struct Region {
+  std::string name;
+  FloorBox area;
+};
+
 struct World {
   std::string name;
   std::vector<cv::Vec3f> vertices;  // metres, z up
@@ -37,13 +45,22 @@ struct World {
   std::vector<Material> materials;
   std::vector<cv::Mat> textures;               // 8-bit BGR
   cv::Vec3f background_bgr{40.f, 40.f, 40.f};  // what a ray that hits nothing sees
+  // When set, a ray that hits nothing above the horizon sees a sky blending from
+  // background_bgr at the horizon to this colour at the zenith (outdoor worlds).
+  std::optional<cv::Vec3f> sky_zenith_bgr;
 
   // Where a robot may stand: inside `floor`, outside every obstacle (for trajectories and the
   // navigator). For OBJ worlds the floor is the bounding box and there are no obstacles.
   FloorBox floor;
   std::vector<FloorBox> obstacles;
 
+  // Named floor rectangles (a house's rooms and corridor; empty for other worlds). They do
+  // not overlap; a point in a doorway or a wall may be in none.
+  std::vector<Region> regions;
+
   bool is_free(double x_m, double y_m, double clearance_m = 0.0) const;
+  // The region containing (x, y), or nullptr when none does.
+  const Region* region_at(double x_m, double y_m) const;
 };
 
 // How to read an OBJ file: its axis convention and unit.
