@@ -120,21 +120,58 @@ TEST_F(EvaluateCommand, TheCommandsItWritesRemakeItsFigures) {
   for (std::string& arg : circle[0]) {
     if (arg == (out / "room" / "circle").string()) arg = again.string();
   }
-  ASSERT_EQ(run(circle[0]), 0);
   std::vector<std::string> compass = {
       circle[1][0],   circle[1][1], "compass", "--input",
       again.string(), "--truth",    "--stats", (folder_ / "stats.csv").string()};
   ::testing::internal::CaptureStdout();
   ::testing::internal::CaptureStderr();
+  const int rendered = run(circle[0]);
   const int status = run(compass);
   ::testing::internal::GetCapturedStdout();
   ::testing::internal::GetCapturedStderr();
+  ASSERT_EQ(rendered, 0);
   ASSERT_EQ(status, 0);
   const std::vector<std::vector<std::string>> stats = csv_rows(read_file(folder_ / "stats.csv"));
   ASSERT_EQ(stats.size(), 2u);
   EXPECT_NEAR(parse_double(stats[1][5], "max"), value("compass_circle_max_deg"), 1e-3);
   EXPECT_NEAR(parse_double(stats[1][6], "mean"), value("compass_circle_mean_deg"), 1e-3);
   EXPECT_NEAR(parse_double(stats[1][10], "final"), value("compass_circle_end_deg"), 1e-3);
+}
+
+// The quick suite, as CI runs it: one world per family, every measure for every world. The OBJ
+// world needs shared/data; without it that row must say it failed (and nothing else may).
+TEST_F(EvaluateCommand, TheQuickSuiteMeasuresEveryWorld) {
+  ASSERT_EQ(run_omninav({"evaluate", "--suite", "quick", "--out", (folder_ / "quick").string()}), 0)
+      << errors_;
+  const std::vector<std::vector<std::string>> rows =
+      csv_rows(read_file(folder_ / "quick" / "evaluation.csv"));
+  const std::vector<evaluation::Measure>& measures = evaluation::measures();
+  ASSERT_GE(rows.size(), 3u);
+  const bool have_obj = std::filesystem::exists(omninav::testing::shared_data_dir() / "worlds");
+  std::set<std::string> families;
+  for (std::size_t r = 1; r + 2 < rows.size(); ++r) {
+    const std::vector<std::string>& row = rows[r];
+    ASSERT_EQ(row.size(), 2 + measures.size());
+    families.insert(row[1]);
+    if (row[1] == "obj" && !have_obj) {
+      EXPECT_EQ(row[2], "failed");
+      continue;
+    }
+    for (std::size_t c = 0; c < measures.size(); ++c) {
+      const std::string& cell = row[2 + c];
+      const std::string& key = measures[c].key;
+      if (key == "memory_right_room") {
+        // Exactly the worlds with rooms have it.
+        EXPECT_EQ(cell.empty(), row[1] != "house") << row[0];
+        continue;
+      }
+      if (cell.empty() && may_be_empty(key)) continue;
+      ASSERT_FALSE(cell.empty()) << row[0] << " " << key;
+      ASSERT_NE(cell, "failed") << row[0] << " " << key << "\n" << output_;
+      EXPECT_TRUE(std::isfinite(parse_double(cell, key))) << row[0] << " " << key;
+    }
+  }
+  EXPECT_EQ(families, (std::set<std::string>{"room", "house", "field", "office", "obj"}));
 }
 
 TEST_F(EvaluateCommand, AnUnknownSuiteIsAUsageError) {
