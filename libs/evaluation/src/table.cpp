@@ -182,7 +182,7 @@ std::string table_text(const std::vector<Row>& rows, const std::vector<Measure>&
 cv::Mat table_picture(const std::vector<Row>& rows, const std::vector<Measure>& columns,
                       const std::string& title) {
   const std::vector<int> worst = worst_rows(rows, columns);
-  constexpr int kCellW = 74, kCellH = 24, kLabelW = 150, kHeaderH = 120, kTitleH = 34;
+  constexpr int kCellW = 74, kCellH = 24, kLabelW = 150, kHeaderH = 150, kTitleH = 34;
   const int width = kLabelW + kCellW * static_cast<int>(columns.size()) + 10;
   const int height = kTitleH + kHeaderH + kCellH * (static_cast<int>(rows.size()) + 1) + 10;
   cv::Mat picture(height, width, CV_8UC3, cv::Scalar(255, 255, 255));
@@ -191,8 +191,8 @@ cv::Mat table_picture(const std::vector<Row>& rows, const std::vector<Measure>& 
   // Headers written upwards, one per column.
   for (std::size_t c = 0; c < columns.size(); ++c) {
     cv::Mat header(kCellW, kHeaderH, CV_8UC3, cv::Scalar(255, 255, 255));
-    cv::putText(header, columns[c].group.substr(0, 4) + " " + columns[c].title, {4, kCellW / 2 + 5},
-                font, 0.4, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
+    cv::putText(header, columns[c].group + " " + columns[c].title, {4, kCellW / 2 + 5}, font, 0.4,
+                cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
     cv::Mat rotated;
     cv::rotate(header, rotated, cv::ROTATE_90_COUNTERCLOCKWISE);
     rotated.copyTo(
