@@ -88,9 +88,8 @@ class WorldRun {
     if (suite_world_.obj_scale_to_m > 0.0) use_obj_scale();
     world_ = sim::load_world(suite_world_.spec, worlds_);
     renderer_ = std::make_unique<sim::Renderer>(world_, worlds_.render);
-    layout_ =
-        plan_layout(world_, suite_world_.grid_nx, suite_world_.grid_ny, suite_world_.spacing_m,
-                    params_.circle_radius_m * scale_, config_.navigation.robot.radius_m * scale_);
+    layout_ = plan_layout(world_, suite_world_.grid_nx, suite_world_.grid_ny,
+                          suite_world_.spacing_m, params_.circle_radius_m * scale_, clearance_m());
     log_stage("layout: centre " + num(layout_.centre.x, 2) + ", " + num(layout_.centre.y, 2) +
               " m; circle radius " + num(layout_.circle_radius_m, 2) + " m; grid " +
               std::to_string(layout_.nx) + " x " + std::to_string(layout_.ny) + " at " +
@@ -173,6 +172,14 @@ class WorldRun {
   fs::path render(const std::string& name, const std::string& spec) {
     const fs::path folder = dir_ / name;
     const sim::Trajectory trajectory = sim::make_trajectory(spec, world_);
+    if (spec.rfind("wander:", 0) == 0) {
+      // A wander that cannot leave its start only turns on the spot: not the route measured.
+      const double wanted_m = params_.wander_length_m * scale_;
+      if (trajectory.length_m() < 0.5 * wanted_m) {
+        throw InputError("the wander travelled " + num(trajectory.length_m(), 2) + " m of " +
+                         num(wanted_m, 2) + " m: it could not leave its start");
+      }
+    }
     log_stage("rendering " + name + " (" + std::to_string(trajectory.poses.size()) + " frames)");
     render_database(*renderer_, trajectory, folder,
                     "omninav render --world " + suite_world_.spec + " --trajectory " + spec, true);
@@ -236,12 +243,14 @@ class WorldRun {
                                        ",noise_seed=" + std::to_string(suite_world_.seed)));
   }
 
-  // The wandering route (sim's `wander`) of wander_length_m from the centre.
+  // The wandering route (sim's `wander`) of wander_length_m from the centre, kept as clear of
+  // obstacles as the centre is (the robot's radius).
   std::string wander_spec(const std::string& at, double speed_m_s) const {
     return "wander:" + at + ",length_m=" + num(params_.wander_length_m * scale_) +
-           ",speed_m_s=" + num(speed_m_s) + ",seed=" + std::to_string(suite_world_.seed) +
-           ",fps=" + num(params_.fps);
+           ",speed_m_s=" + num(speed_m_s) + ",clearance_m=" + num(clearance_m()) +
+           ",seed=" + std::to_string(suite_world_.seed) + ",fps=" + num(params_.fps);
   }
+  double clearance_m() const { return config_.navigation.robot.radius_m * scale_; }
 
   std::string grid_spec() const {
     return with_height("grid:x0=" + num(layout_.x0) + ",y0=" + num(layout_.y0) +
