@@ -102,9 +102,10 @@ void add_evaluate_command(CLI::App& app, const GlobalOptions& global) {
       "evaluation.csv, evaluation.png and commands.sh (the command lines that remake each "
       "figure) into --out. The same suite gives the same table.");
   command
-      ->add_option("--suite", options->suite,
-                   "quick (CI, a few minutes), full (the benchmark, about an hour) or a YAML file "
-                   "(config/suites/*.yaml document the keys)")
+      ->add_option(
+          "--suite", options->suite,
+          "quick (CI, a few minutes), full (the benchmark, 45 minutes on two cores) or a YAML file "
+          "(config/suites/*.yaml document the keys)")
       ->capture_default_str();
   command->add_option("--out", options->out,
                       "Folder for the table, pictures, databases and maps (default: "
