@@ -23,12 +23,9 @@ void run_organise(const GlobalOptions& global, const OrganiseOptions& options) {
   lattice::OrganiseParams params = load_lattice_config(global.config_dir);
   if (options.step_m > 0.0) params.step_m = options.step_m;
   if (options.no_motion) params.motion_constraints = false;
-  memory::VisualMemory memory = memory::load_map(options.map);
-  const lattice::OrganiseResult organised = lattice::organise(memory, params);
-  std::vector<memory::LatticePosition> positions;
-  for (std::size_t i = 0; i < memory.place_count(); ++i)
-    positions.push_back(*memory.place(i).lattice);
-  memory::save_lattice_positions(options.map, positions);
+  const lattice::OrganisedMap result = lattice::organise_map_file(options.map, params);
+  const memory::VisualMemory& memory = result.memory;
+  const lattice::OrganiseResult& organised = result.organised;
 
   const lattice::DistanceCalibration& calibration = organised.calibration;
   std::cout << std::fixed << std::setprecision(3) << "organised " << memory.place_count()
@@ -43,8 +40,7 @@ void run_organise(const GlobalOptions& global, const OrganiseOptions& options) {
             << " m; weaker than K = " << params.lattice.min_stiffness << " dropped), "
             << organised.lattice.motion_constraints << " motions (directions from the phases)\n"
             << "  solver:   " << organised.lattice.summary << "\n";
-  const std::optional<lattice::LatticeEvaluation> evaluation =
-      lattice::evaluate_against_truth(memory, organised.motions.empty());
+  const std::optional<lattice::LatticeEvaluation>& evaluation = result.evaluation;
   if (evaluation) {
     std::cout << "  vs truth: RMSE after Procrustes " << evaluation->rmse.all << " spacings ("
               << evaluation->rmse.interior << " interior, " << evaluation->rmse.boundary

@@ -296,16 +296,10 @@ class WorldRun {
       params.step_m = step_m;
       args.insert(args.end(), {"--step-m", num(step_m)});
     }
-    memory::VisualMemory memory = memory::load_map(map_file);
-    const lattice::OrganiseResult organised = lattice::organise(memory, params);
-    std::vector<memory::LatticePosition> positions;
-    for (std::size_t i = 0; i < memory.place_count(); ++i)
-      positions.push_back(*memory.place(i).lattice);
-    memory::save_lattice_positions(map_file, positions);
-    const std::optional<lattice::LatticeEvaluation> evaluation =
-        lattice::evaluate_against_truth(memory, organised.motions.empty());
+    const lattice::OrganisedMap result = lattice::organise_map_file(map_file, params);
+    const std::optional<lattice::LatticeEvaluation>& evaluation = result.evaluation;
     const fs::path picture = dir_ / (key + ".lattice.png");
-    eval::save_png(lattice::lattice_picture(memory, organised, evaluation), picture);
+    eval::save_png(lattice::lattice_picture(result.memory, result.organised, evaluation), picture);
     args.insert(args.end(), {"--picture", picture.string()});
     command(args);
     if (!evaluation) throw InputError(map_file.string() + ": no ground truth to score against");

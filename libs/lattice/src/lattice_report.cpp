@@ -10,6 +10,7 @@
 #include "omninav/eval/plot.hpp"
 #include "omninav/lattice/stiffness.hpp"
 #include "omninav/memory/localisation.hpp"
+#include "omninav/memory/map_file.hpp"
 
 namespace omninav::lattice {
 namespace {
@@ -149,6 +150,19 @@ cv::Mat lattice_picture(const memory::VisualMemory& memory, const OrganiseResult
     cv::hconcat(picture, truth.render(), picture);
   }
   return picture;
+}
+
+OrganisedMap organise_map_file(const std::filesystem::path& map_file,
+                               const OrganiseParams& params) {
+  OrganisedMap result{memory::load_map(map_file), {}, std::nullopt};
+  result.organised = organise(result.memory, params);
+  std::vector<memory::LatticePosition> positions;
+  for (std::size_t i = 0; i < result.memory.place_count(); ++i) {
+    positions.push_back(*result.memory.place(i).lattice);
+  }
+  memory::save_lattice_positions(map_file, positions);
+  result.evaluation = evaluate_against_truth(result.memory, result.organised.motions.empty());
+  return result;
 }
 
 }  // namespace omninav::lattice

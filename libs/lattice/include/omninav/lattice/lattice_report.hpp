@@ -5,6 +5,7 @@
 // picture of Figs. 14-17.
 
 #include <array>
+#include <filesystem>
 #include <opencv2/core.hpp>
 #include <optional>
 
@@ -32,6 +33,16 @@ struct LatticeEvaluation {
 // from its mirror image).
 std::optional<LatticeEvaluation> evaluate_against_truth(const memory::VisualMemory& memory,
                                                         bool allow_reflection);
+
+// What `omninav organise` (and `omninav evaluate`) does to a map file: loads it, organises it
+// with `params`, stores the positions in the file, and scores the lattice against the truth
+// when the places have it (reflection allowed when no motion constrained the lattice).
+struct OrganisedMap {
+  memory::VisualMemory memory;  // with its lattice positions
+  OrganiseResult organised;
+  std::optional<LatticeEvaluation> evaluation;
+};
+OrganisedMap organise_map_file(const std::filesystem::path& map_file, const OrganiseParams& params);
 
 // The lattice with its springs shaded by stiffness (dark = stiff) and, beside it when given,
 // the truth with the aligned lattice over it.
