@@ -106,5 +106,26 @@ TEST(RandomFreePoses, AreSeededFreeAndInsideTheRectangle) {
   EXPECT_NE(other.front().x_m, poses.front().x_m);
 }
 
+TEST(RightRegionShare, CountsQueriesWhoseBestPlaceIsInTheirRegion) {
+  sim::World world = floor_only(8.0, 4.0);
+  world.regions = {{"room 1", {0.0, 0.0, 3.9, 4.0}}, {"room 2", {4.1, 0.0, 8.0, 4.0}}};
+  // Three queries in room 1 (two found there, one in room 2), one in room 2 found there, one
+  // in the doorway between (no region: left out).
+  const std::vector<std::pair<cv::Point2d, cv::Point2d>> localised = {{{1.0, 1.0}, {1.2, 1.1}},
+                                                                      {{2.0, 3.0}, {2.3, 3.0}},
+                                                                      {{3.5, 2.0}, {4.5, 2.0}},
+                                                                      {{6.0, 2.0}, {6.1, 2.2}},
+                                                                      {{4.0, 2.0}, {1.0, 1.0}}};
+  const std::optional<double> share = right_region_share(world, localised);
+  ASSERT_TRUE(share);
+  EXPECT_DOUBLE_EQ(*share, 3.0 / 4.0);
+  // A best place in a doorway is in no room: not the right one.
+  EXPECT_DOUBLE_EQ(*right_region_share(world, {{{1.0, 1.0}, {4.0, 1.0}}}), 0.0);
+}
+
+TEST(RightRegionShare, IsNothingInAWorldWithoutRegions) {
+  EXPECT_FALSE(right_region_share(floor_only(5.0, 5.0), {{{1.0, 1.0}, {1.0, 1.0}}}));
+}
+
 }  // namespace
 }  // namespace omninav::evaluation

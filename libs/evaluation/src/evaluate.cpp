@@ -363,18 +363,15 @@ class WorldRun {
     const memory::Localiser localiser(map, config_.memory.localisation);
     signature::SignatureExtractor extractor(map.parameters().signature);
     memory::LocalisationScore score(map);
-    int in_regions = 0, right_region = 0;
+    std::vector<std::pair<cv::Point2d, cv::Point2d>> localised;
     std::unique_ptr<io::SequenceReader> reader = io::open_sequence(queries);
     while (std::optional<io::Frame> frame = reader->next()) {
       const signature::Signature signature = extractor.compute(frame->image, frame->source);
       const memory::Localisation result = localiser.localise(signature);
       const memory::LocalisationScore::Query q = score.add(result, *frame->truth);
       if (q.outside || result.best.empty()) continue;
-      const sim::Region* truth = world_.region_at(frame->truth->x_m, frame->truth->y_m);
-      if (truth == nullptr) continue;  // in a doorway or a wall
       const CameraPose& best = *map.place(result.best.front().place).truth;
-      ++in_regions;
-      right_region += world_.region_at(best.x_m, best.y_m) == truth ? 1 : 0;
+      localised.push_back({{frame->truth->x_m, frame->truth->y_m}, {best.x_m, best.y_m}});
     }
     command({"localise", map_file.string(), queries.string(), "--format", "csv"});
     if (score.queries() == 0) throw InputError("no query lay within the grid: none scored");
@@ -382,7 +379,9 @@ class WorldRun {
     set("memory_at_nearest", score.nearest_share());
     const std::optional<double> heading = score.median_heading_error_rad();
     set("memory_heading_error_deg", heading ? Cell::of(rad_to_deg(*heading)) : Cell::failed());
-    if (in_regions > 0) set("memory_right_room", double(right_region) / in_regions);
+    if (const std::optional<double> share = right_region_share(world_, localised)) {
+      set("memory_right_room", *share);
+    }
     log_stage("localised " + std::to_string(score.queries()) + " queries (" +
               std::to_string(score.outside()) + " off the grid): " +
               num(100.0 * score.within_spacing_share(), 1) + "% within one spacing");
@@ -592,6 +591,19 @@ double distance_outside(const std::vector<cv::Point2d>& hull, const cv::Point2d&
     nearest = std::min(nearest, segment_distance(a, b));
   }
   return any_left && any_right ? nearest : 0.0;
+}
+
+std::optional<double> right_region_share(
+    const sim::World& world, const std::vector<std::pair<cv::Point2d, cv::Point2d>>& localised) {
+  int in_regions = 0, right = 0;
+  for (const auto& [truth, found] : localised) {
+    const sim::Region* region = world.region_at(truth.x, truth.y);
+    if (region == nullptr) continue;
+    ++in_regions;
+    right += world.region_at(found.x, found.y) == region ? 1 : 0;
+  }
+  if (in_regions == 0) return std::nullopt;
+  return double(right) / in_regions;
 }
 
 WorldEvaluation evaluate_world(const SuiteWorld& world, const SuiteParams& params,

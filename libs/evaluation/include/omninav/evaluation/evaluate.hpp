@@ -26,6 +26,7 @@
 #include <filesystem>
 #include <functional>
 #include <opencv2/core.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -75,6 +76,13 @@ std::vector<cv::Point2d> convex_hull(const std::vector<cv::Point2d>& points);
 // How far `p` lies outside the convex polygon `hull` (0 inside or on it); a hull of one or two
 // points is a point or a segment.
 double distance_outside(const std::vector<cv::Point2d>& hull, const cv::Point2d& p);
+
+// "Localised in the right room": of the queries standing in a region of `world` (a house's
+// room or corridor; those in a doorway or wall are left out), the share whose best place
+// stands in the same region. Each pair is (query's true position, best place's true position).
+// Nothing when no query stands in a region (a world without regions).
+std::optional<double> right_region_share(
+    const sim::World& world, const std::vector<std::pair<cv::Point2d, cv::Point2d>>& localised);
 
 struct WorldEvaluation {
   Row row;
