@@ -23,7 +23,7 @@ inline constexpr const char* kWorldOptionHelp =
     "  room (size_x_m, size_y_m 3-12, height_m, boxes 0-20, walls plain|textured, seed)\n"
     "  house (rooms 2-10, room_min_m, room_max_m, corridor_width_m, door_width_m, height_m, "
     "furniture, seed): rooms of different looks joined by doorways and a corridor\n"
-    "  field (size_m, tussocks, grass_min_m, grass_max_m, bushes, trees, "
+    "  field (size_m, tussocks, grass_min_m, grass_max_m, bushes, trees, rocks, "
     "horizon trees|hills|none, seed): grass tussocks, bushes, trees, hills and sky\n"
     "  office (rows, desks_per_row, desk_pitch_m, row_pitch_m, column_every, height_m, "
     "clutter 0-1, seed): identical desks at a regular pitch\n"

@@ -4,6 +4,7 @@
 
 #include "app_config.hpp"
 #include "cli.hpp"
+#include "floor_plan.hpp"
 #include "omninav/core/angles.hpp"
 #include "omninav/core/log.hpp"
 #include "omninav/eval/contact_sheet.hpp"
@@ -61,9 +62,13 @@ void run_render(const GlobalOptions& global, const RenderOptions& options) {
   const std::filesystem::path sheet = options.out / "contact_sheet.png";
   eval::save_png(eval::contact_sheet(previews, captions, 2), sheet);
 
+  const std::filesystem::path plan = options.out / "plan.png";
+  floor_plan(world, trajectory).save(plan);
+
   std::cout << "wrote " << trajectory.poses.size() << " panoramas (" << trajectory.length_m()
             << " m travelled) to " << options.out.string()
-            << " as a BoB database; preview: " << sheet.string() << "\n";
+            << " as a BoB database; preview: " << sheet.string() << ", top view: " << plan.string()
+            << "\n";
 }
 
 }  // namespace
@@ -73,8 +78,9 @@ void add_render_command(CLI::App& app, const GlobalOptions& global) {
   CLI::App* command = app.add_subcommand(
       "render",
       "Render synthetic panoramas along a trajectory, with exact ground truth, into a BoB "
-      "robotics image database (images, database_entries.csv, database_metadata.yaml) and a "
-      "contact_sheet.png preview.");
+      "robotics image database (images, database_entries.csv, database_metadata.yaml), a "
+      "contact_sheet.png preview and plan.png (the world from above: floor, obstacles, regions, "
+      "trajectory).");
   command->add_option("--world", options->world, kWorldOptionHelp)->capture_default_str();
   command
       ->add_option(

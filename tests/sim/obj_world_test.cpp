@@ -1,9 +1,9 @@
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
-#include <unistd.h>
 
 #include "omninav/core/angles.hpp"
 #include "omninav/core/errors.hpp"
@@ -17,7 +17,9 @@ namespace {
 
 class TempFolder {
  public:
-  TempFolder() : path_(std::filesystem::temp_directory_path() / ("omninav_obj_" + std::to_string(::getpid()))) {
+  TempFolder()
+      : path_(std::filesystem::temp_directory_path() /
+              ("omninav_obj_" + std::to_string(::getpid()))) {
     std::filesystem::create_directories(path_);
   }
   ~TempFolder() { std::filesystem::remove_all(path_); }
@@ -65,8 +67,10 @@ TEST(ObjWorld, TextureAppearsWhereItsCoordinatesPutIt) {
   const cv::Mat panorama = Renderer(world, params).render({0.0, 0.0, 0.0, 0.0, 0.0, 0.0});
   // Facing +x: u grows with y, so the texture's left half (blue, u < 0.5, y < 0) is on the
   // robot's right (azimuth −20°), its right half (green, y > 0) on the left (azimuth +20°).
-  const cv::Vec3b right = panorama.at<cv::Vec3b>(15, static_cast<int>(column_of_azimuth(deg_to_rad(-20), 360)));
-  const cv::Vec3b left = panorama.at<cv::Vec3b>(15, static_cast<int>(column_of_azimuth(deg_to_rad(20), 360)));
+  const cv::Vec3b right =
+      panorama.at<cv::Vec3b>(15, static_cast<int>(column_of_azimuth(deg_to_rad(-20), 360)));
+  const cv::Vec3b left =
+      panorama.at<cv::Vec3b>(15, static_cast<int>(column_of_azimuth(deg_to_rad(20), 360)));
   EXPECT_GT(right[0], 100);
   EXPECT_LT(right[1], 30);
   EXPECT_GT(left[1], 100);
@@ -93,7 +97,8 @@ TEST(ObjWorld, BadFilesAreClearErrors) {
 
 TEST(ObjWorld, OfstadArenaLoadsAndRendersItsTexture) {
   OMNINAV_REQUIRE_SHARED_DATA("worlds/ofstad/ofstad.obj");
-  const World world = load_obj_world(omninav::testing::shared_data_dir() / "worlds/ofstad/ofstad.obj");
+  const World world =
+      load_obj_world(omninav::testing::shared_data_dir() / "worlds/ofstad/ofstad.obj");
   EXPECT_EQ(world.triangles.size(), 64u);
   ASSERT_EQ(world.textures.size(), 1u);
   RenderParams params;

@@ -14,6 +14,9 @@ namespace omninav::sim {
 namespace {
 
 constexpr double kMargin_m = 6.0;  // grass, bushes and trees also grow this far round the floor
+// The near ground's texture is at most this many pixels on a side (a big field gets a coarser
+// one: at 40 px/m a 100 m field would need 20 million pixels and a gigabyte while made).
+constexpr double kMaxGroundTexture_px = 2048.0;
 const cv::Vec3f kHorizonSky{235.f, 215.f, 195.f};  // BGR: pale near the horizon
 const cv::Vec3f kZenithSky{205.f, 150.f, 95.f};    // deeper blue overhead
 
@@ -219,7 +222,10 @@ World make_field(const FieldParams& params) {
       world, flat(near_low, near_low, near_high, near_high, 0.0),
       {cv::Vec2f(0.f, 0.f), cv::Vec2f(1.f, 0.f), cv::Vec2f(1.f, 1.f), cv::Vec2f(0.f, 1.f)},
       build::add_material(world, "ground",
-                          ground_texture(near_high - near_low, params.texture_px_per_m, rng)));
+                          ground_texture(near_high - near_low,
+                                         std::min(params.texture_px_per_m,
+                                                  kMaxGroundTexture_px / (near_high - near_low)),
+                                         rng)));
   // Far away the ground is seen at grazing angles: one smooth, low-resolution texture
   // (no tiling, whose repeats would show as a chequer towards the horizon).
   const double far = hills_m * 1.05;
@@ -230,7 +236,7 @@ World make_field(const FieldParams& params) {
       {cv::Vec2f(0.f, 0.f), cv::Vec2f(1.f, 0.f), cv::Vec2f(1.f, 1.f), cv::Vec2f(0.f, 1.f)},
       build::add_material(world, "far ground", std::move(far_ground)));
 
-  // Trees and bushes, apart from each other; their trunks and bushes are obstacles.
+  // Trees, rocks and bushes, apart from each other; trunks, rocks and bushes are obstacles.
   const std::vector<int> bark = add_shades(world, "bark", {60.f, 75.f, 90.f}, 0.25, 0.0, 6, rng);
   const std::vector<int> leaves =
       add_shades(world, "leaves", {40.f, 105.f, 60.f}, 0.35, 0.0, 10, rng);
@@ -260,6 +266,15 @@ World make_field(const FieldParams& params) {
     add_trunk(world, (*at)[0], (*at)[1], trunk_m, trunk_height + 0.3 * crown_z, bark, rng);
     add_blob(world, {(*at)[0], (*at)[1], trunk_height + 0.3 * crown_z}, crown_xy, crown_z, leaves,
              rng);
+    world.obstacles.push_back(taken.back());
+  }
+  const std::vector<int> stone = add_shades(world, "rock", {120.f, 125.f, 130.f}, 0.3, 0.0, 6, rng);
+  const int rocks = static_cast<int>(std::lround(params.rocks * margin_share));
+  for (int i = 0; i < rocks; ++i) {  // low, flattened
+    const double radius = rng.uniform(0.1, 0.45), height = rng.uniform(0.08, 0.4);
+    const std::optional<cv::Vec2d> at = place(radius);
+    if (!at) break;
+    add_blob(world, {(*at)[0], (*at)[1], 0.2 * height}, radius, 0.8 * height, stone, rng);
     world.obstacles.push_back(taken.back());
   }
   const int bushes = static_cast<int>(std::lround(params.bushes * margin_share));

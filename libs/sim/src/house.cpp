@@ -89,8 +89,9 @@ std::vector<std::pair<double, double>> openings_in(const std::vector<Door>& door
   return openings;
 }
 
-// The jambs and the lintel's underside of a doorway, closing the wall's thickness.
-void add_door_frame(World& world, const Door& door, int material) {
+// The jambs and the lintel's underside of a doorway, closing the wall's thickness, and the
+// threshold on the floor between them.
+void add_door_frame(World& world, const Door& door, int material, int threshold) {
   const float height = static_cast<float>(kDoorHeight_m);
   const auto corner = [&](double along, double across, float z) {
     return door.along_x ? cv::Vec3f(static_cast<float>(along), static_cast<float>(across), z)
@@ -104,11 +105,12 @@ void add_door_frame(World& world, const Door& door, int material) {
                      corner(along, door.wall_high, height), corner(along, door.wall_low, height)},
                     uv, material);
   }
-  build::add_quad(
-      world,
-      {corner(door.from, door.wall_low, height), corner(door.to, door.wall_low, height),
-       corner(door.to, door.wall_high, height), corner(door.from, door.wall_high, height)},
-      uv, material);
+  for (const auto& [z, surface] : {std::pair{height, material}, std::pair{0.f, threshold}}) {
+    build::add_quad(world,
+                    {corner(door.from, door.wall_low, z), corner(door.to, door.wall_low, z),
+                     corner(door.to, door.wall_high, z), corner(door.from, door.wall_high, z)},
+                    uv, surface);
+  }
 }
 
 // The wall's obstacle boxes between `low` and `high` along it, left open at the doorways.
@@ -132,6 +134,18 @@ void add_wall_obstacles(World& world, bool along_x, double start, double end, do
     done = b;
   }
   add(done, end);
+}
+
+// A table: a top 4 cm thick at `height` on four legs, open underneath (a low camera sees
+// through it).
+void add_table(World& world, const FloorBox& box, float height, int material) {
+  constexpr double kLeg_m = 0.05, kInset_m = 0.04;
+  build::add_box(world, box, height, material, height - 0.04f);
+  for (const double x : {box.min_x_m + kInset_m, box.max_x_m - kInset_m - kLeg_m}) {
+    for (const double y : {box.min_y_m + kInset_m, box.max_y_m - kInset_m - kLeg_m}) {
+      build::add_box(world, {x, y, x + kLeg_m, y + kLeg_m}, height - 0.04f, material);
+    }
+  }
 }
 
 // The widths of one row of rooms along the corridor.
@@ -253,7 +267,8 @@ World make_house(const HouseParams& params) {
                                         textures::ceiling(width_m, depth_m, ppm, rng)));
     world.regions.push_back({area.name, box});
   }
-  for (const Door& d : doors) add_door_frame(world, d, frame_material);
+  const int threshold_material = build::add_colour(world, "threshold", {60.f, 85.f, 110.f});
+  for (const Door& d : doors) add_door_frame(world, d, frame_material, threshold_material);
 
   // Walls between areas are obstacles, open at the doorways; the outer walls are the floor's
   // edge.
@@ -294,7 +309,11 @@ World make_house(const HouseParams& params) {
       if (!free) continue;
       const int material = build::add_material(
           world, area.name + " furniture " + std::to_string(placed), textures::furniture(ppm, rng));
-      build::add_box(world, box, static_cast<float>(rng.uniform(0.4, 1.9)), material);
+      if (rng.uniform(0.0, 1.0) < 0.35) {
+        add_table(world, box, static_cast<float>(rng.uniform(0.45, 0.8)), material);
+      } else {  // a cupboard, a bed, a sofa, a shelf...
+        build::add_box(world, box, static_cast<float>(rng.uniform(0.4, 1.9)), material);
+      }
       world.obstacles.push_back(box);
       ++placed;
     }

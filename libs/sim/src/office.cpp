@@ -37,7 +37,7 @@ cv::Mat office_wall(double width_m, double height_m, double px_per_m, const cv::
 
 // Grey carpet tiles of 0.5 m, each a little lighter or darker.
 cv::Mat carpet_tiles(double width_m, double depth_m, double px_per_m, cv::RNG& rng) {
-  const cv::Scalar grey(120, 115, 110);
+  const cv::Scalar grey = textures::random_colour(rng, 70, 150);
   cv::Mat image(px(depth_m, px_per_m), px(width_m, px_per_m), CV_8UC3, grey);
   const int tile = px(0.5, px_per_m);
   for (int y = 0; y < image.rows; y += tile) {
@@ -144,10 +144,21 @@ World make_office(const OfficeParams& params) {
       build::add_material(world, "ceiling", ceiling_lights(size_x, size_y, ppm, lights, rng)));
 
   // Identical desks in rows, columns between every column_every-th pair of desks.
-  const DeskMaterials desk{build::add_colour(world, "desk top", {150.f, 185.f, 210.f}),
-                           build::add_colour(world, "desk panel", {140.f, 140.f, 135.f}),
-                           build::add_colour(world, "screen", {35.f, 30.f, 30.f}),
-                           build::add_colour(world, "chair", {90.f, 50.f, 40.f})};
+  // The office's furniture scheme (the same for every desk) depends on the seed: a desk top
+  // of light or dark wood, white or grey laminate; grey panels; a dark chair.
+  const auto colour = [&](int low, int high) {
+    const cv::Scalar c = textures::random_colour(rng, low, high);
+    return cv::Vec3f(static_cast<float>(c[0]), static_cast<float>(c[1]), static_cast<float>(c[2]));
+  };
+  const std::array<cv::Vec3f, 4> tops{
+      {{150.f, 185.f, 210.f}, {60.f, 90.f, 125.f}, {225.f, 225.f, 220.f}, {150.f, 155.f, 160.f}}};
+  const float panel_grey = static_cast<float>(rng.uniform(90, 200));
+  const DeskMaterials desk{
+      build::add_colour(world, "desk top",
+                        tops[rng.uniform(0, 4)] * static_cast<float>(rng.uniform(0.9, 1.1))),
+      build::add_colour(world, "desk panel", {panel_grey, panel_grey, panel_grey * 0.95f}),
+      build::add_colour(world, "screen", {35.f, 30.f, 30.f}),
+      build::add_colour(world, "chair", colour(25, 110))};
   const int column_material = build::add_colour(world, "column", {200.f, 200.f, 195.f});
   for (int row = 0; row < params.rows; ++row) {
     for (int column = 0; column < params.desks_per_row; ++column) {

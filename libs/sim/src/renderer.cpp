@@ -176,6 +176,10 @@ Renderer::Renderer(const World& world, const RenderParams& params)
   if (!impl.device) throw Error("renderer: cannot create an Embree device");
   impl.scene = rtcNewScene(impl.device);
   rtcSetSceneBuildQuality(impl.scene, RTC_BUILD_QUALITY_HIGH);
+  // Watertight: a ray through the edge two triangles share hits one of them. Without it, the
+  // rays of a camera standing on the line of a long edge (the diagonal of a field's ground,
+  // through its centre) slip through it and draw a line of background.
+  rtcSetSceneFlags(impl.scene, RTC_SCENE_FLAG_ROBUST);
   RTCGeometry geometry = rtcNewGeometry(impl.device, RTC_GEOMETRY_TYPE_TRIANGLE);
   auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0,
                                                                RTC_FORMAT_FLOAT3, 3 * sizeof(float),

@@ -181,16 +181,33 @@ std::vector<TimedPose> wander(SpecArguments& args, const World& world, const std
   const double wobble = deg_to_rad(args.number("wobble_deg", 15.0));
   const double wobble_period = args.number("wobble_period_s", 2.0);
   const double clearance = args.number("clearance_m", 0.25);
-  cv::RNG rng(static_cast<std::uint64_t>(args.number("seed", 1)) * 2654435761ULL + 7);
+  const double seed = args.number("seed", 1);
+  if (!(seed >= 0.0 && seed <= 1e9 && seed == std::floor(seed))) {
+    throw UsageError("trajectory '" + spec + "': seed must be a whole number in [0, 1e9]");
+  }
+  cv::RNG rng(static_cast<std::uint64_t>(seed) * 2654435761ULL + 7);
   if (mean_turn_rate < 0.0 || wobble < 0.0 || clearance < 0.0) {
     throw UsageError("trajectory '" + spec +
                      "': turn_rate_deg_s, wobble_deg and clearance_m must not be negative");
   }
   require_positive(wobble_period, "wobble_period_s", spec);
+  if (x == centre_x && y == centre_y) {  // the default start: the free point nearest the centre
+    for (int ring = 1; ring < 400 && !world.is_free(x, y, clearance); ++ring) {
+      for (int k = 0; k < 8 * ring && !world.is_free(x, y, clearance); ++k) {
+        const double angle = kTwoPi * k / (8 * ring);
+        x = centre_x + 0.05 * ring * std::cos(angle);
+        y = centre_y + 0.05 * ring * std::sin(angle);
+      }
+    }
+  }
   if (!world.is_free(x, y, clearance)) {
     log_warning("trajectory '" + spec + "': the start is closer than clearance_m to an obstacle");
   }
 
+  constexpr double kMaxFrames = 1e6;  // more than a day at 10 frames per second
+  if (!(seconds * fps < kMaxFrames)) {
+    throw UsageError("trajectory '" + spec + "': more than 1000000 poses");
+  }
   const int frames = static_cast<int>(std::floor(seconds * fps + 1e-9)) + 1;
   const double step = speed / fps;
   const double lookahead = std::max(0.5 * speed, 2.0 * step);
@@ -200,32 +217,19 @@ std::vector<TimedPose> wander(SpecArguments& args, const World& world, const std
   std::vector<TimedPose> poses;
   for (int frame = 0; frame < frames; ++frame) {
     const double time = frame / fps;
-    poses.push_back(
-        {time,
-         {x, y, 0.0, wrap_angle(travel + wobble_amplitude * std::sin(wobble_phase)), 0.0, 0.0},
-         {}});
     if (time >= next_change_s) {  // a new turn: mostly gentle, sometimes sharp
       const double sign = rng.uniform(0, 2) == 0 ? -1.0 : 1.0;
       turn_rate = sign * mean_turn_rate * -std::log(1.0 - rng.uniform(0.0, 1.0));
       next_change_s = time + rng.uniform(0.5, 3.0);
     }
-    const double previous_phase = wobble_phase;
-    wobble_phase += wobble_rate / fps;
-    if (std::floor(wobble_phase / kTwoPi) != std::floor(previous_phase / kTwoPi)) {
-      wobble_amplitude = wobble * rng.uniform(0.7, 1.3);  // each cycle a little different
-      wobble_rate = kTwoPi / (wobble_period * rng.uniform(0.7, 1.3));
-    }
-    travel = wrap_angle(travel + turn_rate / fps);
+    if (frame > 0) travel = wrap_angle(travel + turn_rate / fps);
     // Steer away from what lies ahead: the smallest turn, either way, that leaves the path
     // ahead free; stand and turn when none does.
+    // (A walker closer than clearance_m to something, at its start, keeps out of it only.)
+    const double keep = world.is_free(x, y, clearance) ? clearance : 0.0;
     const auto clear = [&](double direction) {
-      for (double ahead = step; ahead <= lookahead + 1e-9; ahead += step) {
-        if (!world.is_free(x + ahead * std::cos(direction), y + ahead * std::sin(direction),
-                           clearance)) {
-          return false;
-        }
-      }
-      return true;
+      return world.segment_is_free(x, y, x + lookahead * std::cos(direction),
+                                   y + lookahead * std::sin(direction), keep);
     };
     bool moving = clear(travel);
     for (int k = 1; !moving && k <= 18; ++k) {
@@ -238,6 +242,17 @@ std::vector<TimedPose> wander(SpecArguments& args, const World& world, const std
           break;
         }
       }
+    }
+    // The body faces the direction it is about to travel in, give or take the wobble.
+    poses.push_back(
+        {time,
+         {x, y, 0.0, wrap_angle(travel + wobble_amplitude * std::sin(wobble_phase)), 0.0, 0.0},
+         {}});
+    const double previous_phase = wobble_phase;
+    wobble_phase += wobble_rate / fps;
+    if (std::floor(wobble_phase / kTwoPi) != std::floor(previous_phase / kTwoPi)) {
+      wobble_amplitude = wobble * rng.uniform(0.7, 1.3);  // each cycle a little different
+      wobble_rate = kTwoPi / (wobble_period * rng.uniform(0.7, 1.3));
     }
     if (moving) {
       x += step * std::cos(travel);

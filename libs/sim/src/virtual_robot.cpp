@@ -36,7 +36,8 @@ double VirtualRobot::move(double turn_rad, double distance_m) {
     const double increment = std::min(kIncrement_m, wanted - driven);
     const double x = pose_.x_m + increment * std::cos(pose_.heading_rad);
     const double y = pose_.y_m + increment * std::sin(pose_.heading_rad);
-    if (!world_.is_free(x, y, clearance)) break;
+    // The whole increment, not only its end: a wall thinner than it must still stop the robot.
+    if (!world_.segment_is_free(pose_.x_m, pose_.y_m, x, y, clearance)) break;
     pose_.x_m = x;
     pose_.y_m = y;
     driven += increment;

@@ -60,6 +60,9 @@ const std::vector<std::string>& world_families() {
 }
 
 bool is_obj_path(const std::string& spec) {
+  const std::string family(trim(spec.substr(0, spec.find(':'))));
+  const std::vector<std::string>& families = world_families();
+  if (std::find(families.begin(), families.end(), family) != families.end()) return false;
   std::string lower = spec;
   std::transform(lower.begin(), lower.end(), lower.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });

@@ -3,7 +3,7 @@
 // Mangan; BoB robotics): flat textured ground with thousands of grass tussocks (clusters of
 // thin tall blades, greens and browns), bushes and trees, a tree line and hills on the
 // horizon, and a sky. Panoramas from 2 cm to 1.5 m above the ground are informative.
-// Tree trunks and bushes are obstacles; grass is not (a robot pushes through it).
+// Tree trunks, rocks and bushes are obstacles; grass is not (a robot pushes through it).
 // Seeded and deterministic. The walkable area (World::floor) is the square
 // [0, size_m] × [0, size_m]; tussocks also grow a few metres beyond it.
 
@@ -20,8 +20,9 @@ struct FieldParams {
   double grass_max_m = 0.4;
   int bushes = 12;                 // obstacles, 0.3-0.9 m across
   int trees = 6;                   // obstacles: a trunk and a crown above 2 m
+  int rocks = 8;                   // obstacles, low and flattened, 0.2-0.9 m across
   std::string horizon = "trees";   // trees (a tree line before hills), hills, or none
-  double texture_px_per_m = 40.0;  // ground texture resolution
+  double texture_px_per_m = 40.0;  // ground texture resolution (at most 2048 px a side)
   int seed = 1;
 };
 
@@ -34,6 +35,7 @@ void read_field_keys(const Reader& reader, FieldParams& params) {
   reader.read("grass_max_m", params.grass_max_m, 0.01, 1.0);
   reader.read("bushes", params.bushes, 0, 200);
   reader.read("trees", params.trees, 0, 100);
+  reader.read("rocks", params.rocks, 0, 200);
   reader.read("horizon", params.horizon, {"trees", "hills", "none"});
   reader.read("texture_px_per_m", params.texture_px_per_m, 5.0, 200.0);
   reader.read("seed", params.seed, 0, 1'000'000'000);

@@ -8,7 +8,8 @@
 //                           counter-clockwise (negative speed: clockwise)
 //   walk    random walk:    x, y, heading_deg, steps (200), step_m (0.05), turn_deg (20), seed (1);
 //                           turns away from walls and furniture
-//   wander  animal-like:    x, y, heading_deg, length_m (10) or duration_s, speed_m_s (0.2),
+//   wander  animal-like:    x, y (default: the free point nearest the centre), heading_deg,
+//   length_m (10) or duration_s, speed_m_s (0.2),
 //                           turn_rate_deg_s (30: mean of the exponentially distributed turn
 //                           rates, changed every 0.5-3 s), wobble_deg (15) and wobble_period_s
 //                           (2: heading oscillation about the direction of travel),

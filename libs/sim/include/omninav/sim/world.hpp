@@ -59,6 +59,10 @@ struct World {
   std::vector<Region> regions;
 
   bool is_free(double x_m, double y_m, double clearance_m = 0.0) const;
+  // True when every point of the segment from (x0, y0) to (x1, y1) is free: inside the floor
+  // and clear of every obstacle by clearance_m (a thin wall between the ends is a collision).
+  bool segment_is_free(double x0_m, double y0_m, double x1_m, double y1_m,
+                       double clearance_m = 0.0) const;
   // The region containing (x, y), or nullptr when none does.
   const Region* region_at(double x_m, double y_m) const;
 };

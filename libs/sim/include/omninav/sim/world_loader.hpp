@@ -38,8 +38,8 @@ void load_worlds_config(const ConfigReader& config, WorldsConfig& worlds);
 // The generated families, in the order help texts list them.
 const std::vector<std::string>& world_families();
 
-// True when `spec` names a Wavefront OBJ file rather than a family: it ends in .obj (any
-// case), contains a '/', or names an existing file.
+// True when `spec` names a Wavefront OBJ file rather than a family: it does not start with a
+// family's name, and it ends in .obj (any case), contains a '/', or names an existing file.
 bool is_obj_path(const std::string& spec);
 
 // A world spec `family:key=value,...` split into its family and keys. Reading a key checks
