@@ -1,33 +1,20 @@
 #pragma once
-// Loading the YAML files of the configuration folder, each whole and strictly: every section a
-// file has is read by its component's loader, then unknown keys are errors.
+// The configuration folder's loaders live in libs/evaluation (config_folder.hpp), because
+// `omninav evaluate` loads the same files as the commands; the commands name them unqualified.
 
-#include <filesystem>
-
-#include "omninav/compass/compass_config.hpp"
-#include "omninav/core/panorama.hpp"
-#include "omninav/lattice/organise.hpp"
-#include "omninav/memory/memory_config.hpp"
-#include "omninav/navigation/navigator.hpp"
-#include "omninav/navigation/trials.hpp"
-#include "omninav/omni/unwrap.hpp"
-#include "omninav/sim/virtual_robot.hpp"
-#include "omninav/sim/world_loader.hpp"
+#include "omninav/evaluation/config_folder.hpp"
 
 namespace omninav::cli {
 
-struct CameraConfig {
-  PanoramaGeometry panorama;
-  omni::UnwrapParams unwrap;
-};
-
-// <config_dir>/camera.yaml: sections panorama and unwrap.
-CameraConfig load_camera_config(const std::filesystem::path& config_dir);
-
-// <config_dir>/worlds.yaml: sections room, house, field, office, obj and render; the render
-// geometry is `panorama`.
-sim::WorldsConfig load_worlds_config(const std::filesystem::path& config_dir,
-                                     const PanoramaGeometry& panorama);
+using evaluation::CameraConfig;
+using evaluation::load_camera_config;
+using evaluation::load_compass_config;
+using evaluation::load_lattice_config;
+using evaluation::load_memory_config;
+using evaluation::load_navigation_config;
+using evaluation::load_worlds_config;
+using evaluation::NavigationConfig;
+using evaluation::use_compass_config;
 
 // The help of a --world option, the same in every command that renders.
 inline constexpr const char* kWorldOptionHelp =
@@ -41,26 +28,5 @@ inline constexpr const char* kWorldOptionHelp =
     "  office (rows, desks_per_row, desk_pitch_m, row_pitch_m, column_every, height_m, "
     "clutter 0-1, seed): identical desks at a regular pitch\n"
     "Example: room:seed=3,size_x_m=9,boxes=12,walls=plain (docs/worlds.md lists every key)";
-
-// <config_dir>/compass.yaml: sections distance, minimiser, phase, subpixel, sampling,
-// confidence and input (libs/compass/.../compass_config.hpp).
-compass::CompassConfig load_compass_config(const std::filesystem::path& config_dir);
-
-// <config_dir>/memory.yaml: sections signature, exploration and localisation
-// (libs/memory/.../memory_config.hpp).
-memory::MemoryConfig load_memory_config(const std::filesystem::path& config_dir);
-
-// <config_dir>/lattice.yaml: section organise (libs/lattice/.../organise.hpp).
-lattice::OrganiseParams load_lattice_config(const std::filesystem::path& config_dir);
-
-struct NavigationConfig {
-  navigation::RouteParams route;
-  navigation::NavigatorParams navigator;
-  sim::RobotParams robot;
-  navigation::TrialParams trials;
-};
-
-// <config_dir>/navigation.yaml: sections route, navigator, robot and trials.
-NavigationConfig load_navigation_config(const std::filesystem::path& config_dir);
 
 }  // namespace omninav::cli

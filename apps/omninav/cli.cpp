@@ -97,6 +97,7 @@ int run(const std::vector<std::string>& args) {
   add_route_command(app, global);
   add_navigate_command(app, global);
   add_demo_command(app, global);
+  add_evaluate_command(app, global);
 
   try {
     // An unknown command is named as such (CLI11 would say "A subcommand is required").

@@ -47,5 +47,6 @@ void add_organise_command(CLI::App& app, const GlobalOptions& global);
 void add_route_command(CLI::App& app, const GlobalOptions& global);
 void add_navigate_command(CLI::App& app, const GlobalOptions& global);
 void add_demo_command(CLI::App& app, const GlobalOptions& global);
+void add_evaluate_command(CLI::App& app, const GlobalOptions& global);
 
 }  // namespace omninav::cli

@@ -15,9 +15,8 @@
 
 #include "app_config.hpp"
 #include "cli.hpp"
+#include "omninav/compass/compass_run.hpp"
 #include "omninav/compass/evaluation.hpp"
-#include "omninav/compass/resample.hpp"
-#include "omninav/compass/visual_compass.hpp"
 #include "omninav/core/angles.hpp"
 #include "omninav/core/errors.hpp"
 #include "omninav/core/log.hpp"
@@ -133,11 +132,6 @@ void run_compass(const GlobalOptions& global, const CompassOptions& options) {
   }
   compass::CompassConfig config = load_compass_config(global.config_dir);
   compass::CompassParams params = config.compass;
-  if (params.levelling.enabled) {
-    const PanoramaGeometry camera = load_camera_config(global.config_dir).panorama;
-    params.levelling.elevation_min_rad = camera.elevation_min_rad;
-    params.levelling.elevation_max_rad = camera.elevation_max_rad;
-  }
   apply_method(options.method, params);
   if (!options.minimiser.empty()) {
     params.matcher.minimiser.kind = compass::minimiser_kind_of(options.minimiser);
@@ -159,8 +153,8 @@ void run_compass(const GlobalOptions& global, const CompassOptions& options) {
   std::optional<omni::Unwrapper> unwrapper;
 
   std::vector<Row> rows;
-  std::unique_ptr<compass::VisualCompass> compass;
-  std::optional<int> input_width;
+  compass::CompassRun compass(params, width);
+  int input_width = 0;  // the first panorama's columns
   const auto start = std::chrono::steady_clock::now();
   {
     Progress progress("compass", reader->size());
@@ -174,30 +168,17 @@ void run_compass(const GlobalOptions& global, const CompassOptions& options) {
         }
         panorama = unwrapper->unwrap(panorama);
       }
-      if (panorama.empty()) throw InputError(frame->source + ": empty image");
-      if (!input_width) {
+      if (!compass.started()) {
         input_width = panorama.cols;
-        if (width && *width != panorama.cols) {
-          log_info("resampling " + std::to_string(panorama.cols) + "-column panoramas to " +
-                   std::to_string(*width) +
-                   " columns (circular tent filter, front kept at 0.25*width, rows unchanged)");
-        }
-      } else if (panorama.cols != *input_width) {
-        throw InputError(frame->source + ": " + std::to_string(panorama.cols) +
-                         " columns where the sequence's first image has " +
-                         std::to_string(*input_width));
-      }
-      if (width && *width != panorama.cols) {
-        panorama = compass::resample_columns(panorama, *width);
-      }
-      if (!compass) {
         if (options.truth && !frame->truth) {
           throw UsageError(frame->source + ": --truth needs ground truth, and " +
                            options.input.string() + " has none for its first image");
         }
-        // §4.1: with an absolute heading available, the compass starts from it.
-        const double initial = frame->truth ? frame->truth->heading_rad : 0.0;
-        compass = std::make_unique<compass::VisualCompass>(params, initial);
+        if (width && *width != panorama.cols && !panorama.empty()) {
+          log_info("resampling " + std::to_string(panorama.cols) + "-column panoramas to " +
+                   std::to_string(*width) +
+                   " columns (circular tent filter, front kept at 0.25*width, rows unchanged)");
+        }
         log_info(
             std::string("visual compass: ") + describe(params.sampling) + ", minimiser " +
             to_string(params.matcher.minimiser.kind) + ", field of view " +
@@ -205,8 +186,10 @@ void run_compass(const GlobalOptions& global, const CompassOptions& options) {
             ", sub-pixel " + to_string(params.matcher.subpixel.mode) +
             (frame->truth ? ", started at the true heading" : ", started at 0"));
       }
-      const compass::CompassFrame compass_frame(panorama, frame->index, frame->source);
-      rows.push_back({compass->push(compass_frame), frame->source, frame->time_s, frame->truth});
+      const std::optional<double> truth_heading =
+          frame->truth ? std::optional<double>(frame->truth->heading_rad) : std::nullopt;
+      rows.push_back({compass.push(panorama, frame->index, frame->source, truth_heading),
+                      frame->source, frame->time_s, frame->truth});
       progress.advance();
     }
   }
@@ -250,7 +233,7 @@ void run_compass(const GlobalOptions& global, const CompassOptions& options) {
       log_warning(std::to_string(rows.size() - estimates.size()) +
                   " frames have no ground truth and are left out of the statistics");
     }
-    evaluation = compass::evaluate_compass(estimates, truth, compass->reference_count());
+    evaluation = compass::evaluate_compass(estimates, truth, compass.reference_count());
     if (!global.quiet && options.out != "-") {
       std::cout << compass::format_evaluation_table(label, method, *evaluation);
     }
@@ -258,7 +241,7 @@ void run_compass(const GlobalOptions& global, const CompassOptions& options) {
     const compass::CompassEstimate& last = rows.back().estimate;
     int flagged = 0;
     for (const Row& row : rows) flagged += row.estimate.flags.ok() ? 0 : 1;
-    std::cout << rows.size() << " frames, " << compass->reference_count() << " reference frames ("
+    std::cout << rows.size() << " frames, " << compass.reference_count() << " reference frames ("
               << method << "); final heading " << fixed(rad_to_deg(wrap_angle(last.heading_rad)), 3)
               << " deg (" << fixed(rad_to_deg(last.heading_rad), 3) << " deg unwrapped); "
               << flagged << " frames with a low-confidence flag\n";
@@ -267,7 +250,7 @@ void run_compass(const GlobalOptions& global, const CompassOptions& options) {
     std::ostringstream csv;
     csv << "dataset,method,width_px,reference_frames,total_frames,max_abs_error_deg,"
            "mean_error_deg,std_error_deg,slope_deg_per_s,slope_deg_per_m,final_error_deg\n";
-    csv << csv_quoted(label) << ',' << csv_quoted(method) << ',' << (width ? *width : *input_width)
+    csv << csv_quoted(label) << ',' << csv_quoted(method) << ',' << (width ? *width : input_width)
         << ',' << evaluation->reference_frames << ',' << evaluation->total_frames << ','
         << fixed(evaluation->error_deg.max_abs, 4) << ',' << fixed(evaluation->error_deg.mean, 4)
         << ','

@@ -1,12 +1,10 @@
 // omninav explore: a stream of panoramas into places of a visual memory (a .vmem map).
 #include <iostream>
-#include <sstream>
 
 #include "app_config.hpp"
 #include "cli.hpp"
 #include "omninav/core/errors.hpp"
 #include "omninav/core/log.hpp"
-#include "omninav/core/progress.hpp"
 #include "omninav/memory/exploration.hpp"
 #include "omninav/memory/map_file.hpp"
 #include "panorama_input.hpp"
@@ -29,12 +27,6 @@ struct ExploreOptions {
   bool overwrite = false;
 };
 
-std::string description_number(double value) {
-  std::ostringstream text;
-  text << value;
-  return text.str();
-}
-
 void run_explore(const GlobalOptions& global, const ExploreOptions& options) {
   memory::MemoryConfig config = load_memory_config(global.config_dir);
   memory::ExplorationParams& params = config.exploration;
@@ -42,11 +34,7 @@ void run_explore(const GlobalOptions& global, const ExploreOptions& options) {
   if (options.every_n_frames >= 0) params.every_n_frames = options.every_n_frames;
   if (options.every_m >= 0.0) params.every_m = options.every_m;
   if (!options.heading_source.empty()) params.heading_source = options.heading_source;
-  if (params.heading_source == "compass" || params.heading_source == "auto") {
-    const compass::CompassConfig compass = load_compass_config(global.config_dir);
-    params.compass = compass.compass;
-    params.compass_width_px = compass.width_px;
-  }
+  use_compass_config(global.config_dir, params);
   if (!options.colour.empty()) {
     config.map.signature.colour = signature::colour_mode_from_string(options.colour);
   }
@@ -79,52 +67,23 @@ void run_explore(const GlobalOptions& global, const ExploreOptions& options) {
 
   PanoramaInput input(options.input, global.config_dir, options.unwrap);
   const bool every_frame = options.all_frames || input.is_grid();
-  std::ostringstream description;
-  description << "omninav explore --input " << options.input.string() << "; ";
-  if (every_frame) {
-    description << "every frame a place";
-  } else {
-    description << "new_place_dissimilarity " << params.new_place_dissimilarity
-                << ", every_n_frames " << params.every_n_frames << ", every_m " << params.every_m;
-  }
-  description << ", heading_source " << params.heading_source;
   log_info("exploring " + input.describe() + (extending ? " into " : " into a new map ") +
            options.out.string() +
            (every_frame
                 ? " (every frame a place: " +
                       std::string(input.is_grid() ? "a grid database" : "--all-frames") + ")"
                 : ""));
-  memory::Explorer explorer(
-      memory, params, options.input.string(), description.str(),
-      input.is_grid() ? memory::FrameOrder::kUnordered : memory::FrameOrder::kStream);
-  {
-    Progress progress("explore", input.size());
-    while (std::optional<io::Frame> frame = input.next()) {
-      if (!every_frame && params.every_m > 0.0 && !frame->truth) {
-        // A distance travelled needs poses: without them --every-m would do nothing.
-        throw UsageError(frame->source + ": no pose, and a place every " +
-                         description_number(params.every_m) +
-                         " m (--every-m, memory.yaml exploration.every_m) needs the input's "
-                         "poses; give --every-n-frames or --dissimilarity instead");
-      }
-      if (every_frame) {
-        explorer.add_place(*frame);
-      } else {
-        explorer.add(*frame);
-      }
-      progress.advance();
-    }
-  }
-  if (explorer.frames_seen() == 0) throw InputError(options.input.string() + ": no frames");
+  const memory::Run run =
+      memory::explore_frames(memory, params, options.input.string(), input.is_grid(),
+                             options.all_frames, input.size(), [&input] { return input.next(); });
   memory::save_map(memory, options.out, {.overwrite = options.overwrite, .after_place = {}});
   const std::size_t added = memory.place_count() - places_before;
-  summary(global) << "explored " << explorer.frames_seen() << " frames of "
-                  << options.input.string() << ": added " << added
-                  << (added == 1 ? " place" : " places") << " (" << memory.place_count()
-                  << " in the map, " << memory.edge_count() << " edges, " << memory.runs().size()
-                  << (memory.runs().size() == 1 ? " run" : " runs")
-                  << ", headings: " << explorer.run().heading_source << ") to "
-                  << options.out.string() << "\n";
+  summary(global) << "explored " << run.frames << " frames of " << options.input.string()
+                  << ": added " << added << (added == 1 ? " place" : " places") << " ("
+                  << memory.place_count() << " in the map, " << memory.edge_count() << " edges, "
+                  << memory.runs().size() << (memory.runs().size() == 1 ? " run" : " runs")
+                  << ", headings: " << run.heading_source << ") to " << options.out.string()
+                  << "\n";
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 
 #include "app_config.hpp"
 #include "cli.hpp"
+#include "floor_plan.hpp"
 #include "omninav/core/angles.hpp"
 #include "omninav/core/errors.hpp"
 #include "omninav/core/log.hpp"
@@ -21,7 +22,6 @@
 #include "omninav/navigation/robot_worlds.hpp"
 #include "omninav/navigation/trials.hpp"
 #include "panorama_input.hpp"
-#include "render_job.hpp"
 
 namespace omninav::cli {
 namespace {
@@ -170,22 +170,12 @@ void evaluate_trials(const GlobalOptions& global, const NavigateOptions& options
     throw UsageError(options.map.string() +
                      ": --trials scores against ground truth, and the map's places have none");
   }
-  std::vector<Eigen::Vector2d> mapped;
-  std::vector<cv::Point2d> points;
-  for (std::size_t i = 0; i < memory.place_count(); ++i) {
-    mapped.emplace_back(memory.place(i).truth->x_m, memory.place(i).truth->y_m);
-    points.emplace_back(mapped.back().x(), mapped.back().y());
-  }
-  const double spacing_m = memory::typical_spacing(points);
   navigation.trials.count = options.trials;
   navigation.trials.seed = static_cast<std::uint32_t>(options.seed);
-  const std::vector<navigation::Trial> trials =
-      navigation::random_trials(world, mapped, spacing_m, navigation.robot.radius_m,
-                                memory.place(0).truth->z_m, navigation.trials);
-  const std::vector<navigation::TrialOutcome> outcomes = navigation::run_trials(
-      trials, world, renderer, places, localise, navigation::match_limit(memory, navigation.route),
-      navigation::homing_scale(memory, places), navigation.route, navigation.navigator,
-      navigation.robot, navigation.trials.goal_radius_spacings * spacing_m);
+  const navigation::MapTrials map_trials =
+      navigation::run_map_trials(memory, places, localise, world, renderer, navigation.route,
+                                 navigation.navigator, navigation.robot, navigation.trials);
+  const std::vector<navigation::TrialOutcome>& outcomes = map_trials.outcomes;
   write_trials_csv(outcomes, memory.place(0).heading_rad.value_or(0.0), options.out);
   // The trials worth a look: those that missed their goal and those that drove the long way.
   for (std::size_t i = 0; i < outcomes.size(); ++i) {
@@ -199,7 +189,7 @@ void evaluate_trials(const GlobalOptions& global, const NavigateOptions& options
   }
   summary(global) << navigation::summarise(outcomes).text() << " (seed " << options.seed
                   << "; reached: stopped within " << std::fixed << std::setprecision(2)
-                  << navigation.trials.goal_radius_spacings * spacing_m
+                  << map_trials.goal_radius_m
                   << " m of the goal); trials: " << (options.out / "trials.csv").string() << "\n";
 }
 

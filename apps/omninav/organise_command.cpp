@@ -30,16 +30,9 @@ void run_organise(const GlobalOptions& global, const OrganiseOptions& options) {
       options.picture.empty() ? std::filesystem::path(options.map).replace_extension(".lattice.png")
                               : options.picture;
   check_output_path(picture);  // before the work, not after it
-  memory::VisualMemory memory = memory::load_map(options.map);
-  const lattice::OrganiseResult organised = lattice::organise(memory, params);
-  std::vector<memory::LatticePosition> positions;
-  for (std::size_t i = 0; i < memory.place_count(); ++i) {
-    positions.push_back(*memory.place(i).lattice);
-    if (!std::isfinite(positions.back().x) || !std::isfinite(positions.back().y)) {
-      throw InputError(options.map.string() + ": the lattice has no finite position for place " +
-                       std::to_string(i) + "; the map is left unchanged");
-    }
-  }
+  const lattice::OrganisedMap result = lattice::organise_map_file(options.map, params);
+  const memory::VisualMemory& memory = result.memory;
+  const lattice::OrganiseResult& organised = result.organised;
 
   const lattice::DistanceCalibration& calibration = organised.calibration;
   summary(global) << std::fixed << std::setprecision(3) << "organised " << memory.place_count()
@@ -57,8 +50,7 @@ void run_organise(const GlobalOptions& global, const OrganiseOptions& options) {
                   << organised.lattice.motion_constraints
                   << " motions (directions from the phases)\n"
                   << "  solver:   " << organised.lattice.summary << "\n";
-  const std::optional<lattice::LatticeEvaluation> evaluation =
-      lattice::evaluate_against_truth(memory, organised.motions.empty());
+  const std::optional<lattice::LatticeEvaluation>& evaluation = result.evaluation;
   if (evaluation) {
     // An RMSE over no places (a map without interior places) is NaN: said in words.
     const auto rmse = [](double value, const char* places) {
@@ -81,7 +73,7 @@ void run_organise(const GlobalOptions& global, const OrganiseOptions& options) {
   }
   eval::save_png(lattice::lattice_picture(memory, organised, evaluation), picture);
   // The map last: a failure above leaves it as it was.
-  memory::save_lattice_positions(options.map, positions);
+  memory::save_lattice_positions(options.map, result.positions);
   summary(global) << "  picture:  " << picture.string() << "\n";
 }
 

@@ -4,11 +4,12 @@
 
 #include "app_config.hpp"
 #include "cli.hpp"
+#include "floor_plan.hpp"
 #include "omninav/core/angles.hpp"
 #include "omninav/core/log.hpp"
 #include "omninav/eval/contact_sheet.hpp"
 #include "omninav/eval/png.hpp"
-#include "render_job.hpp"
+#include "omninav/evaluation/render_database.hpp"
 
 namespace omninav::cli {
 namespace {
@@ -45,7 +46,7 @@ void run_render(const GlobalOptions& global, const RenderOptions& options) {
            std::to_string(panorama.width_px) + "x" + std::to_string(panorama.height_px) + " in " +
            world.name + " along '" + options.trajectory + "'");
 
-  const std::vector<cv::Mat> previews = render_database(
+  const std::vector<cv::Mat> previews = evaluation::render_database(
       renderer, trajectory, options.out,
       "omninav render --world " + options.world + " --trajectory " + options.trajectory,
       options.force);

@@ -8,11 +8,13 @@
 #include <sstream>
 #include <utility>
 
+#include "omninav/core/errors.hpp"
 #include "omninav/core/log.hpp"
 #include "omninav/core/pose.hpp"
 #include "omninav/eval/plot.hpp"
 #include "omninav/lattice/stiffness.hpp"
 #include "omninav/memory/localisation.hpp"
+#include "omninav/memory/map_file.hpp"
 
 namespace omninav::lattice {
 namespace {
@@ -161,6 +163,22 @@ cv::Mat lattice_picture(const memory::VisualMemory& memory, const OrganiseResult
     cv::hconcat(picture, truth.render(), picture);
   }
   return picture;
+}
+
+OrganisedMap organise_map_file(const std::filesystem::path& map_file,
+                               const OrganiseParams& params) {
+  OrganisedMap result{memory::load_map(map_file), {}, std::nullopt, {}};
+  result.organised = organise(result.memory, params);
+  for (std::size_t i = 0; i < result.memory.place_count(); ++i) {
+    const memory::LatticePosition& position = *result.memory.place(i).lattice;
+    if (!std::isfinite(position.x) || !std::isfinite(position.y)) {
+      throw InputError(map_file.string() + ": the lattice has no finite position for place " +
+                       std::to_string(i) + "; the map is left unchanged");
+    }
+    result.positions.push_back(position);
+  }
+  result.evaluation = evaluate_against_truth(result.memory, result.organised.motions.empty());
+  return result;
 }
 
 }  // namespace omninav::lattice

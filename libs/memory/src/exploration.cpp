@@ -12,6 +12,7 @@
 #include "omninav/core/config.hpp"
 #include "omninav/core/errors.hpp"
 #include "omninav/core/panorama.hpp"
+#include "omninav/core/progress.hpp"
 #include "omninav/signature/dissimilarity.hpp"
 #include "omninav/signature/motion.hpp"
 #include "omninav/signature/phase_heading.hpp"
@@ -250,6 +251,42 @@ PlaceIndex Explorer::make_place(const io::Frame& frame, const signature::Signatu
   metres_since_place_ = 0.0;
   memory_.runs()[run_index_].places += 1;
   return index;
+}
+
+Run explore_frames(VisualMemory& memory, const ExplorationParams& params, const std::string& input,
+                   bool is_grid, bool all_frames, std::size_t frame_count,
+                   const std::function<std::optional<io::Frame>()>& next) {
+  const bool every_frame = all_frames || is_grid;
+  std::ostringstream description;
+  description << "omninav explore --input " << input << "; ";
+  if (every_frame) {
+    description << "every frame a place";
+  } else {
+    description << "new_place_dissimilarity " << params.new_place_dissimilarity
+                << ", every_n_frames " << params.every_n_frames << ", every_m " << params.every_m;
+  }
+  description << ", heading_source " << params.heading_source;
+  Explorer explorer(memory, params, input, description.str(),
+                    is_grid ? FrameOrder::kUnordered : FrameOrder::kStream);
+  Progress progress("explore", frame_count);
+  while (std::optional<io::Frame> frame = next()) {
+    if (!every_frame && params.every_m > 0.0 && !frame->truth) {
+      // A distance travelled needs poses: without them every_m would do nothing.
+      std::ostringstream message;
+      message << frame->source << ": no pose, and a place every " << params.every_m
+              << " m (--every-m, memory.yaml exploration.every_m) needs the input's poses; give "
+                 "--every-n-frames or --dissimilarity instead";
+      throw UsageError(message.str());
+    }
+    if (every_frame) {
+      explorer.add_place(*frame);
+    } else {
+      explorer.add(*frame);
+    }
+    progress.advance();
+  }
+  if (explorer.frames_seen() == 0) throw InputError(input + ": no frames");
+  return explorer.run();
 }
 
 }  // namespace omninav::memory

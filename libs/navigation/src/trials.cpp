@@ -11,6 +11,7 @@
 #include "omninav/core/errors.hpp"
 #include "omninav/core/progress.hpp"
 #include "omninav/core/statistics.hpp"
+#include "omninav/memory/localisation.hpp"
 #include "omninav/navigation/memory_places.hpp"
 #include "omninav/navigation/robot_worlds.hpp"
 
@@ -119,6 +120,31 @@ std::vector<TrialOutcome> run_trials(const std::vector<Trial>& trials, const sim
     progress.advance();
   }
   return outcomes;
+}
+
+MapTrials run_map_trials(const memory::VisualMemory& memory, const std::vector<PlaceNode>& places,
+                         const Localiser& localise, const sim::World& world,
+                         const sim::Renderer& renderer, const RouteParams& route,
+                         const NavigatorParams& navigator, const sim::RobotParams& robot,
+                         const TrialParams& params) {
+  if (memory.place_count() == 0 || !memory.all_have_truth()) {
+    throw UsageError("trials score against ground truth, and the map's places have none");
+  }
+  std::vector<Eigen::Vector2d> mapped;
+  std::vector<cv::Point2d> points;
+  for (std::size_t i = 0; i < memory.place_count(); ++i) {
+    mapped.emplace_back(memory.place(i).truth->x_m, memory.place(i).truth->y_m);
+    points.emplace_back(mapped.back().x(), mapped.back().y());
+  }
+  MapTrials result;
+  result.spacing_m = memory::typical_spacing(points);
+  result.goal_radius_m = params.goal_radius_spacings * result.spacing_m;
+  const std::vector<Trial> trials = random_trials(world, mapped, result.spacing_m, robot.radius_m,
+                                                  memory.place(0).truth->z_m, params);
+  result.outcomes =
+      run_trials(trials, world, renderer, places, localise, match_limit(memory, route),
+                 homing_scale(memory, places), route, navigator, robot, result.goal_radius_m);
+  return result;
 }
 
 TrialSummary summarise(const std::vector<TrialOutcome>& outcomes) {

@@ -5,6 +5,7 @@
 // picture of Figs. 14-17.
 
 #include <array>
+#include <filesystem>
 #include <opencv2/core.hpp>
 #include <optional>
 
@@ -32,6 +33,20 @@ struct LatticeEvaluation {
 // from its mirror image).
 std::optional<LatticeEvaluation> evaluate_against_truth(const memory::VisualMemory& memory,
                                                         bool allow_reflection);
+
+// What `omninav organise` (and `omninav evaluate`) does to a map file: loads it, organises it
+// with `params` and scores the lattice against the truth when the places have it (reflection
+// allowed when no motion constrained the lattice). It does not write: the caller stores
+// `positions` with memory::save_lattice_positions last, after whatever else may fail (the
+// picture), so that a failure leaves the map as it was. Throws InputError when a position is
+// not finite.
+struct OrganisedMap {
+  memory::VisualMemory memory;  // with its lattice positions
+  OrganiseResult organised;
+  std::optional<LatticeEvaluation> evaluation;
+  std::vector<memory::LatticePosition> positions;  // place by place, to store in the map
+};
+OrganisedMap organise_map_file(const std::filesystem::path& map_file, const OrganiseParams& params);
 
 // The lattice with its springs shaded by stiffness (dark = stiff) and, beside it when given,
 // the truth with the aligned lattice over it.

@@ -48,6 +48,7 @@
 // records no headings); the lattice organised from the first grid has an RMSE of 0.44 spacings
 // with it, 0.38 with Algorithm 1's raster order and 0.39 with the true headings.
 
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -142,6 +143,16 @@ class Explorer {
   std::vector<cv::Mat> run_place_panoramas_;  // unordered: this run's places, at compass width
   double compass_heading_rad_ = 0.0;  // the compass's heading of the latest frame (unwrapped)
 };
+
+// What `omninav explore` does with an input, for the command and for `omninav evaluate`:
+// every frame `next` gives (nothing at the end) goes into a new run of `memory`; a grid database
+// (`is_grid`: unordered, kUnordered) or `all_frames` makes every frame a place, otherwise the
+// exploration rules of `params` decide. `frame_count` is for the progress line only. Returns
+// the run (frames read, places added, heading source). Throws InputError when the input had no
+// frames, and what Explorer::add throws.
+Run explore_frames(VisualMemory& memory, const ExplorationParams& params, const std::string& input,
+                   bool is_grid, bool all_frames, std::size_t frame_count,
+                   const std::function<std::optional<io::Frame>()>& next);
 
 // The thumbnail stored with a place: the panorama scaled to `width_px` wide, PNG-encoded.
 std::vector<std::uint8_t> make_thumbnail(const cv::Mat& panorama, int width_px);

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "omninav/core/pose.hpp"
+#include "omninav/memory/visual_memory.hpp"
 #include "omninav/navigation/navigator.hpp"
 #include "omninav/navigation/route_planner.hpp"
 #include "omninav/sim/renderer.hpp"
@@ -87,6 +88,22 @@ std::vector<TrialOutcome> run_trials(const std::vector<Trial>& trials, const sim
                                      const HomingScale& homing, const RouteParams& route,
                                      const NavigatorParams& navigator,
                                      const sim::RobotParams& robot, double goal_radius_m);
+
+// The evaluation of `navigate --trials` (and of `omninav evaluate`) on a map whose places have
+// ground truth: random_trials over the places' true positions (spacing: their typical
+// spacing; height: the first place's camera height) with `params`' count and seed, the robot's
+// radius as clearance, then run_trials with the goal radius of `params` in spacings. Throws
+// UsageError when the places lack ground truth.
+struct MapTrials {
+  double spacing_m = 0.0;
+  double goal_radius_m = 0.0;
+  std::vector<TrialOutcome> outcomes;
+};
+MapTrials run_map_trials(const memory::VisualMemory& memory, const std::vector<PlaceNode>& places,
+                         const Localiser& localise, const sim::World& world,
+                         const sim::Renderer& renderer, const RouteParams& route,
+                         const NavigatorParams& navigator, const sim::RobotParams& robot,
+                         const TrialParams& params);
 
 struct TrialSummary {
   int trials = 0;

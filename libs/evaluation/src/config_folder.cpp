@@ -1,8 +1,8 @@
-#include "app_config.hpp"
+#include "omninav/evaluation/config_folder.hpp"
 
 #include "omninav/core/config.hpp"
 
-namespace omninav::cli {
+namespace omninav::evaluation {
 
 CameraConfig load_camera_config(const std::filesystem::path& config_dir) {
   const ConfigReader config = ConfigReader::from_file(config_dir / "camera.yaml");
@@ -29,11 +29,23 @@ compass::CompassConfig load_compass_config(const std::filesystem::path& config_d
   compass::CompassConfig compass;
   compass::load_compass_config(config, compass);
   config.require_all_known();
+  // Levelling needs the rows' elevations, which are the camera's (camera.yaml).
+  const PanoramaGeometry camera = load_camera_config(config_dir).panorama;
+  compass.compass.levelling.elevation_min_rad = camera.elevation_min_rad;
+  compass.compass.levelling.elevation_max_rad = camera.elevation_max_rad;
   return compass;
 }
 
 memory::MemoryConfig load_memory_config(const std::filesystem::path& config_dir) {
   return memory::load_memory_config(ConfigReader::from_file(config_dir / "memory.yaml"));
+}
+
+void use_compass_config(const std::filesystem::path& config_dir,
+                        memory::ExplorationParams& exploration) {
+  if (exploration.heading_source != "compass" && exploration.heading_source != "auto") return;
+  const compass::CompassConfig compass = load_compass_config(config_dir);
+  exploration.compass = compass.compass;
+  exploration.compass_width_px = compass.width_px;
 }
 
 lattice::OrganiseParams load_lattice_config(const std::filesystem::path& config_dir) {
@@ -55,4 +67,4 @@ NavigationConfig load_navigation_config(const std::filesystem::path& config_dir)
   return navigation;
 }
 
-}  // namespace omninav::cli
+}  // namespace omninav::evaluation

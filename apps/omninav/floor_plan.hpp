@@ -1,0 +1,20 @@
+#pragma once
+// Floor plans for the commands' pictures: render's plan.png and navigate's path.png.
+
+#include <string>
+#include <vector>
+
+#include "omninav/eval/plot.hpp"
+#include "omninav/sim/trajectory.hpp"
+#include "omninav/sim/world.hpp"
+
+namespace omninav::cli {
+
+// Outlines of floor rectangles (obstacles, regions) as segments of grey level `grey`.
+void add_floor_boxes(eval::PointsPlot& plot, const std::vector<sim::FloorBox>& boxes, double grey);
+
+// The world seen from above: its floor, obstacles and named regions, and the trajectory's
+// positions (plan.png of `omninav render`).
+eval::PointsPlot floor_plan(const sim::World& world, const sim::Trajectory& trajectory);
+
+}  // namespace omninav::cli
