@@ -1,6 +1,6 @@
-// What the command line does with bad numbers, failing writes and outputs it must not damage
-// (issue 12): each test sets up the fault and checks the exit status, the message and the
-// files left behind.
+// What the command line does with bad numbers, failing writes and outputs it must not damage:
+// each test sets up the fault and checks the exit status, the message and the files left
+// behind.
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>

@@ -103,7 +103,7 @@ double turn_error_deg(const PairMatcher& matcher, const cv::Mat& first, const cv
   return rad_to_deg(wrap_angle(match.rotation_rad - deg_to_rad(turn_deg)));
 }
 
-// Tolerance 0.5 degrees (issue 15's target). Rows are 1 degree at 360x45 and 1/3 degree at
+// Tolerance 0.5 degrees (the target for tilt). Rows are 1 degree at 360x45 and 1/3 degree at
 // 1080x135; the block fit is sub-row, so the bound has a margin of several times the model's
 // second-order error (about tilt²/2 = 0.14 degrees at 4 degrees).
 TEST(Tilt, RecoversRenderedPitchAndRollInEveryFamily) {
@@ -173,7 +173,7 @@ TEST(Tilt, LevellingByTheTrueTiltGivesTheLevelPanorama) {
 }
 
 // The turn between a level and a tilted panorama: after levelling by the estimated tilt the
-// pair matcher finds it within 0.5 degrees (issue 15), and without levelling it is worse.
+// pair matcher finds it within 0.5 degrees, and without levelling it is worse.
 TEST(Tilt, LevellingKeepsTheTurnWithinHalfADegree) {
   const PairMatcher matcher(exhaustive());
   double worst_before = 0.0, worst_after = 0.0;

@@ -72,8 +72,8 @@ TEST(Suite, TheShippedSuitesLoad) {
     const Suite suite = load_suite(name, omninav::testing::config_dir());
     EXPECT_EQ(suite.name, name);
     EXPECT_FALSE(suite.worlds.empty());
-    EXPECT_GE(suite.params.queries, 100) << "issue 13: at least 100 queries";
-    EXPECT_GE(suite.params.trials, 50) << "issue 13: at least 50 trials";
+    EXPECT_GE(suite.params.queries, 100) << "evaluation needs at least 100 queries";
+    EXPECT_GE(suite.params.trials, 50) << "evaluation needs at least 50 trials";
   }
   EXPECT_THROW(load_suite("no_such_suite", omninav::testing::config_dir()), UsageError);
 }

@@ -26,7 +26,7 @@ std::string joined(const std::vector<std::string>& names) {
   return text;
 }
 
-// The room's keys on the command line: its range opened as issue 13 asks (3-12 m sides,
+// The room's keys on the command line: the zoo's range for rooms (3-12 m sides,
 // 0-20 boxes, plain or textured walls). worlds.yaml keeps its own, wider keys.
 void read_room_spec(const WorldSpec& spec, RoomParams& params) {
   spec.read("size_x_m", params.size_x_m, 3.0, 12.0);
