@@ -8,7 +8,7 @@
 
 #include "app_config.hpp"
 #include "cli.hpp"
-#include "floor_plan.hpp"
+#include "omninav/report/floor_plan.hpp"
 #include "omninav/core/angles.hpp"
 #include "omninav/core/errors.hpp"
 #include "omninav/core/log.hpp"
@@ -125,7 +125,7 @@ void draw_path(const navigation::NavigationResult& result,
   lattice_path.add_points("places", lattice_points);
   lattice_path.add_points("goal", {lattice_points[goal]});
   eval::PointsPlot room_path("The robot's true path", "x (m)", "y (m)");
-  add_floor_boxes(room_path, obstacles, 0.3);
+  report::add_floor_boxes(room_path, obstacles, 0.3);
   for (std::size_t i = 1; i < truth_path.size(); ++i)
     room_path.add_segment({truth_path[i - 1], truth_path[i], 0.1, 1.0});
   if (!grid.empty()) room_path.add_points("grid images", grid);

@@ -4,7 +4,7 @@
 
 #include "app_config.hpp"
 #include "cli.hpp"
-#include "floor_plan.hpp"
+#include "omninav/report/floor_plan.hpp"
 #include "omninav/core/angles.hpp"
 #include "omninav/core/log.hpp"
 #include "omninav/eval/contact_sheet.hpp"
@@ -64,7 +64,7 @@ void run_render(const GlobalOptions& global, const RenderOptions& options) {
   eval::save_png(eval::contact_sheet(previews, captions, 2), sheet);
 
   const std::filesystem::path plan = options.out / "plan.png";
-  floor_plan(world, trajectory).save(plan);
+  report::floor_plan(world, trajectory).save(plan);
 
   summary(global) << "wrote " << trajectory.poses.size() << " panoramas (" << trajectory.length_m()
                   << " m travelled) to " << options.out.string()

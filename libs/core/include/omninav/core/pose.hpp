@@ -2,7 +2,12 @@
 // Poses in the world frame: x, y on the floor, z up; heading counter-clockwise from +x
 // (ROS REP 103 yaw). Pitch and roll follow REP 103 too: positive pitch turns the nose down,
 // positive roll turns the left side up.
+//
+// Every 2-D position in the libraries is an Eigen::Vector2d (one type for one idea); where a
+// position could be in two frames, its name says which (`world_position`, `lattice_position`).
+// OpenCV's points appear only where pictures are drawn (eval, report).
 
+#include <Eigen/Core>
 #include <cmath>
 
 namespace omninav {
@@ -12,6 +17,8 @@ struct Pose2 {
   double x_m = 0.0;
   double y_m = 0.0;
   double heading_rad = 0.0;
+
+  Eigen::Vector2d position() const { return {x_m, y_m}; }
 };
 
 // A camera's full pose, as the renderer and ground-truth files give it.
@@ -24,6 +31,7 @@ struct CameraPose {
   double roll_rad = 0.0;     // about the robot's +x (its front)
 
   Pose2 on_floor() const { return {x_m, y_m, heading_rad}; }
+  Eigen::Vector2d floor_position() const { return {x_m, y_m}; }
 };
 
 // The farthest from the origin a position may be, in metres, along any axis: 10,000 km, beyond

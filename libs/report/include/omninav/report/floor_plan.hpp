@@ -1,5 +1,5 @@
 #pragma once
-// Floor plans for the commands' pictures: render's plan.png and navigate's path.png.
+// Floor plans: the world seen from above, under render's plan.png and navigate's path.png.
 
 #include <string>
 #include <vector>
@@ -8,7 +8,7 @@
 #include "omninav/sim/trajectory.hpp"
 #include "omninav/sim/world.hpp"
 
-namespace omninav::cli {
+namespace omninav::report {
 
 // Outlines of floor rectangles (obstacles, regions) as segments of grey level `grey`.
 void add_floor_boxes(eval::PointsPlot& plot, const std::vector<sim::FloorBox>& boxes, double grey);
@@ -17,4 +17,4 @@ void add_floor_boxes(eval::PointsPlot& plot, const std::vector<sim::FloorBox>& b
 // positions (plan.png of `omninav render`).
 eval::PointsPlot floor_plan(const sim::World& world, const sim::Trajectory& trajectory);
 
-}  // namespace omninav::cli
+}  // namespace omninav::report

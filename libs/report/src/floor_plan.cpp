@@ -1,8 +1,8 @@
-#include "floor_plan.hpp"
+#include "omninav/report/floor_plan.hpp"
 
 #include <array>
 
-namespace omninav::cli {
+namespace omninav::report {
 
 void add_floor_boxes(eval::PointsPlot& plot, const std::vector<sim::FloorBox>& boxes, double grey) {
   for (const sim::FloorBox& box : boxes) {
@@ -34,4 +34,4 @@ eval::PointsPlot floor_plan(const sim::World& world, const sim::Trajectory& traj
   return plan;
 }
 
-}  // namespace omninav::cli
+}  // namespace omninav::report
