@@ -52,6 +52,17 @@ void check_output_folder(const std::filesystem::path& out, bool force,
   }
 }
 
+// The configuration folder beside the program: <prefix>/share/omninav/config for a program in
+// <prefix>/bin, as installed and as in the build tree (CMake links build/share/omninav/config
+// to the sources' config/). Found from /proc/self/exe at run time, so that the program holds no
+// path of the machine it was built on.
+std::filesystem::path default_config_dir() {
+  std::error_code error;
+  const std::filesystem::path program = std::filesystem::read_symlink("/proc/self/exe", error);
+  if (error) return "config";
+  return program.parent_path().parent_path() / "share" / "omninav" / "config";
+}
+
 std::ostream& summary(const GlobalOptions& global) {
   static std::ostream nowhere(nullptr);  // a stream without a buffer writes nothing
   return global.quiet ? nowhere : std::cout;
@@ -74,9 +85,10 @@ int run(const std::vector<std::string>& args) {
   app.fallthrough();
 
   GlobalOptions global;
-  global.config_dir = OMNINAV_DEFAULT_CONFIG_DIR;
+  global.config_dir = default_config_dir();
   app.add_option("--config-dir", global.config_dir,
-                 "Folder of YAML configuration files (camera.yaml, worlds.yaml, ...)")
+                 "Folder of YAML configuration files (camera.yaml, worlds.yaml, ...; default: "
+                 "share/omninav/config beside the program's bin/)")
       ->capture_default_str()
       ->check(CLI::ExistingDirectory);
   app.add_flag("-q,--quiet", global.quiet, "Print errors only");

@@ -1,4 +1,4 @@
-// The visual compass's speed (issue 3, §3): pairs per second for the minimisers (a) exhaustive,
+// The visual compass's speed: pairs per second for the minimisers (a) exhaustive,
 // (b) local + scan and (c) FFT at 360×45 and 1080×135 RGB, with and without the field-of-view
 // mask, and frames per second for Algorithm 1 over a sequence. The ratios asked for are printed
 // at the end, from the times of this one run.
@@ -191,7 +191,8 @@ void register_all() {
   }
 }
 
-// Keeps every run's time per iteration, then prints the ratios of the issue.
+// Keeps every run's time per iteration, then prints the ratios asked for (speed-ups of the
+// minimisers).
 class RatioReporter : public benchmark::ConsoleReporter {
  public:
   void ReportRuns(const std::vector<Run>& runs) override {

@@ -1,4 +1,4 @@
-// The lattice's speed (issue 5: 1,000 places organised in ≤ 2 s, 10,000 in ≤ 30 s on one
+// The lattice's speed (targets: 1,000 places organised in ≤ 2 s, 10,000 in ≤ 30 s on one
 // core). "Organised" is the whole of lattice::organise: calibration, springs and motions from the
 // signatures, the start, the Ceres solve. The maps are rendered: a square grid of places 30 cm
 // apart in a built-in room sized to hold it (furniture in proportion to the floor; grid points

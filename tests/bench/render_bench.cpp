@@ -1,4 +1,4 @@
-// The renderer's speed (issue: ≤ 5 ms for a 360×45 panorama of the default room on one core),
+// The renderer's speed (target: ≤ 5 ms for a 360×45 panorama of the default room on one core),
 // and on the other families: the field's ~200 000 grass triangles must stay fast too.
 // Run: build/bin/render_bench
 #include <benchmark/benchmark.h>

@@ -1,4 +1,4 @@
-// The visual memory's speed and size (issue 4 §4). Targets on one core: ≤ 20 µs per 360×45
+// The visual memory's speed and size. Targets on one core: ≤ 20 µs per 360×45
 // signature; ≤ 10 ms per query at 100,000 places.
 // Run: build/bin/signature_bench   (one core: taskset -c 1 build/bin/signature_bench; the
 // signature alone: --benchmark_filter=signature_time --benchmark_repetitions=5; the motion fit,

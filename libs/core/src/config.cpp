@@ -29,10 +29,14 @@ std::string format_number(double value) {
   return text.str();
 }
 
-// Walks every key of `node`, calling `visit` with its dotted path. Every key is text: the parse
-// refused any other (KeyChecker).
+// Walks every key of `node`, calling `visit` with its dotted path; the maps of a list are named
+// by their index ("worlds[2].seeds"). Every key is text: the parse refused any other (KeyChecker).
 template <typename Visit>
 void for_each_key(const YAML::Node& node, const std::string& prefix, Visit&& visit) {
+  if (node.IsSequence()) {
+    for (std::size_t i = 0; i < node.size(); ++i)
+      for_each_key(node[i], prefix + "[" + std::to_string(i) + "]", visit);
+  }
   if (!node.IsMap()) return;
   for (const auto& entry : node) {
     const std::string key =
@@ -172,19 +176,35 @@ ConfigReader ConfigReader::section(const std::string& key) const {
   return ConfigReader(shared_, std::move(node), full_key(key));
 }
 
-void ConfigReader::read(const std::string& key, double& value, double min, double max) const {
-  const std::optional<YAML::Node> node = lookup(key);
-  if (!node) return;
+double ConfigReader::number(const YAML::Node& node, const std::string& key, double min,
+                            double max) const {
   double parsed = 0.0;
-  if (!node->IsScalar() || !YAML::convert<double>::decode(*node, parsed) ||
-      !std::isfinite(parsed)) {
+  if (!node.IsScalar() || !YAML::convert<double>::decode(node, parsed) || !std::isfinite(parsed)) {
     fail(key, "must be a number in [" + format_number(min) + ", " + format_number(max) + "]");
   }
   if (parsed < min || parsed > max) {
     fail(key, "= " + format_number(parsed) + " is out of range [" + format_number(min) + ", " +
                   format_number(max) + "]");
   }
-  value = parsed;
+  return parsed;
+}
+
+int ConfigReader::whole_number(const YAML::Node& node, const std::string& key, int min,
+                               int max) const {
+  int parsed = 0;
+  if (!node.IsScalar() || !YAML::convert<int>::decode(node, parsed)) {
+    fail(key,
+         "must be a whole number in [" + std::to_string(min) + ", " + std::to_string(max) + "]");
+  }
+  if (parsed < min || parsed > max) {
+    fail(key, "= " + std::to_string(parsed) + " is out of range [" + std::to_string(min) + ", " +
+                  std::to_string(max) + "]");
+  }
+  return parsed;
+}
+
+void ConfigReader::read(const std::string& key, double& value, double min, double max) const {
+  if (const std::optional<YAML::Node> node = lookup(key)) value = number(*node, key, min, max);
 }
 
 void ConfigReader::read(const std::string& key, std::optional<double>& value, double min,
@@ -201,18 +221,46 @@ void ConfigReader::read(const std::string& key, std::optional<double>& value, do
 }
 
 void ConfigReader::read(const std::string& key, int& value, int min, int max) const {
+  if (const std::optional<YAML::Node> node = lookup(key))
+    value = whole_number(*node, key, min, max);
+}
+
+std::vector<YAML::Node> ConfigReader::list(const std::string& key,
+                                           const std::string& expected) const {
   const std::optional<YAML::Node> node = lookup(key);
-  if (!node) return;
-  int parsed = 0;
-  if (!node->IsScalar() || !YAML::convert<int>::decode(*node, parsed)) {
-    fail(key,
-         "must be a whole number in [" + std::to_string(min) + ", " + std::to_string(max) + "]");
+  if (!node) return {};
+  if (!node->IsSequence() || node->size() == 0)
+    fail(key, "must be a non-empty list of " + expected);
+  return {node->begin(), node->end()};
+}
+
+void ConfigReader::read(const std::string& key, std::vector<double>& values, double min,
+                        double max) const {
+  const std::vector<YAML::Node> items = list(key, "numbers");
+  if (items.empty()) return;
+  values.clear();
+  for (std::size_t i = 0; i < items.size(); ++i)
+    values.push_back(number(items[i], key + "[" + std::to_string(i) + "]", min, max));
+}
+
+void ConfigReader::read(const std::string& key, std::vector<int>& values, int min, int max) const {
+  const std::vector<YAML::Node> items = list(key, "whole numbers");
+  if (items.empty()) return;
+  values.clear();
+  for (std::size_t i = 0; i < items.size(); ++i)
+    values.push_back(whole_number(items[i], key + "[" + std::to_string(i) + "]", min, max));
+}
+
+std::vector<ConfigReader> ConfigReader::sections(const std::string& key) const {
+  std::vector<ConfigReader> readers;
+  const std::vector<YAML::Node> items = list(key, "maps");
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    const std::string item_key = key + "[" + std::to_string(i) + "]";
+    if (!items[i].IsMap()) fail(item_key, "must be a map of keys");
+    readers.push_back(
+        ConfigReader(shared_, std::make_shared<const YAML::Node>(items[i]), full_key(item_key)));
   }
-  if (parsed < min || parsed > max) {
-    fail(key, "= " + std::to_string(parsed) + " is out of range [" + std::to_string(min) + ", " +
-                  std::to_string(max) + "]");
-  }
-  value = parsed;
+  return readers;
 }
 
 void ConfigReader::read(const std::string& key, bool& value) const {

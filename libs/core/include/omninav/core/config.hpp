@@ -40,6 +40,12 @@ class ConfigReader {
   void read_deg(const std::string& key, double& value_rad, double min_deg, double max_deg) const;
   // A number that may be absent or null (`~`): the caller then decides, e.g. "detect it".
   void read(const std::string& key, std::optional<double>& value, double min, double max) const;
+  // A non-empty list of numbers, each in [min, max] (`seeds: [1, 2]`).
+  void read(const std::string& key, std::vector<double>& values, double min, double max) const;
+  void read(const std::string& key, std::vector<int>& values, int min, int max) const;
+  // A list of maps, each read like a section; their keys are named "key[i].name" (none when
+  // the file lacks the key). Throws ConfigError for anything but a list of maps.
+  std::vector<ConfigReader> sections(const std::string& key) const;
 
   bool has(const std::string& key) const;
 
@@ -48,13 +54,20 @@ class ConfigReader {
 
   const std::string& source_name() const;
 
+  // Throws ConfigError naming the file and the key, for checks only the caller can make.
+  [[noreturn]] void fail(const std::string& key, const std::string& problem) const;
+
  private:
   struct Shared;
   ConfigReader(std::shared_ptr<Shared> shared, std::shared_ptr<const YAML::Node> node,
                std::string prefix);
   std::optional<YAML::Node> lookup(const std::string& key) const;
   std::string full_key(const std::string& key) const;
-  [[noreturn]] void fail(const std::string& key, const std::string& problem) const;
+  // `node` (the value of `key`) as a number in [min, max].
+  double number(const YAML::Node& node, const std::string& key, double min, double max) const;
+  int whole_number(const YAML::Node& node, const std::string& key, int min, int max) const;
+  // The items of the list at `key`: none when absent, else a non-empty sequence.
+  std::vector<YAML::Node> list(const std::string& key, const std::string& expected) const;
 
   std::shared_ptr<Shared> shared_;
   std::shared_ptr<const YAML::Node> node_;
