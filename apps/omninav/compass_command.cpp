@@ -16,7 +16,6 @@
 #include "app_config.hpp"
 #include "cli.hpp"
 #include "omninav/compass/compass_run.hpp"
-#include "omninav/compass/evaluation.hpp"
 #include "omninav/core/angles.hpp"
 #include "omninav/core/errors.hpp"
 #include "omninav/core/log.hpp"
@@ -24,9 +23,11 @@
 #include "omninav/core/parse.hpp"
 #include "omninav/core/progress.hpp"
 #include "omninav/eval/png.hpp"
+#include "omninav/evaluation/compass_evaluation.hpp"
 #include "omninav/io/bob_database.hpp"
 #include "omninav/io/sequence.hpp"
 #include "omninav/omni/unwrap.hpp"
+#include "omninav/report/compass_figures.hpp"
 
 namespace omninav::cli {
 namespace {
@@ -214,11 +215,11 @@ void run_compass(const GlobalOptions& global, const CompassOptions& options) {
 
   // Evaluation over the frames that have ground truth.
   std::vector<compass::CompassEstimate> estimates;
-  std::vector<compass::TruthSample> truth;
+  std::vector<evaluation::CompassTruth> truth;
   for (const Row& row : rows) {
     if (!row.truth) continue;
     estimates.push_back(row.estimate);
-    truth.push_back({row.truth->heading_rad, row.truth->x_m, row.truth->y_m, row.time_s});
+    truth.push_back({row.truth->heading_rad, row.truth->floor_position(), row.time_s});
   }
   fs::path input_name = fs::absolute(options.input).lexically_normal();
   if (input_name.filename().empty()) input_name = input_name.parent_path();  // "folder/"
@@ -227,15 +228,15 @@ void run_compass(const GlobalOptions& global, const CompassOptions& options) {
                              (params.matcher.minimiser.kind == compass::MinimiserKind::kLocalScan
                                   ? std::string()
                                   : " (" + to_string(params.matcher.minimiser.kind) + ")");
-  std::optional<compass::CompassEvaluation> evaluation;
+  std::optional<evaluation::CompassEvaluation> evaluation;
   if (options.truth) {
     if (estimates.size() < rows.size()) {
       log_warning(std::to_string(rows.size() - estimates.size()) +
                   " frames have no ground truth and are left out of the statistics");
     }
-    evaluation = compass::evaluate_compass(estimates, truth, compass.reference_count());
+    evaluation = evaluation::evaluate_compass(estimates, truth, compass.reference_count());
     if (!global.quiet && options.out != "-") {
-      std::cout << compass::format_evaluation_table(label, method, *evaluation);
+      std::cout << evaluation::format_compass_table(label, method, *evaluation);
     }
   } else if (!global.quiet && options.out != "-") {
     const compass::CompassEstimate& last = rows.back().estimate;
@@ -263,10 +264,13 @@ void run_compass(const GlobalOptions& global, const CompassOptions& options) {
   }
   if (!options.plot.empty()) {
     std::vector<compass::CompassEstimate> all;
-    std::vector<compass::TruthSample> all_truth;
+    std::vector<double> all_truth_rad;
     for (const Row& row : rows) all.push_back(row.estimate);
-    if (estimates.size() == rows.size()) all_truth = truth;
-    eval::save_png(compass::plot_compass_run(all, all_truth, label + ", " + method), options.plot);
+    if (estimates.size() == rows.size()) {
+      for (const evaluation::CompassTruth& t : truth) all_truth_rad.push_back(t.heading_rad);
+    }
+    eval::save_png(report::plot_compass_run(all, all_truth_rad, label + ", " + method),
+                   options.plot);
   }
 }
 
