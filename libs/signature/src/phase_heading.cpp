@@ -8,10 +8,36 @@
 
 #include "fast_math.hpp"
 #include "omninav/core/angles.hpp"
-#include "phase_branches.hpp"
 
 namespace omninav::signature {
 namespace {
+
+// The turn from the cross-power's branches (phase_heading.hpp, steps 1-2): k = 1 gives it
+// without ambiguity, then each k = 2..m−1 refines it on the branch of its arg(P_k)/k nearest the
+// running estimate, weighted by k·|P_k|. `cross_at(k)` returns P_k for k = 1..m−1.
+template <typename CrossAt>
+double turn_from_branches(const CrossAt& cross_at, int m) {
+  // 1. Coarse, from k = 1.
+  const std::complex<double> first = cross_at(1);
+  double turn = -std::arg(first);
+  double weight_sum = std::abs(first);
+  double weighted = turn * weight_sum;
+  // 2. Refined with k = 2..m−1, each on the branch nearest the running estimate.
+  for (int k = 2; k < m; ++k) {
+    const std::complex<double> p = cross_at(k);
+    const double magnitude = std::abs(p);
+    if (magnitude <= 0.0) continue;
+    const double kk = static_cast<double>(k);
+    const double base = -std::arg(p) / kk;
+    const double period = kTwoPi / kk;
+    const double running = weight_sum > 0.0 ? weighted / weight_sum : turn;
+    const double candidate = base + period * std::round((running - base) / period);
+    const double weight = kk * magnitude;
+    weighted += weight * candidate;
+    weight_sum += weight;
+  }
+  return weight_sum > 0.0 ? weighted / weight_sum : turn;
+}
 
 // The cross-power P_k (k = 0..m−1, P_0 unused) as separate real and imaginary parts.
 struct CrossPower {
@@ -154,7 +180,7 @@ PhaseHeading relative_heading(const Signature& from, const Signature& to, int co
   };
 
   // 1-2. From the phases of k = 1, refined with k = 2..m−1.
-  double turn = detail::turn_from_branches(at, m);
+  double turn = turn_from_branches(at, m);
   // 3. Polished on the correlation.
   turn = polish(cross, turn);
   double value = correlation_at(cross, turn).value;
