@@ -122,17 +122,15 @@ std::vector<double> correlation_on_grid(const CrossPower& cross, int steps) {
   return values;
 }
 
-}  // namespace
-
-PhaseHeading relative_heading(const Signature& from, const Signature& to, int components) {
-  const int m = pair_components(from, to, components, "take the heading");
-  // Cross-power per component and the normaliser Σ |F||F'|, straight from the stored magnitudes
-  // and phases: F'·conj(F) = |F||F'|·e^{i(φ' − φ)}, one sincos per pair. In batches of whole
-  // lines (or of a line's components, for m > kBatch) for the vectorised sin_cos, small enough to
-  // stay on the stack and in the L1 cache; the sums run along k, so that they vectorise too, and
-  // the normaliser is summed per component (one long chain of additions would be its latency).
-  CrossPower cross{std::vector<double>(static_cast<std::size_t>(m)),
-                   std::vector<double>(static_cast<std::size_t>(m))};
+// The cross-power P_k = Σ_lines F'_k·conj(F_k), k = 1..m−1, into `cross`, and the normaliser
+// Σ |F||F'| returned: straight from the stored magnitudes and phases, F'·conj(F) =
+// |F||F'|·e^{i(φ' − φ)}, one sincos per pair. In batches of whole lines (or of a line's
+// components, for m > kBatch) for the vectorised sin_cos, small enough to stay on the stack and
+// in the L1 cache; the sums run along k, so that they vectorise too, and the normaliser is
+// summed per component (one long chain of additions would be its latency).
+double cross_power(const Signature& from, const Signature& to, int m, CrossPower& cross) {
+  cross.re.assign(static_cast<std::size_t>(m), 0.0);
+  cross.im.assign(static_cast<std::size_t>(m), 0.0);
   std::vector<double> norm_k(static_cast<std::size_t>(m));
   {
     constexpr int kBatch = 256;
@@ -173,6 +171,15 @@ PhaseHeading relative_heading(const Signature& from, const Signature& to, int co
   }
   double norm = 0.0;
   for (int k = 1; k < m; ++k) norm += norm_k[static_cast<std::size_t>(k)];
+  return norm;
+}
+
+}  // namespace
+
+PhaseHeading relative_heading(const Signature& from, const Signature& to, int components) {
+  const int m = pair_components(from, to, components, "take the heading");
+  CrossPower cross;
+  const double norm = cross_power(from, to, m, cross);
   if (norm <= 0.0) return {};  // flat rows: no heading information at all
   const auto at = [&](int k) {
     return std::complex<double>(cross.re[static_cast<std::size_t>(k)],
