@@ -16,7 +16,6 @@
 #include "app_config.hpp"
 #include "cli.hpp"
 #include "omninav/compass/compass_run.hpp"
-#include "omninav/compass/evaluation.hpp"
 #include "omninav/core/angles.hpp"
 #include "omninav/core/errors.hpp"
 #include "omninav/core/log.hpp"
@@ -24,9 +23,11 @@
 #include "omninav/core/parse.hpp"
 #include "omninav/core/progress.hpp"
 #include "omninav/eval/png.hpp"
+#include "omninav/evaluation/compass_evaluation.hpp"
 #include "omninav/io/bob_database.hpp"
 #include "omninav/io/sequence.hpp"
 #include "omninav/omni/unwrap.hpp"
+#include "omninav/report/compass_figures.hpp"
 
 namespace omninav::cli {
 namespace {
@@ -123,15 +124,17 @@ void write_csv(std::ostream& out, const std::vector<Row>& rows, bool with_truth)
   }
 }
 
-void run_compass(const GlobalOptions& global, const CompassOptions& options) {
-  // The outputs before the work, not after it.
-  if (!options.stats.empty() && !options.truth) throw UsageError("--stats needs --truth");
-  for (const fs::path& output :
-       {fs::path(options.out == "-" ? "" : options.out), options.plot, options.stats}) {
-    if (!output.empty()) check_output_path(output);
-  }
+// The compass's parameters: compass.yaml's, then --method, --minimiser and --threshold; and the
+// width to resample to (--width, else compass.yaml's input.width_px, else none).
+struct CompassSetup {
+  compass::CompassParams params;
+  std::optional<int> width;
+};
+
+CompassSetup compass_setup(const GlobalOptions& global, const CompassOptions& options) {
   compass::CompassConfig config = load_compass_config(global.config_dir);
-  compass::CompassParams params = config.compass;
+  CompassSetup setup{config.compass, std::nullopt};
+  compass::CompassParams& params = setup.params;
   apply_method(options.method, params);
   if (!options.minimiser.empty()) {
     params.matcher.minimiser.kind = compass::minimiser_kind_of(options.minimiser);
@@ -141,9 +144,34 @@ void run_compass(const GlobalOptions& global, const CompassOptions& options) {
       params.matcher.distance.metric == compass::Metric::kL1) {
     throw UsageError("the fft minimiser needs distance.metric l2 (compass.yaml has l1)");
   }
-  const std::optional<int> width =
-      options.width_px > 0 ? std::optional<int>(options.width_px) : config.width_px;
+  setup.width = options.width_px > 0 ? std::optional<int>(options.width_px) : config.width_px;
+  return setup;
+}
 
+// Logs, once the first panorama is in, what the run will do with it.
+void log_start(const CompassSetup& setup, const cv::Mat& panorama, bool has_truth) {
+  const compass::CompassParams& params = setup.params;
+  if (setup.width && *setup.width != panorama.cols && !panorama.empty()) {
+    log_info("resampling " + std::to_string(panorama.cols) + "-column panoramas to " +
+             std::to_string(*setup.width) +
+             " columns (circular tent filter, front kept at 0.25*width, rows unchanged)");
+  }
+  log_info(std::string("visual compass: ") + describe(params.sampling) + ", minimiser " +
+           to_string(params.matcher.minimiser.kind) + ", field of view " +
+           (params.matcher.distance.field_of_view.front_back ? "front and back bands" : "whole") +
+           ", sub-pixel " + to_string(params.matcher.subpixel.mode) +
+           (has_truth ? ", started at the true heading" : ", started at 0"));
+}
+
+struct CompassRows {
+  std::vector<Row> rows;
+  int reference_count = 0;
+  int input_width = 0;  // the first panorama's columns
+};
+
+// The compass over every frame of --input, raw images unwrapped first when asked or marked.
+CompassRows run_over_input(const GlobalOptions& global, const CompassOptions& options,
+                           const CompassSetup& setup) {
   std::unique_ptr<io::SequenceReader> reader = io::open_sequence(options.input);
   log_info("reading " + reader->describe());
   bool unwrap = options.unwrap;
@@ -152,9 +180,8 @@ void run_compass(const GlobalOptions& global, const CompassOptions& options) {
   }
   std::optional<omni::Unwrapper> unwrapper;
 
-  std::vector<Row> rows;
-  compass::CompassRun compass(params, width);
-  int input_width = 0;  // the first panorama's columns
+  CompassRows result;
+  compass::CompassRun compass(setup.params, setup.width);
   const auto start = std::chrono::steady_clock::now();
   {
     Progress progress("compass", reader->size());
@@ -169,42 +196,118 @@ void run_compass(const GlobalOptions& global, const CompassOptions& options) {
         panorama = unwrapper->unwrap(panorama);
       }
       if (!compass.started()) {
-        input_width = panorama.cols;
+        result.input_width = panorama.cols;
         if (options.truth && !frame->truth) {
           throw UsageError(frame->source + ": --truth needs ground truth, and " +
                            options.input.string() + " has none for its first image");
         }
-        if (width && *width != panorama.cols && !panorama.empty()) {
-          log_info("resampling " + std::to_string(panorama.cols) + "-column panoramas to " +
-                   std::to_string(*width) +
-                   " columns (circular tent filter, front kept at 0.25*width, rows unchanged)");
-        }
-        log_info(
-            std::string("visual compass: ") + describe(params.sampling) + ", minimiser " +
-            to_string(params.matcher.minimiser.kind) + ", field of view " +
-            (params.matcher.distance.field_of_view.front_back ? "front and back bands" : "whole") +
-            ", sub-pixel " + to_string(params.matcher.subpixel.mode) +
-            (frame->truth ? ", started at the true heading" : ", started at 0"));
+        log_start(setup, panorama, frame->truth.has_value());
       }
       const std::optional<double> truth_heading =
           frame->truth ? std::optional<double>(frame->truth->heading_rad) : std::nullopt;
-      rows.push_back({compass.push(panorama, frame->index, frame->source, truth_heading),
-                      frame->source, frame->time_s, frame->truth});
+      result.rows.push_back({compass.push(panorama, frame->index, frame->source, truth_heading),
+                             frame->source, frame->time_s, frame->truth});
       progress.advance();
     }
   }
-  if (rows.empty()) throw InputError(options.input.string() + ": holds no images");
+  if (result.rows.empty()) throw InputError(options.input.string() + ": holds no images");
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  log_info("processed " + std::to_string(rows.size()) + " frames in " + fixed(seconds, 2) + " s (" +
-           fixed(rows.size() / std::max(seconds, 1e-9), 1) +
+  log_info("processed " + std::to_string(result.rows.size()) + " frames in " + fixed(seconds, 2) +
+           " s (" + fixed(result.rows.size() / std::max(seconds, 1e-9), 1) +
            " frames/s, reading and decoding included)");
+  result.reference_count = compass.reference_count();
+  return result;
+}
 
-  const bool has_truth =
-      std::any_of(rows.begin(), rows.end(), [](const Row& r) { return r.truth.has_value(); });
+// The frames that have ground truth: their estimates and truths, for the evaluation.
+struct TruthRows {
+  std::vector<compass::CompassEstimate> estimates;
+  std::vector<evaluation::CompassTruth> truth;
+};
+
+TruthRows truth_rows(const std::vector<Row>& rows) {
+  TruthRows result;
+  for (const Row& row : rows) {
+    if (!row.truth) continue;
+    result.estimates.push_back(row.estimate);
+    result.truth.push_back({row.truth->heading_rad, row.truth->floor_position(), row.time_s});
+  }
+  return result;
+}
+
+// --label, else the input's name.
+std::string dataset_label(const CompassOptions& options) {
+  if (!options.label.empty()) return options.label;
+  fs::path input_name = fs::absolute(options.input).lexically_normal();
+  if (input_name.filename().empty()) input_name = input_name.parent_path();  // "folder/"
+  return input_name.filename().string();
+}
+
+// The method as Tables 3-4 name it ("Atm 0.6055", "Fx 3"), and the minimiser when not the
+// paper's.
+std::string method_label(const compass::CompassParams& params) {
+  return describe(params.sampling) +
+         (params.matcher.minimiser.kind == compass::MinimiserKind::kLocalScan
+              ? std::string()
+              : " (" + to_string(params.matcher.minimiser.kind) + ")");
+}
+
+// Without --truth: frames, references, the final heading and how many frames were flagged.
+void print_summary(const CompassRows& run, const std::string& method) {
+  const compass::CompassEstimate& last = run.rows.back().estimate;
+  int flagged = 0;
+  for (const Row& row : run.rows) flagged += row.estimate.flags.ok() ? 0 : 1;
+  std::cout << run.rows.size() << " frames, " << run.reference_count << " reference frames ("
+            << method << "); final heading " << fixed(rad_to_deg(wrap_angle(last.heading_rad)), 3)
+            << " deg (" << fixed(rad_to_deg(last.heading_rad), 3) << " deg unwrapped); " << flagged
+            << " frames with a low-confidence flag\n";
+}
+
+// --stats: the statistics as a one-row CSV.
+void write_stats(const fs::path& path, const std::string& label, const std::string& method,
+                 int width_px, const evaluation::CompassEvaluation& evaluation) {
+  std::ostringstream csv;
+  csv << "dataset,method,width_px,reference_frames,total_frames,max_abs_error_deg,"
+         "mean_error_deg,std_error_deg,slope_deg_per_s,slope_deg_per_m,final_error_deg\n";
+  csv << csv_quoted(label) << ',' << csv_quoted(method) << ',' << width_px << ','
+      << evaluation.reference_frames << ',' << evaluation.total_frames << ','
+      << fixed(evaluation.error_deg.max_abs, 4) << ',' << fixed(evaluation.error_deg.mean, 4) << ','
+      << (std::isfinite(evaluation.error_deg.stddev) ? fixed(evaluation.error_deg.stddev, 4) : "")
+      << ',' << (evaluation.slope_deg_per_s ? fixed(*evaluation.slope_deg_per_s, 5) : "") << ','
+      << (evaluation.slope_deg_per_m ? fixed(*evaluation.slope_deg_per_m, 4) : "") << ','
+      << fixed(evaluation.final_error_deg, 4) << '\n';
+  write_output_file(path, csv.str());
+}
+
+// --plot: every frame's heading, with the truth when every frame has one.
+void write_plot(const fs::path& path, const CompassRows& run, const TruthRows& with_truth,
+                const std::string& title) {
+  std::vector<compass::CompassEstimate> all;
+  std::vector<double> all_truth_rad;
+  for (const Row& row : run.rows) all.push_back(row.estimate);
+  if (with_truth.estimates.size() == run.rows.size()) {
+    for (const evaluation::CompassTruth& t : with_truth.truth)
+      all_truth_rad.push_back(t.heading_rad);
+  }
+  eval::save_png(report::plot_compass_run(all, all_truth_rad, title), path);
+}
+
+void run_compass(const GlobalOptions& global, const CompassOptions& options) {
+  // The outputs before the work, not after it.
+  if (!options.stats.empty() && !options.truth) throw UsageError("--stats needs --truth");
+  for (const fs::path& output :
+       {fs::path(options.out == "-" ? "" : options.out), options.plot, options.stats}) {
+    if (!output.empty()) check_output_path(output);
+  }
+  const CompassSetup setup = compass_setup(global, options);
+  const CompassRows run = run_over_input(global, options, setup);
+
+  const bool has_truth = std::any_of(run.rows.begin(), run.rows.end(),
+                                     [](const Row& r) { return r.truth.has_value(); });
   if (!options.out.empty()) {
     std::ostringstream csv;
-    write_csv(csv, rows, has_truth);
+    write_csv(csv, run.rows, has_truth);
     if (options.out == "-") {
       std::cout << csv.str();
     } else {
@@ -213,61 +316,26 @@ void run_compass(const GlobalOptions& global, const CompassOptions& options) {
   }
 
   // Evaluation over the frames that have ground truth.
-  std::vector<compass::CompassEstimate> estimates;
-  std::vector<compass::TruthSample> truth;
-  for (const Row& row : rows) {
-    if (!row.truth) continue;
-    estimates.push_back(row.estimate);
-    truth.push_back({row.truth->heading_rad, row.truth->x_m, row.truth->y_m, row.time_s});
-  }
-  fs::path input_name = fs::absolute(options.input).lexically_normal();
-  if (input_name.filename().empty()) input_name = input_name.parent_path();  // "folder/"
-  const std::string label = options.label.empty() ? input_name.filename().string() : options.label;
-  const std::string method = describe(params.sampling) +
-                             (params.matcher.minimiser.kind == compass::MinimiserKind::kLocalScan
-                                  ? std::string()
-                                  : " (" + to_string(params.matcher.minimiser.kind) + ")");
-  std::optional<compass::CompassEvaluation> evaluation;
+  const TruthRows with_truth = truth_rows(run.rows);
+  const std::string label = dataset_label(options);
+  const std::string method = method_label(setup.params);
+  const bool printing = !global.quiet && options.out != "-";
   if (options.truth) {
-    if (estimates.size() < rows.size()) {
-      log_warning(std::to_string(rows.size() - estimates.size()) +
+    if (with_truth.estimates.size() < run.rows.size()) {
+      log_warning(std::to_string(run.rows.size() - with_truth.estimates.size()) +
                   " frames have no ground truth and are left out of the statistics");
     }
-    evaluation = compass::evaluate_compass(estimates, truth, compass.reference_count());
-    if (!global.quiet && options.out != "-") {
-      std::cout << compass::format_evaluation_table(label, method, *evaluation);
+    const evaluation::CompassEvaluation statistics =
+        evaluation::evaluate_compass(with_truth.estimates, with_truth.truth, run.reference_count);
+    if (printing) std::cout << evaluation::format_compass_table(label, method, statistics);
+    if (!options.stats.empty()) {
+      write_stats(options.stats, label, method, setup.width ? *setup.width : run.input_width,
+                  statistics);
     }
-  } else if (!global.quiet && options.out != "-") {
-    const compass::CompassEstimate& last = rows.back().estimate;
-    int flagged = 0;
-    for (const Row& row : rows) flagged += row.estimate.flags.ok() ? 0 : 1;
-    std::cout << rows.size() << " frames, " << compass.reference_count() << " reference frames ("
-              << method << "); final heading " << fixed(rad_to_deg(wrap_angle(last.heading_rad)), 3)
-              << " deg (" << fixed(rad_to_deg(last.heading_rad), 3) << " deg unwrapped); "
-              << flagged << " frames with a low-confidence flag\n";
+  } else if (printing) {
+    print_summary(run, method);
   }
-  if (!options.stats.empty()) {
-    std::ostringstream csv;
-    csv << "dataset,method,width_px,reference_frames,total_frames,max_abs_error_deg,"
-           "mean_error_deg,std_error_deg,slope_deg_per_s,slope_deg_per_m,final_error_deg\n";
-    csv << csv_quoted(label) << ',' << csv_quoted(method) << ',' << (width ? *width : input_width)
-        << ',' << evaluation->reference_frames << ',' << evaluation->total_frames << ','
-        << fixed(evaluation->error_deg.max_abs, 4) << ',' << fixed(evaluation->error_deg.mean, 4)
-        << ','
-        << (std::isfinite(evaluation->error_deg.stddev) ? fixed(evaluation->error_deg.stddev, 4)
-                                                        : "")
-        << ',' << (evaluation->slope_deg_per_s ? fixed(*evaluation->slope_deg_per_s, 5) : "") << ','
-        << (evaluation->slope_deg_per_m ? fixed(*evaluation->slope_deg_per_m, 4) : "") << ','
-        << fixed(evaluation->final_error_deg, 4) << '\n';
-    write_output_file(options.stats, csv.str());
-  }
-  if (!options.plot.empty()) {
-    std::vector<compass::CompassEstimate> all;
-    std::vector<compass::TruthSample> all_truth;
-    for (const Row& row : rows) all.push_back(row.estimate);
-    if (estimates.size() == rows.size()) all_truth = truth;
-    eval::save_png(compass::plot_compass_run(all, all_truth, label + ", " + method), options.plot);
-  }
+  if (!options.plot.empty()) write_plot(options.plot, run, with_truth, label + ", " + method);
 }
 
 }  // namespace

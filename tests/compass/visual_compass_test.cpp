@@ -6,27 +6,29 @@
 #include <cmath>
 
 #include "compass_test_support.hpp"
-#include "omninav/compass/evaluation.hpp"
 #include "omninav/core/angles.hpp"
 #include "omninav/core/errors.hpp"
 #include "omninav/core/panorama.hpp"
+#include "omninav/evaluation/compass_evaluation.hpp"
 #include "omninav/sim/trajectory.hpp"
 
 namespace omninav::compass {
 namespace {
 
+using evaluation::CompassEvaluation;
+using evaluation::CompassTruth;
 using testing::random_image;
 
 struct RenderedRun {
   std::vector<CompassEstimate> estimates;
-  std::vector<TruthSample> truth;
+  std::vector<CompassTruth> truth;
   int references = 0;
   CompassEvaluation evaluation;
 };
 
 struct RenderedSequence {
   std::vector<CompassFrame> frames;
-  std::vector<TruthSample> truth;
+  std::vector<CompassTruth> truth;
 };
 
 // Renders `spec` in the default room, with its ground truth.
@@ -38,7 +40,7 @@ RenderedSequence render_sequence(const std::string& spec, int width = 360, int h
     const sim::TimedPose& pose = trajectory.poses[i];
     sequence.frames.emplace_back(renderer.render(pose.pose, pose.time_s, static_cast<int>(i)),
                                  static_cast<int>(i));
-    sequence.truth.push_back({pose.pose.heading_rad, pose.pose.x_m, pose.pose.y_m, pose.time_s});
+    sequence.truth.push_back({pose.pose.heading_rad, pose.pose.floor_position(), pose.time_s});
   }
   return sequence;
 }
@@ -50,7 +52,7 @@ RenderedRun run_on(const RenderedSequence& sequence, const CompassParams& params
   for (const CompassFrame& frame : sequence.frames) run.estimates.push_back(compass.push(frame));
   run.truth = sequence.truth;
   run.references = compass.reference_count();
-  run.evaluation = evaluate_compass(run.estimates, run.truth, run.references);
+  run.evaluation = evaluation::evaluate_compass(run.estimates, run.truth, run.references);
   return run;
 }
 

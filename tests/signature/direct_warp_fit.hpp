@@ -1,10 +1,14 @@
 #pragma once
 // The oracle for the motion fit's fast evaluation (libs/signature/src/warp_fit.hpp): the same
 // least-squares problem evaluated line by line, sample by sample, as estimate_motion() did before
-// the identity, in O(N·lines·m). Used by tests/signature/motion_test.cpp and
+// the identity, in O(N·lines·m), from the problem's definition alone (N = max(16, 4m) column
+// angles, the residuals and their Jacobian): none of the fast evaluation's sums. It shares only
+// the interface the Levenberg-Marquardt stages call (detail::WarpObjective), so that the stages
+// can run on either. Used by tests/signature/motion_test.cpp and
 // tests/bench/signature_bench.cpp only.
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 #include <complex>
 #include <cstddef>
@@ -23,7 +27,7 @@ class DirectWarpFit final : public detail::WarpObjective {
 
  public:
   DirectWarpFit(const Signature& from, const Signature& to, int m)
-      : m_(m), lines_(from.lines()), samples_(detail::warp_samples(m)) {
+      : m_(m), lines_(from.lines()), samples_(std::max(16, 4 * m)) {
     to_coefficients_.resize(static_cast<std::size_t>(lines_) * m_);
     for (int line = 0; line < lines_; ++line) {
       for (int k = 1; k < m_; ++k) to_coefficients_[index(line, k)] = to.coefficient(line, k);

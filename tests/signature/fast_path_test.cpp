@@ -131,7 +131,7 @@ TEST(SignatureFastPath, LuminanceIsOpenCvsOnEveryColour) {
   std::vector<float> line(4096);
   int mismatches = 0;
   for (int y = 0; y < colours.rows; ++y) {
-    detail::bgr_to_luminance(colours.ptr<std::uint8_t>(y), colours.cols, line.data());
+    detail::load_line(colours, ColourMode::kLuminance, y, line.data());
     const std::uint8_t* expected = grey.ptr<std::uint8_t>(y);
     for (int x = 0; x < colours.cols; ++x) mismatches += line[x] != expected[x];
   }

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <iostream>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "direct_phase_heading.hpp"
@@ -96,33 +97,53 @@ TEST(PhaseHeading, SurvivesShortTranslations) {
   EXPECT_LT(errors[errors.size() * 9 / 10], 10.0) << "90th percentile, degrees";
 }
 
-// relative_heading() against the computation it replaced (direct_phase_heading.hpp), which took
-// e^{ikδ} and every coefficient from std::polar. The two differ only in rounding: the cross-power
-// from the stored magnitudes and phases, e^{ikδ} as powers of e^{iδ}, the guard's grid from a
-// table of e^{2πij/S}. They might pick different peaks only where two of C's values tie within
-// rounding; none do here. Measured over the cases below (m = 2..300): turns within 9e-16 rad,
-// confidences within 1.2e-14; asked: 1e-9 rad and 1e-12.
+// relative_heading() against the independent oracle (direct_phase_heading.hpp): the global
+// maximum of C(δ) = Σ_k Re(P_k e^{ikδ}), found by a dense grid and bisection on C', with none of
+// the fast path's branches, powers or tables. Confidence is C/Σ|F||F'|, so `below` (the oracle's
+// confidence minus the fast one) is how far under the highest peak the fast path's turn is.
+//  - Nothing is above the global maximum (beyond rounding).
+//  - Related views (rendered ones, synthetic phase noise ≤ 1 rad): the same peak, its turn within
+//    1e-5 rad and its height within 1e-9 (the fast polish stops after 4 Newton steps; measured
+//    over the cases below: 4.9e-6 rad and 6.8e-11 for one rendered pair at m = 15, the other
+//    358 pairs within 1.5e-7 rad).
+//  - Any views: what the fast path's guard guarantees. Its grid of 8m turns, spacing h, samples
+//    every peak within B·h²/8 of its height (B = Σ_k k²|P_k| bounds |C''|), and it moves only to
+//    a sample higher by 1e-6: so `below` ≤ B·h²/8 + 1e-6. Nearly unrelated synthetic views may
+//    end on another peak within that (measured: 1 pair in 215, 2.4e-4 below, phase noise 3 rad).
 class HeadingAgreement {
  public:
-  void compare(const Signature& from, const Signature& to, int m) {
+  void compare(const Signature& from, const Signature& to, int m, bool related,
+               const std::string& what) {
     const PhaseHeading fast = relative_heading(from, to, m);
-    const PhaseHeading direct = testing::direct_relative_heading(from, to, m);
+    const testing::DirectHeading direct = testing::direct_relative_heading(from, to, m);
     const double turn = std::fabs(signed_difference(fast.turn_rad, direct.turn_rad));
-    const double confidence = std::fabs(fast.confidence - direct.confidence);
-    EXPECT_LT(turn, 1e-9) << "m = " << m << ": " << fast.turn_rad << " vs " << direct.turn_rad;
-    EXPECT_LT(confidence, 1e-12) << "m = " << m;
-    worst_turn_ = std::max(worst_turn_, turn);
-    worst_confidence_ = std::max(worst_confidence_, confidence);
+    const double below = direct.confidence - fast.confidence;
+    const std::string where = what + ", m = " + std::to_string(m);
+    EXPECT_GT(below, -1e-13) << where << ": the fast path above the global maximum";
+    const double guard_step = kTwoPi / (8.0 * m);
+    EXPECT_LE(below, direct.curvature_bound * guard_step * guard_step / 8.0 + 1e-6) << where;
+    const bool same_peak = turn < kPi / m;
+    if (related || same_peak) {
+      EXPECT_LT(turn, 1e-5) << where << ": " << fast.turn_rad << " vs " << direct.turn_rad;
+      EXPECT_LT(below, 1e-9) << where;
+    }
+    if (same_peak) {
+      worst_turn_ = std::max(worst_turn_, turn);
+      worst_below_ = std::max(worst_below_, below);
+    } else {
+      ++other_peaks_;
+    }
     ++count_;
   }
   ~HeadingAgreement() {
-    std::cout << count_ << " pairs: turn within " << worst_turn_ << " rad, confidence within "
-              << worst_confidence_ << " of the direct computation\n";
+    std::cout << count_ << " pairs: " << other_peaks_ << " on another peak; on the same peak, turn "
+              << "within " << worst_turn_ << " rad, confidence within " << worst_below_
+              << " of the global maximum's\n";
   }
 
  private:
-  double worst_turn_ = 0.0, worst_confidence_ = 0.0;
-  int count_ = 0;
+  double worst_turn_ = 0.0, worst_below_ = 0.0;
+  int count_ = 0, other_peaks_ = 0;
 };
 
 TEST(PhaseHeading, MatchesTheDirectComputationOnRenderedViews) {
@@ -142,7 +163,9 @@ TEST(PhaseHeading, MatchesTheDirectComputationOnRenderedViews) {
       if (!world.is_free(x0, y0, 0.2) || !world.is_free(x1, y1, 0.2)) continue;
       const Signature from = extractor.compute(render(x0, y0, angle(random)));
       const Signature to = extractor.compute(render(x1, y1, angle(random)));
-      for (int m : {2, 3, 5, 15, 32, 64}) agreement.compare(from, to, m);
+      for (int m : {2, 3, 5, 15, 32, 64}) {
+        agreement.compare(from, to, m, true, "rendered, " + std::to_string(d) + " m apart");
+      }
       ++pair;
     }
   }
@@ -171,7 +194,8 @@ TEST(PhaseHeading, MatchesTheDirectComputationOnSyntheticSignatures) {
                 static_cast<float>(wrap_angle(phase - k * turn + noise(random)));
           }
         }
-        agreement.compare(from, to, m);
+        agreement.compare(from, to, m, noise_rad <= 1.0,
+                          "synthetic, phase noise " + std::to_string(noise_rad));
       }
     }
   }

@@ -13,11 +13,11 @@
 #include <sstream>
 
 #include "omninav/compass/compass_run.hpp"
-#include "omninav/compass/evaluation.hpp"
 #include "omninav/core/angles.hpp"
 #include "omninav/core/errors.hpp"
 #include "omninav/core/log.hpp"
 #include "omninav/eval/png.hpp"
+#include "omninav/evaluation/compass_evaluation.hpp"
 #include "omninav/evaluation/render_database.hpp"
 #include "omninav/io/bob_database.hpp"
 #include "omninav/io/sequence.hpp"
@@ -27,6 +27,7 @@
 #include "omninav/memory/map_file.hpp"
 #include "omninav/navigation/memory_places.hpp"
 #include "omninav/navigation/trials.hpp"
+#include "omninav/report/compass_figures.hpp"
 #include "omninav/sim/trajectory.hpp"
 
 namespace omninav::evaluation {
@@ -195,19 +196,21 @@ class WorldRun {
       const fs::path folder = render(name, spec);
       compass::CompassRun run(config_.compass.compass, config_.compass.width_px);
       std::vector<compass::CompassEstimate> estimates;
-      std::vector<compass::TruthSample> truth;
+      std::vector<CompassTruth> truth;
+      std::vector<double> truth_heading_rad;
       std::unique_ptr<io::SequenceReader> reader = io::open_sequence(folder);
       while (std::optional<io::Frame> frame = reader->next()) {
         if (!frame->truth) throw InputError(frame->source + ": no ground truth");
         estimates.push_back(
             run.push(frame->image, frame->index, frame->source, frame->truth->heading_rad));
-        truth.push_back(
-            {frame->truth->heading_rad, frame->truth->x_m, frame->truth->y_m, frame->time_s});
+        truth.push_back({frame->truth->heading_rad, frame->truth->floor_position(), frame->time_s});
+        truth_heading_rad.push_back(frame->truth->heading_rad);
       }
-      const compass::CompassEvaluation evaluation =
-          compass::evaluate_compass(estimates, truth, run.reference_count());
+      const CompassEvaluation evaluation =
+          evaluate_compass(estimates, truth, run.reference_count());
       const fs::path plot = dir_ / (name + ".compass.png");
-      eval::save_png(compass::plot_compass_run(estimates, truth, row_.world + ", " + name), plot);
+      eval::save_png(
+          report::plot_compass_run(estimates, truth_heading_rad, row_.world + ", " + name), plot);
       command({"compass", "--input", folder.string(), "--truth", "--plot", plot.string()});
       set("compass_" + name + "_max_deg", evaluation.error_deg.max_abs);
       set("compass_" + name + "_mean_deg", evaluation.error_deg.mean);

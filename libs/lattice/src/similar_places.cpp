@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <tuple>
 
+#include "omninav/core/best_k.hpp"
 #include "omninav/core/statistics.hpp"
 
 namespace omninav::lattice {
@@ -53,18 +54,12 @@ std::vector<std::vector<SimilarPlace>> PlaceDissimilarities::most_similar(int co
   const auto keep = static_cast<std::size_t>(
       std::clamp<Eigen::Index>(count, 0, std::max<Eigen::Index>(places - 1, 0)));
   if (keep == 0) return best;
-  // Offers b to a's list, a max-heap of at most `keep` places (the least similar on top).
+  // Each place's `keep` most similar so far.
+  using Kept = BestK<SimilarPlace, decltype(&more_similar)>;
+  std::vector<Kept> kept(static_cast<std::size_t>(places), Kept(keep, &more_similar));
   const auto offer = [&](Eigen::Index a, Eigen::Index b, float dissimilarity) {
-    std::vector<SimilarPlace>& list = best[static_cast<std::size_t>(a)];
-    const SimilarPlace candidate{static_cast<int>(b), static_cast<double>(dissimilarity)};
-    if (list.size() < keep) {
-      list.push_back(candidate);
-      std::push_heap(list.begin(), list.end(), more_similar);
-    } else if (more_similar(candidate, list.front())) {
-      std::pop_heap(list.begin(), list.end(), more_similar);
-      list.back() = candidate;
-      std::push_heap(list.begin(), list.end(), more_similar);
-    }
+    kept[static_cast<std::size_t>(a)].offer(
+        {static_cast<int>(b), static_cast<double>(dissimilarity)});
   };
   // Every pair once, block against block, so that the two blocks' rows stay in cache while
   // they are compared; each pair by distance(), so that a pair's value is the same here as from
@@ -82,8 +77,9 @@ std::vector<std::vector<SimilarPlace>> PlaceDissimilarities::most_similar(int co
       }
     }
   }
-  for (std::vector<SimilarPlace>& list : best)
-    std::sort_heap(list.begin(), list.end(), more_similar);
+  for (std::size_t place = 0; place < best.size(); ++place) {
+    best[place] = std::move(kept[place]).take_sorted();
+  }
   return best;
 }
 

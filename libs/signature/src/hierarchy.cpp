@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <numeric>
 
+#include "omninav/core/best_k.hpp"
 #include "omninav/core/config.hpp"
 #include "omninav/core/errors.hpp"
 #include "omninav/core/parse.hpp"
@@ -198,6 +199,64 @@ SearchResult SignatureIndex::search_exhaustive(const Signature& query, double ca
   return result;
 }
 
+namespace {
+
+// The places compared at one level, with their running Dis, and whether each may be a candidate
+// (was one at the previous level; unused at the first level, where all may).
+struct Compared {
+  std::vector<std::uint32_t> places;
+  std::vector<float> dis;
+  std::vector<char> eligible;
+};
+
+// The `count` places most unlike the query at the first level (largest Dis first, ties by
+// index), kept in one O(N) pass: the probes for Max Dis further down.
+std::vector<std::uint32_t> most_unlike(const std::vector<float>& dis, std::size_t count) {
+  const auto larger_first = [&dis](std::uint32_t a, std::uint32_t b) {
+    return dis[a] > dis[b] || (dis[a] == dis[b] && a < b);
+  };
+  BestK<std::uint32_t, decltype(larger_first)> most(count, larger_first);
+  most.reserve();
+  for (std::uint32_t i = 0; i < dis.size(); ++i) most.offer(i);
+  return std::move(most).take_sorted();
+}
+
+// The places carried from a level to the next, their Dis so far: the level's candidates, and
+// besides them its best top_k places, so that the finest level can always report top_k places;
+// those rank but never become candidates.
+Compared carried_from(const Compared& level, const std::vector<Candidate>& candidates,
+                      std::size_t top_k_count) {
+  Compared next;
+  for (const Candidate& c : candidates) {
+    next.places.push_back(c.place);
+    next.dis.push_back(c.dissimilarity);
+    next.eligible.push_back(1);
+  }
+  if (candidates.size() < top_k_count) {
+    for (const Candidate& c :
+         top_k(level.places, level.dis, 0.0, 0.0, std::min(top_k_count, level.places.size()))) {
+      if (std::none_of(candidates.begin(), candidates.end(),
+                       [&](const Candidate& p) { return p.place == c.place; })) {
+        next.places.push_back(c.place);
+        next.dis.push_back(c.dissimilarity);
+        next.eligible.push_back(0);
+      }
+    }
+  }
+  return next;
+}
+
+// A level's Min Dis and Max Dis over the places compared, Max Dis over the probes too.
+void set_range(const std::vector<float>& dis, const std::vector<float>& probe_dis,
+               LevelResult& level) {
+  const auto [lo, hi] = std::minmax_element(dis.begin(), dis.end());
+  level.min_dissimilarity = lo == dis.end() ? 0.0 : *lo;
+  level.max_dissimilarity = hi == dis.end() ? 0.0 : *hi;
+  for (float p : probe_dis) level.max_dissimilarity = std::max<double>(level.max_dissimilarity, p);
+}
+
+}  // namespace
+
 SearchResult SignatureIndex::search(const Signature& query, double candidate_similarity,
                                     std::size_t top_k_count, int max_probes) const {
   check(query, "the query's signature");
@@ -206,93 +265,41 @@ SearchResult SignatureIndex::search(const Signature& query, double candidate_sim
     for (int m : levels_) result.levels.push_back({m, 0, 0.0, 0.0, {}});
     return result;
   }
-  const Eigen::Index n = static_cast<Eigen::Index>(size_);
-
   // Level 1: every place, one vectorised L1 over the first band.
-  const Eigen::RowVectorXf q0 = query_band(query, 0);
-  const Eigen::VectorXf coarse = (bands_[0].topRows(n).rowwise() - q0).cwiseAbs().rowwise().sum();
-  std::vector<std::uint32_t> evaluated(size_);
-  std::iota(evaluated.begin(), evaluated.end(), 0u);
-  std::vector<float> dis(coarse.data(), coarse.data() + n);
-
-  // The probes: the places most unlike the query at level 1, for Max Dis further down.
-  std::vector<std::uint32_t> probes;
+  const Eigen::Index n = static_cast<Eigen::Index>(size_);
+  const Eigen::VectorXf coarse =
+      (bands_[0].topRows(n).rowwise() - query_band(query, 0)).cwiseAbs().rowwise().sum();
+  Compared compared;
+  compared.places.resize(size_);
+  std::iota(compared.places.begin(), compared.places.end(), 0u);
+  compared.dis.assign(coarse.data(), coarse.data() + n);
+  const std::vector<std::uint32_t> probes =
+      most_unlike(compared.dis, std::min<std::size_t>(static_cast<std::size_t>(max_probes), size_));
   std::vector<float> probe_dis;
-  {
-    // One pass keeping the `count` largest in a heap whose top is the smallest kept: O(N).
-    const std::size_t count = std::min<std::size_t>(static_cast<std::size_t>(max_probes), size_);
-    const auto smaller_first = [&](std::uint32_t a, std::uint32_t b) {
-      return dis[a] > dis[b] || (dis[a] == dis[b] && a < b);
-    };
-    std::vector<std::uint32_t> heap;
-    heap.reserve(count + 1);
-    for (std::uint32_t i = 0; i < size_ && count > 0; ++i) {
-      if (heap.size() < count) {
-        heap.push_back(i);
-        std::push_heap(heap.begin(), heap.end(), smaller_first);
-      } else if (smaller_first(i, heap.front())) {
-        std::pop_heap(heap.begin(), heap.end(), smaller_first);
-        heap.back() = i;
-        std::push_heap(heap.begin(), heap.end(), smaller_first);
-      }
-    }
-    std::sort_heap(heap.begin(), heap.end(), smaller_first);
-    probes = heap;
-    for (std::uint32_t p : probes) probe_dis.push_back(dis[p]);
-  }
+  for (std::uint32_t p : probes) probe_dis.push_back(compared.dis[p]);
 
-  // Places compared at the current level, with their running Dis, and whether each may be a
-  // candidate (was one at the previous level). Besides the candidates, the best top_k places of
-  // the previous level are carried, so that the finest level can always report top_k places;
-  // they rank but never become candidates.
-  std::vector<char> eligible;  // all eligible at the first level
   for (std::size_t l = 0; l < levels_.size(); ++l) {
     if (l > 0) {
+      // The next band added to the running Dis of the places carried and of the probes.
       const Eigen::RowVectorXf q = query_band(query, l);
-      const std::vector<Candidate>& previous = result.levels.back().candidates;
-      std::vector<std::uint32_t> carried;
-      std::vector<float> carried_dis;
-      std::vector<char> carried_eligible;
-      for (const Candidate& c : previous) {
-        carried.push_back(c.place);
-        carried_dis.push_back(c.dissimilarity);
-        carried_eligible.push_back(1);
+      compared = carried_from(compared, result.levels.back().candidates, top_k_count);
+      for (std::size_t i = 0; i < compared.places.size(); ++i) {
+        compared.dis[i] += band_distance(l, q, compared.places[i]);
       }
-      if (previous.size() < top_k_count) {
-        for (const Candidate& c :
-             top_k(evaluated, dis, 0.0, 0.0, std::min(top_k_count, evaluated.size()))) {
-          if (std::none_of(previous.begin(), previous.end(),
-                           [&](const Candidate& p) { return p.place == c.place; })) {
-            carried.push_back(c.place);
-            carried_dis.push_back(c.dissimilarity);
-            carried_eligible.push_back(0);
-          }
-        }
-      }
-      for (std::size_t i = 0; i < carried.size(); ++i) {
-        carried_dis[i] += band_distance(l, q, carried[i]);
-      }
-      evaluated = std::move(carried);
-      dis = std::move(carried_dis);
-      eligible = std::move(carried_eligible);
       for (std::size_t i = 0; i < probes.size(); ++i) {
         probe_dis[i] += band_distance(l, q, probes[i]);
       }
     }
     LevelResult level;
     level.components = levels_[l];
-    level.evaluated = evaluated.size();
-    const auto [lo, hi] = std::minmax_element(dis.begin(), dis.end());
-    level.min_dissimilarity = lo == dis.end() ? 0.0 : *lo;
-    level.max_dissimilarity = hi == dis.end() ? 0.0 : *hi;
-    for (float p : probe_dis) {
-      level.max_dissimilarity = std::max<double>(level.max_dissimilarity, p);
-    }
-    level.candidates = select(evaluated, dis, l == 0 ? nullptr : &eligible, level.min_dissimilarity,
-                              level.max_dissimilarity, candidate_similarity);
+    level.evaluated = compared.places.size();
+    set_range(compared.dis, probe_dis, level);
+    level.candidates =
+        select(compared.places, compared.dis, l == 0 ? nullptr : &compared.eligible,
+               level.min_dissimilarity, level.max_dissimilarity, candidate_similarity);
     if (l + 1 == levels_.size()) {
-      result.best =
-          top_k(evaluated, dis, level.min_dissimilarity, level.max_dissimilarity, top_k_count);
+      result.best = top_k(compared.places, compared.dis, level.min_dissimilarity,
+                          level.max_dissimilarity, top_k_count);
     }
     result.levels.push_back(std::move(level));
   }

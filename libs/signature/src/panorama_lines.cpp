@@ -105,10 +105,6 @@ void channel_row(const std::uint8_t* bgr, int channel, int width, float* dst) {
 
 }  // namespace
 
-void bgr_to_luminance(const std::uint8_t* bgr, int width, float* dst) {
-  luminance_row(bgr, width, dst);
-}
-
 void load_line(const cv::Mat& panorama, ColourMode mode, int line, float* dst) {
   const int rows = panorama.rows;
   const int y = line % rows;

@@ -8,10 +8,36 @@
 
 #include "fast_math.hpp"
 #include "omninav/core/angles.hpp"
-#include "phase_branches.hpp"
 
 namespace omninav::signature {
 namespace {
+
+// The turn from the cross-power's branches (phase_heading.hpp, steps 1-2): k = 1 gives it
+// without ambiguity, then each k = 2..m−1 refines it on the branch of its arg(P_k)/k nearest the
+// running estimate, weighted by k·|P_k|. `cross_at(k)` returns P_k for k = 1..m−1.
+template <typename CrossAt>
+double turn_from_branches(const CrossAt& cross_at, int m) {
+  // 1. Coarse, from k = 1.
+  const std::complex<double> first = cross_at(1);
+  double turn = -std::arg(first);
+  double weight_sum = std::abs(first);
+  double weighted = turn * weight_sum;
+  // 2. Refined with k = 2..m−1, each on the branch nearest the running estimate.
+  for (int k = 2; k < m; ++k) {
+    const std::complex<double> p = cross_at(k);
+    const double magnitude = std::abs(p);
+    if (magnitude <= 0.0) continue;
+    const double kk = static_cast<double>(k);
+    const double base = -std::arg(p) / kk;
+    const double period = kTwoPi / kk;
+    const double running = weight_sum > 0.0 ? weighted / weight_sum : turn;
+    const double candidate = base + period * std::round((running - base) / period);
+    const double weight = kk * magnitude;
+    weighted += weight * candidate;
+    weight_sum += weight;
+  }
+  return weight_sum > 0.0 ? weighted / weight_sum : turn;
+}
 
 // The cross-power P_k (k = 0..m−1, P_0 unused) as separate real and imaginary parts.
 struct CrossPower {
@@ -96,17 +122,15 @@ std::vector<double> correlation_on_grid(const CrossPower& cross, int steps) {
   return values;
 }
 
-}  // namespace
-
-PhaseHeading relative_heading(const Signature& from, const Signature& to, int components) {
-  const int m = pair_components(from, to, components, "take the heading");
-  // Cross-power per component and the normaliser Σ |F||F'|, straight from the stored magnitudes
-  // and phases: F'·conj(F) = |F||F'|·e^{i(φ' − φ)}, one sincos per pair. In batches of whole
-  // lines (or of a line's components, for m > kBatch) for the vectorised sin_cos, small enough to
-  // stay on the stack and in the L1 cache; the sums run along k, so that they vectorise too, and
-  // the normaliser is summed per component (one long chain of additions would be its latency).
-  CrossPower cross{std::vector<double>(static_cast<std::size_t>(m)),
-                   std::vector<double>(static_cast<std::size_t>(m))};
+// The cross-power P_k = Σ_lines F'_k·conj(F_k), k = 1..m−1, into `cross`, and the normaliser
+// Σ |F||F'| returned: straight from the stored magnitudes and phases, F'·conj(F) =
+// |F||F'|·e^{i(φ' − φ)}, one sincos per pair. In batches of whole lines (or of a line's
+// components, for m > kBatch) for the vectorised sin_cos, small enough to stay on the stack and
+// in the L1 cache; the sums run along k, so that they vectorise too, and the normaliser is
+// summed per component (one long chain of additions would be its latency).
+double cross_power(const Signature& from, const Signature& to, int m, CrossPower& cross) {
+  cross.re.assign(static_cast<std::size_t>(m), 0.0);
+  cross.im.assign(static_cast<std::size_t>(m), 0.0);
   std::vector<double> norm_k(static_cast<std::size_t>(m));
   {
     constexpr int kBatch = 256;
@@ -147,6 +171,15 @@ PhaseHeading relative_heading(const Signature& from, const Signature& to, int co
   }
   double norm = 0.0;
   for (int k = 1; k < m; ++k) norm += norm_k[static_cast<std::size_t>(k)];
+  return norm;
+}
+
+}  // namespace
+
+PhaseHeading relative_heading(const Signature& from, const Signature& to, int components) {
+  const int m = pair_components(from, to, components, "take the heading");
+  CrossPower cross;
+  const double norm = cross_power(from, to, m, cross);
   if (norm <= 0.0) return {};  // flat rows: no heading information at all
   const auto at = [&](int k) {
     return std::complex<double>(cross.re[static_cast<std::size_t>(k)],
@@ -154,7 +187,7 @@ PhaseHeading relative_heading(const Signature& from, const Signature& to, int co
   };
 
   // 1-2. From the phases of k = 1, refined with k = 2..m−1.
-  double turn = detail::turn_from_branches(at, m);
+  double turn = turn_from_branches(at, m);
   // 3. Polished on the correlation.
   turn = polish(cross, turn);
   double value = correlation_at(cross, turn).value;

@@ -166,6 +166,38 @@ void SignatureExtractor::run_fft() {
   fftwf_execute_dft_r2c(work.plan, work.in.data(), work.out.data());
 }
 
+namespace {
+
+// The reference path's magnitudes and phases (the fast path's is detail::to_polar): the C
+// library's hypot and atan2 on each scaled coefficient.
+void to_polar_reference(const float* re, const float* im, std::size_t count, float scale,
+                        float* magnitude, float* phase_rad) {
+  for (std::size_t i = 0; i < count; ++i) {
+    const float a = re[i] * scale, b = im[i] * scale;
+    magnitude[i] = std::hypot(a, b);
+    phase_rad[i] = std::atan2(b, a);
+    // atan2(−0, x < 0) is −π; the signature's phases are in (−π, π].
+    if (phase_rad[i] <= -std::numbers::pi_v<float>) phase_rad[i] = std::numbers::pi_v<float>;
+  }
+}
+
+// Every channel's magnitudes scaled so that its mean DC component over the rows is 128.
+void normalise_brightness(Signature& signature) {
+  const int m = signature.components;
+  const std::size_t per_channel = static_cast<std::size_t>(signature.rows) * m;
+  for (int c = 0; c < signature.channels; ++c) {
+    float* channel = signature.magnitude.data() + static_cast<std::size_t>(c) * per_channel;
+    double mean = 0.0;
+    for (int y = 0; y < signature.rows; ++y) mean += channel[static_cast<std::size_t>(y) * m];
+    mean /= signature.rows;
+    if (mean <= 1e-3) continue;  // a black channel stays black
+    const float gain = static_cast<float>(128.0 / mean);
+    for (std::size_t i = 0; i < per_channel; ++i) channel[i] *= gain;
+  }
+}
+
+}  // namespace
+
 Signature SignatureExtractor::compute(const cv::Mat& panorama, const std::string& what) {
   const int m = params_.components;
   if (!panorama.empty() && panorama.cols / 2 + 1 < m) {
@@ -227,28 +259,10 @@ Signature SignatureExtractor::compute(const cv::Mat& panorama, const std::string
     detail::to_polar(work.re.data(), work.im.data(), count, scale, magnitude,
                      signature.phase_rad.data());
   } else {
-    for (std::size_t i = 0; i < count; ++i) {
-      const float a = work.re[i] * scale, b = work.im[i] * scale;
-      magnitude[i] = std::hypot(a, b);
-      signature.phase_rad[i] = std::atan2(b, a);
-      // atan2(−0, x < 0) is −π; the signature's phases are in (−π, π].
-      if (signature.phase_rad[i] <= -std::numbers::pi_v<float>) {
-        signature.phase_rad[i] = std::numbers::pi_v<float>;
-      }
-    }
+    to_polar_reference(work.re.data(), work.im.data(), count, scale, magnitude,
+                       signature.phase_rad.data());
   }
-  if (params_.normalise_brightness) {
-    const std::size_t per_channel = static_cast<std::size_t>(signature.rows) * m;
-    for (int c = 0; c < signature.channels; ++c) {
-      float* channel = magnitude + static_cast<std::size_t>(c) * per_channel;
-      double mean = 0.0;
-      for (int y = 0; y < signature.rows; ++y) mean += channel[static_cast<std::size_t>(y) * m];
-      mean /= signature.rows;
-      if (mean <= 1e-3) continue;  // a black channel stays black
-      const float gain = static_cast<float>(128.0 / mean);
-      for (std::size_t i = 0; i < per_channel; ++i) channel[i] *= gain;
-    }
-  }
+  if (params_.normalise_brightness) normalise_brightness(signature);
   return signature;
 }
 

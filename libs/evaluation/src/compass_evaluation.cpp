@@ -1,16 +1,14 @@
-#include "omninav/compass/evaluation.hpp"
+#include "omninav/evaluation/compass_evaluation.hpp"
 
 #include <cmath>
 #include <cstdio>
-#include <opencv2/core.hpp>
 #include <sstream>
 
 #include "omninav/core/angles.hpp"
 #include "omninav/core/errors.hpp"
-#include "omninav/eval/plot.hpp"
 #include "omninav/eval/robust_regression.hpp"
 
-namespace omninav::compass {
+namespace omninav::evaluation {
 namespace {
 
 std::optional<double> robust_slope(const std::vector<double>& x, const std::vector<double>& y) {
@@ -27,24 +25,10 @@ std::string number(double value, int decimals) {
   return text;
 }
 
-// The unwrapped sequence of angles (radians), so that turns show as ramps.
-std::vector<double> unwrapped_deg(const std::vector<double>& angles_rad) {
-  std::vector<double> result;
-  result.reserve(angles_rad.size());
-  double previous = 0.0;
-  double accumulated = 0.0;
-  for (std::size_t i = 0; i < angles_rad.size(); ++i) {
-    accumulated = i == 0 ? angles_rad[i] : accumulated + signed_difference(angles_rad[i], previous);
-    previous = angles_rad[i];
-    result.push_back(rad_to_deg(accumulated));
-  }
-  return result;
-}
-
 }  // namespace
 
-CompassEvaluation evaluate_compass(const std::vector<CompassEstimate>& estimates,
-                                   const std::vector<TruthSample>& truth, int reference_frames) {
+CompassEvaluation evaluate_compass(const std::vector<compass::CompassEstimate>& estimates,
+                                   const std::vector<CompassTruth>& truth, int reference_frames) {
   if (estimates.empty()) throw UsageError("no frames to evaluate");
   if (estimates.size() != truth.size()) {
     throw UsageError(
@@ -59,8 +43,10 @@ CompassEvaluation evaluate_compass(const std::vector<CompassEstimate>& estimates
   for (std::size_t i = 0; i < estimates.size(); ++i) {
     estimate_rad.push_back(estimates[i].heading_rad);
     truth_rad.push_back(truth[i].heading_rad);
-    if (i > 0)
-      travelled += std::hypot(truth[i].x_m - truth[i - 1].x_m, truth[i].y_m - truth[i - 1].y_m);
+    if (i > 0) {
+      const Eigen::Vector2d step = truth[i].world_position - truth[i - 1].world_position;
+      travelled += std::hypot(step.x(), step.y());
+    }
     evaluation.distance_m.push_back(travelled);
     const double error_deg = rad_to_deg(signed_difference(estimate_rad.back(), truth_rad.back()));
     evaluation.errors_deg.push_back(error_deg);
@@ -82,8 +68,8 @@ CompassEvaluation evaluate_compass(const std::vector<CompassEstimate>& estimates
   return evaluation;
 }
 
-std::string format_evaluation_table(const std::string& dataset, const std::string& method,
-                                    const CompassEvaluation& evaluation) {
+std::string format_compass_table(const std::string& dataset, const std::string& method,
+                                 const CompassEvaluation& evaluation) {
   std::ostringstream table;
   table << "Dataset\tMethod\tNb (total)\tMax. (deg)\tMean (deg)\tStd. dev. (deg)\tSlope (deg/s)"
            "\tSlope (deg/m)\n";
@@ -101,40 +87,4 @@ std::string format_evaluation_table(const std::string& dataset, const std::strin
   return table.str();
 }
 
-cv::Mat plot_compass_run(const std::vector<CompassEstimate>& estimates,
-                         const std::vector<TruthSample>& truth, const std::string& title) {
-  std::vector<double> frames, heading_rad, truth_heading_rad;
-  for (std::size_t i = 0; i < estimates.size(); ++i) {
-    frames.push_back(estimates[i].frame_index);
-    heading_rad.push_back(estimates[i].heading_rad);
-    if (i < truth.size()) truth_heading_rad.push_back(truth[i].heading_rad);
-  }
-  const bool with_truth = !truth.empty() && truth.size() == estimates.size();
-  eval::LinePlot headings(title + ": heading", "frame", "heading (deg, unwrapped)",
-                          cv::Size(900, 420));
-  // The estimate is already unwrapped (Algorithm 1 accumulates); the truth is unwrapped here,
-  // then moved by whole turns to start where the estimate starts.
-  std::vector<double> estimate_deg;
-  for (const double h : heading_rad) estimate_deg.push_back(rad_to_deg(h));
-  headings.add_series("visual compass", frames, estimate_deg);
-  if (with_truth) {
-    std::vector<double> truth_deg = unwrapped_deg(truth_heading_rad);
-    const double turns = std::round((estimate_deg.front() - truth_deg.front()) / 360.0);
-    for (double& value : truth_deg) value += 360.0 * turns;
-    headings.add_series("ground truth", frames, truth_deg);
-  }
-  cv::Mat picture = headings.render();
-  if (with_truth) {
-    std::vector<double> errors;
-    for (std::size_t i = 0; i < estimates.size(); ++i) {
-      errors.push_back(rad_to_deg(signed_difference(heading_rad[i], truth_heading_rad[i])));
-    }
-    eval::LinePlot error(title + ": error (estimate - truth)", "frame", "error (deg)",
-                         cv::Size(900, 320));
-    error.add_series("", frames, errors).show_zero_line();
-    cv::vconcat(picture, error.render(), picture);
-  }
-  return picture;
-}
-
-}  // namespace omninav::compass
+}  // namespace omninav::evaluation

@@ -1,6 +1,6 @@
 #pragma once
-// The evaluation of a compass run against ground truth, as Tables 3 and 4 of
-// 000_9e80abd5855643af.txt and DESIGN.md (Evaluation) define it:
+// The evaluation of a visual compass run against ground truth, as Tables 3 and 4 of the compass
+// paper (Labrosse 2006, 000_9e80abd5855643af.txt) and DESIGN.md (Evaluation) define it:
 //   e = estimate − truth, wrapped to (−180°, 180°] per frame;
 //   "Nb (total)": reference frames used, out of all frames;
 //   Max. |e|, Mean, Std. dev. over the whole sequence (not only its end, §4.3);
@@ -10,8 +10,7 @@
 // The compass is started at the true heading of the first frame (§4.1: "the visual compass is
 // initialised with the absolute value at the beginning of the experiment").
 
-#include <filesystem>
-#include <opencv2/core.hpp>
+#include <Eigen/Core>
 #include <optional>
 #include <string>
 #include <vector>
@@ -19,13 +18,12 @@
 #include "omninav/compass/visual_compass.hpp"
 #include "omninav/eval/error_stats.hpp"
 
-namespace omninav::compass {
+namespace omninav::evaluation {
 
-// Ground truth for one frame.
-struct TruthSample {
+// Ground truth for one frame of a compass run.
+struct CompassTruth {
   double heading_rad = 0.0;
-  double x_m = 0.0;
-  double y_m = 0.0;
+  Eigen::Vector2d world_position = Eigen::Vector2d::Zero();  // metres, on the floor
   std::optional<double> time_s;
 };
 
@@ -41,16 +39,11 @@ struct CompassEvaluation {
 };
 
 // Throws UsageError when the sizes differ or there are no frames.
-CompassEvaluation evaluate_compass(const std::vector<CompassEstimate>& estimates,
-                                   const std::vector<TruthSample>& truth, int reference_frames);
+CompassEvaluation evaluate_compass(const std::vector<compass::CompassEstimate>& estimates,
+                                   const std::vector<CompassTruth>& truth, int reference_frames);
 
 // One line per statistic, in the layout of Table 3 (header and a row for `method`).
-std::string format_evaluation_table(const std::string& dataset, const std::string& method,
-                                    const CompassEvaluation& evaluation);
+std::string format_compass_table(const std::string& dataset, const std::string& method,
+                                 const CompassEvaluation& evaluation);
 
-// Heading (estimate, and truth when given) and error against frame, two panels one above the
-// other, as Figs. 8-9 and 16-19 of the papers. Unwrapped headings so turns show as ramps.
-cv::Mat plot_compass_run(const std::vector<CompassEstimate>& estimates,
-                         const std::vector<TruthSample>& truth, const std::string& title);
-
-}  // namespace omninav::compass
+}  // namespace omninav::evaluation
