@@ -14,8 +14,8 @@
 #include "omninav/eval/png.hpp"
 #include "omninav/io/image_file.hpp"
 #include "omninav/memory/map_file.hpp"
-#include "omninav/navigation/figures.hpp"
 #include "omninav/navigation/memory_places.hpp"
+#include "omninav/report/navigation_figures.hpp"
 
 namespace omninav::cli {
 namespace {
@@ -208,7 +208,7 @@ void run_route(const GlobalOptions& global, const RouteOptions& options) {
     for (std::size_t i = 0; i < memory.place_count(); ++i)
       truth->emplace_back(memory.place(i).truth->x_m, memory.place(i).truth->y_m);
   }
-  eval::save_png(navigation::route_figure(places, plan, from.place, truth), plot);
+  eval::save_png(report::route_figure(places, plan, from.place, truth), plot);
   log_info("route picture: " + plot.string());
 }
 

@@ -9,11 +9,34 @@
 #include "omninav/core/angles.hpp"
 #include "omninav/core/config.hpp"
 #include "omninav/core/errors.hpp"
-#include "omninav/navigation/robot_worlds.hpp"
 #include "omninav/sim/room.hpp"
+#include "omninav/sim/virtual_robot.hpp"
 
 namespace omninav::navigation {
 namespace {
+
+// A virtual robot of libs/sim behind the navigator's interface, moving freely (with motion
+// noise) and stopped by the room's walls and furniture. It shows nothing: the oracle
+// localisers below read its true pose instead.
+class VirtualRobotWorld : public NavigationWorld {
+ public:
+  explicit VirtualRobotWorld(sim::VirtualRobot& robot) : robot_(robot) {}
+  cv::Mat view(int) override { return {}; }
+  double move(double turn_rad, double distance_m) override {
+    return robot_.move(turn_rad, distance_m);
+  }
+  CameraPose truth() const override { return robot_.pose(); }
+
+ private:
+  sim::VirtualRobot& robot_;
+};
+
+NavigationResult navigate(sim::VirtualRobot& robot, const std::vector<PlaceNode>& places,
+                          const RoutePlan& plan, const Localiser& localise,
+                          const NavigatorParams& params) {
+  VirtualRobotWorld world(robot);
+  return navigate(world, places, plan, localise, params);
+}
 
 // The navigation loop with a perfect localiser (the nearest place by true position, the
 // heading by true heading): it isolates planning and control from recognition, whose own
@@ -30,9 +53,6 @@ class OracleNavigation : public ::testing::Test {
           places_.push_back({Eigen::Vector2d(x, y), 0.3 * places_.size()});
       }
     }
-    params_.geometry.width_px = 36;  // the oracle ignores the image
-    params_.geometry.height_px = 4;
-    params_.rays_per_pixel = 1;
   }
 
   Localiser oracle(const sim::VirtualRobot& robot) const {
@@ -56,11 +76,9 @@ class OracleNavigation : public ::testing::Test {
 
   sim::World world_;
   std::vector<PlaceNode> places_;
-  sim::RenderParams params_;
 };
 
 TEST_F(OracleNavigation, ReachesTheGoalAlongAShortPath) {
-  const sim::Renderer renderer(world_, params_);
   const RoutePlan plan = plan_to_goal(places_, lattice_neighbours(places_, 0.45),
                                       static_cast<int>(places_.size()) - 1);
   const Eigen::Vector2d goal = places_.back().position_m;
@@ -68,8 +86,7 @@ TEST_F(OracleNavigation, ReachesTheGoalAlongAShortPath) {
   sim::VirtualRobot robot(
       world_, {places_.front().position_m.x(), places_.front().position_m.y(), 1.0, 2.0, 0.0, 0.0},
       robot_params);
-  const NavigationResult result =
-      navigate(robot, renderer, places_, plan, oracle(robot), NavigatorParams{});
+  const NavigationResult result = navigate(robot, places_, plan, oracle(robot), NavigatorParams{});
   ASSERT_TRUE(result.reached) << result.steps.size() << " steps";
   EXPECT_LT((Eigen::Vector2d(robot.pose().x_m, robot.pose().y_m) - goal).norm(), 0.3);
   // The route bends round furniture: within 1.5 × the planned route's length.
@@ -78,27 +95,25 @@ TEST_F(OracleNavigation, ReachesTheGoalAlongAShortPath) {
 }
 
 TEST_F(OracleNavigation, FollowsThePlanWhateverTheRobotsStartingHeading) {
-  const sim::Renderer renderer(world_, params_);
   const RoutePlan plan = plan_to_goal(places_, lattice_neighbours(places_, 0.45), 0);
   for (double heading_deg : {-170.0, -60.0, 45.0, 135.0}) {
     sim::VirtualRobot robot(world_,
                             {places_.back().position_m.x(), places_.back().position_m.y(), 1.0,
                              deg_to_rad(heading_deg), 0.0, 0.0},
                             sim::RobotParams{});
-    EXPECT_TRUE(navigate(robot, renderer, places_, plan, oracle(robot), NavigatorParams{}).reached)
+    EXPECT_TRUE(navigate(robot, places_, plan, oracle(robot), NavigatorParams{}).reached)
         << "starting heading " << heading_deg;
   }
 }
 
 TEST_F(OracleNavigation, GivesUpWhenTheBudgetIsSpent) {
-  const sim::Renderer renderer(world_, params_);
   const RoutePlan plan = plan_to_goal(places_, lattice_neighbours(places_, 0.45), 0);
   sim::VirtualRobot robot(
       world_, {places_.back().position_m.x(), places_.back().position_m.y(), 1.0, 0.0, 0.0, 0.0},
       sim::RobotParams{});
   NavigatorParams params;
   params.max_steps = 3;
-  const NavigationResult result = navigate(robot, renderer, places_, plan, oracle(robot), params);
+  const NavigationResult result = navigate(robot, places_, plan, oracle(robot), params);
   EXPECT_FALSE(result.reached);
   EXPECT_EQ(result.steps.size(), 3u);
 }

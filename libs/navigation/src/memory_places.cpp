@@ -115,6 +115,19 @@ HomingScale homing_scale(const memory::VisualMemory& memory, const std::vector<P
   return scale;
 }
 
+GoalNavigationSetup goal_navigation_setup(const memory::VisualMemory& memory, Localiser localise,
+                                          const RouteParams& route,
+                                          const NavigatorParams& navigator) {
+  GoalNavigationSetup setup;
+  setup.places = places_from_memory(memory);
+  setup.localise = std::move(localise);
+  setup.match_limit = match_limit(memory, route);
+  setup.homing = homing_scale(memory, setup.places);
+  setup.route = route;
+  setup.navigator = navigator;
+  return setup;
+}
+
 PlaceMatch match_image(const Localiser& localise, const cv::Mat& image, double limit,
                        const std::string& what) {
   require_panorama(image, what);

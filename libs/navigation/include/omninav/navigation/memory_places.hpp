@@ -9,6 +9,7 @@
 
 #include "omninav/memory/localisation.hpp"
 #include "omninav/memory/visual_memory.hpp"
+#include "omninav/navigation/goal_navigation.hpp"
 #include "omninav/navigation/homing.hpp"
 #include "omninav/navigation/navigator.hpp"
 #include "omninav/navigation/route_planner.hpp"
@@ -42,6 +43,12 @@ double match_limit(const memory::VisualMemory& memory, const RouteParams& params
 // map's links, which join places about one spacing apart. Without links, metres_per_dissimilarity
 // is 0 (homing never moves), with a warning in the log.
 HomingScale homing_scale(const memory::VisualMemory& memory, const std::vector<PlaceNode>& places);
+
+// What navigating to goal images on `memory` needs: its places (places_from_memory), its match
+// limit and homing scale, with `localise` and the settings.
+GoalNavigationSetup goal_navigation_setup(const memory::VisualMemory& memory, Localiser localise,
+                                          const RouteParams& route,
+                                          const NavigatorParams& navigator);
 
 // Why `match` matches no place of the map, none when it does: no candidate, or a mean
 // dissimilarity per value above `limit` (see match_limit). The one criterion of route, navigate

@@ -28,11 +28,6 @@ namespace omninav {
 class ConfigReader;
 }
 
-namespace omninav::sim {
-class VirtualRobot;
-class Renderer;
-}  // namespace omninav::sim
-
 namespace omninav::navigation {
 
 // What a localiser says about a panorama: the best place, how sure it is, and the robot's
@@ -93,8 +88,8 @@ struct NavigatorParams {
 void load_navigator_params(const ConfigReader& section, NavigatorParams& params);
 
 // What the navigator acts on: a robot somewhere that shows what it sees and moves when told.
-// The loop is the same whether the world is rendered (RenderedWorld) or a grid of stored
-// images (GridDatabaseWorld, robot_worlds.hpp).
+// The loop is the same whether the world is rendered or a grid of stored images (the
+// evaluation layer's robot worlds) or a stand-in.
 class NavigationWorld {
  public:
   virtual ~NavigationWorld() = default;
@@ -132,11 +127,5 @@ struct NavigationResult {
 NavigationResult navigate(NavigationWorld& world, const std::vector<PlaceNode>& places,
                           const RoutePlan& plan, const Localiser& localise,
                           const NavigatorParams& params, const GoalHoming& homing = {});
-
-// The loop in a rendered world: navigate(RenderedWorld(robot, renderer), ...)
-// (robot_worlds.cpp).
-NavigationResult navigate(sim::VirtualRobot& robot, const sim::Renderer& renderer,
-                          const std::vector<PlaceNode>& places, const RoutePlan& plan,
-                          const Localiser& localise, const NavigatorParams& params);
 
 }  // namespace omninav::navigation
