@@ -60,8 +60,10 @@ void write_step_rows(std::ostream& csv, const std::string& prefix,
                      const navigation::NavigationResult& result, double lattice_to_world_rad) {
   for (const navigation::NavigationStep& step : result.steps) {
     csv << prefix << step.index << ',' << step.truth.x_m << ',' << step.truth.y_m << ','
-        << rad_to_deg(step.truth.heading_rad) << ',' << step.match.place << ','
-        << step.match.similarity << ',' << step.match.dissimilarity_per_value << ','
+        << rad_to_deg(step.truth.heading_rad) << ','
+        << (step.match ? static_cast<int>(step.match->place) : -1) << ','
+        << (step.match ? step.match->similarity : 0.0) << ','
+        << (step.match ? step.match->dissimilarity_per_value : 0.0) << ','
         << rad_to_deg(step.heading_estimate_rad) << ','
         << rad_to_deg(signed_difference(step.heading_estimate_rad + lattice_to_world_rad,
                                         step.truth.heading_rad))
@@ -117,7 +119,7 @@ void draw_path(const navigation::NavigationResult& result,
   for (const navigation::PlaceNode& place : places)
     lattice_points.emplace_back(place.position_m.x(), place.position_m.y());
   for (const navigation::NavigationStep& step : result.steps) {
-    if (step.match.place >= 0) matched.push_back(lattice_points[step.match.place]);
+    if (step.match) matched.push_back(lattice_points[step.match->place]);
     truth_path.emplace_back(step.truth.x_m, step.truth.y_m);
   }
   for (std::size_t i = 1; i < matched.size(); ++i)

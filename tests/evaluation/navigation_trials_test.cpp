@@ -38,7 +38,7 @@ TEST_F(RoomNavigation, AShortNavigationInTheRoomReachesItsGoal) {
   const GoalRun run =
       navigation::navigate_to_image(world, map().renderer->render(goal), "goal", setup());
   // The goal image is recognised as the place nearest the goal pose.
-  EXPECT_EQ(run.goal.place, nearest_place(goal.x_m, goal.y_m));
+  EXPECT_EQ(static_cast<int>(run.goal.place), nearest_place(goal.x_m, goal.y_m));
   ASSERT_TRUE(run.result.reached) << run.result.steps.size() << " steps";
   // Stopped within one grid spacing of the goal pose (the robot stops once it recognises the
   // goal's place, which lies within half a cell's diagonal of the goal).
@@ -145,7 +145,7 @@ TEST_F(RoomNavigation, NavigationOnARenderedGridReachesItsGoal) {
                           sim::RobotParams{});
   const GoalRun run =
       navigation::navigate_to_image(world, map().grid[goal].panorama, "goal", setup());
-  EXPECT_EQ(run.goal.place, goal);
+  EXPECT_EQ(static_cast<int>(run.goal.place), goal);
   ASSERT_TRUE(run.result.reached) << run.result.steps.size() << " steps";
   const CameraPose& goal_pose = map().grid[goal].pose;
   EXPECT_LT(std::hypot(world.truth().x_m - goal_pose.x_m, world.truth().y_m - goal_pose.y_m),

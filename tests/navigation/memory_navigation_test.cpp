@@ -23,7 +23,7 @@ TEST_F(RoomNavigation, MatchThresholdSeparatesTheRoomFromNoise) {
     for (double y = 1.05; y < 3.1; y += 0.29) {
       if (!map().world.is_free(x, y, 0.1)) continue;
       const cv::Mat view = map().renderer->render({x, y, 1.0, x * y, 0.0, 0.0});
-      const PlaceMatch match = match_image(map().localise, view, limit(), "view");
+      const memory::PlaceMatch match = match_image(map().localise, view, limit(), "view");
       worst = std::max(worst, match.dissimilarity_per_value);
       // ... and the place it matches is the nearest or next to it (8-neighbourhood).
       const CameraPose& place = map().grid[match.place].pose;
@@ -35,7 +35,7 @@ TEST_F(RoomNavigation, MatchThresholdSeparatesTheRoomFromNoise) {
   // Noise does not, and the message names the image.
   cv::Mat noise(24, 180, CV_8UC3);
   cv::RNG(3).fill(noise, cv::RNG::UNIFORM, 0, 256);
-  EXPECT_GT(map().localise(noise).dissimilarity_per_value, 1.2 * limit());
+  EXPECT_GT(map().localise(noise).best.front().dissimilarity_per_value, 1.2 * limit());
   try {
     match_image(map().localise, noise, limit(), "noise.png");
     ADD_FAILURE() << "noise matched a place";

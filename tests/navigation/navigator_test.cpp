@@ -5,6 +5,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "omninav/core/angles.hpp"
 #include "omninav/core/config.hpp"
@@ -14,6 +15,26 @@
 
 namespace omninav::navigation {
 namespace {
+
+// What a stand-in localiser says: `place` recognised with full similarity, the robot's heading
+// relative to it, and when given the robot's position on the lattice.
+memory::Localisation recognised(std::size_t place, double relative_heading_rad,
+                                const std::optional<Eigen::Vector2d>& lattice_position = {}) {
+  memory::Localisation localisation;
+  memory::PlaceMatch match;
+  match.place = place;
+  match.similarity = 1000.0;
+  match.relative_heading_rad = relative_heading_rad;
+  localisation.best.push_back(match);
+  if (lattice_position) {
+    memory::PositionEstimate estimate;
+    estimate.frame = memory::PositionFrame::kLattice;
+    estimate.interpolated_x = lattice_position->x();
+    estimate.interpolated_y = lattice_position->y();
+    localisation.position = estimate;
+  }
+  return localisation;
+}
 
 // A virtual robot of libs/sim behind the navigator's interface, moving freely (with motion
 // noise) and stopped by the room's walls and furniture. It shows nothing: the oracle
@@ -32,7 +53,7 @@ class VirtualRobotWorld : public NavigationWorld {
 };
 
 NavigationResult navigate(sim::VirtualRobot& robot, const std::vector<PlaceNode>& places,
-                          const RoutePlan& plan, const Localiser& localise,
+                          const RoutePlan& plan, const PanoramaLocaliser& localise,
                           const NavigatorParams& params) {
   VirtualRobotWorld world(robot);
   return navigate(world, places, plan, localise, params);
@@ -55,22 +76,20 @@ class OracleNavigation : public ::testing::Test {
     }
   }
 
-  Localiser oracle(const sim::VirtualRobot& robot) const {
+  PanoramaLocaliser oracle(const sim::VirtualRobot& robot) const {
     return [this, &robot](const cv::Mat&) {
-      PlaceMatch match;
+      std::size_t nearest = 0;
       double best = 1e9;
       const Eigen::Vector2d at(robot.pose().x_m, robot.pose().y_m);
       for (std::size_t i = 0; i < places_.size(); ++i) {
         const double distance = (places_[i].position_m - at).norm();
         if (distance < best) {
           best = distance;
-          match.place = static_cast<int>(i);
+          nearest = i;
         }
       }
-      match.similarity = 1000.0;
-      match.heading_in_place_rad =
-          signed_difference(robot.pose().heading_rad, places_[match.place].heading_rad);
-      return match;
+      return recognised(nearest,
+                        signed_difference(robot.pose().heading_rad, places_[nearest].heading_rad));
     };
   }
 
@@ -157,22 +176,20 @@ class PointWorld : public NavigationWorld {
 // The place whose true position (`truth`, not the lattice) is nearest to the robot, all places
 // facing +x; with `position`, the robot's true position as the localiser's estimate (the
 // lattice must then be the truth). `world` must outlive the localiser.
-Localiser point_oracle(const PointWorld& world, std::vector<Eigen::Vector2d> truth,
-                       bool position = false) {
+PanoramaLocaliser point_oracle(const PointWorld& world, std::vector<Eigen::Vector2d> truth,
+                               bool position = false) {
   return [&world, truth, position](const cv::Mat&) {
-    PlaceMatch match;
+    std::size_t nearest = 0;
     double best = 1e9;
     const Eigen::Vector2d at(world.truth().x_m, world.truth().y_m);
     for (std::size_t i = 0; i < truth.size(); ++i) {
       if ((truth[i] - at).norm() < best) {
         best = (truth[i] - at).norm();
-        match.place = static_cast<int>(i);
+        nearest = i;
       }
     }
-    match.similarity = 1000.0;
-    match.heading_in_place_rad = world.truth().heading_rad;
-    if (position) match.position = at;
-    return match;
+    return recognised(nearest, world.truth().heading_rad,
+                      position ? std::optional<Eigen::Vector2d>(at) : std::nullopt);
   };
 }
 
@@ -188,7 +205,7 @@ TEST(Navigator, ReplansWithoutALinkThatFurnitureBlocks) {
   PointWorld world({kStub});
   std::vector<Eigen::Vector2d> truth;
   for (const PlaceNode& place : places) truth.push_back(place.position_m);
-  const Localiser oracle = point_oracle(world, truth);
+  const PanoramaLocaliser oracle = point_oracle(world, truth);
   const NavigationResult result = navigate(world, places, plan, oracle, NavigatorParams{});
   ASSERT_TRUE(result.reached);
   EXPECT_GE(result.replans, 1);

@@ -42,7 +42,7 @@ struct RoomMap {
   std::vector<navigation::PlaceNode> places;
   std::unique_ptr<memory::Localiser> localiser;
   std::unique_ptr<signature::SignatureExtractor> extractor;
-  navigation::Localiser localise;
+  navigation::PanoramaLocaliser localise;
 };
 
 // A 10 × 8 grid at 30 cm (the reference grid of the navigation target), points inside furniture

@@ -90,7 +90,7 @@ std::vector<TrialOutcome> run_trials(const std::vector<Trial>& trials, const Tri
     try {
       navigation::GoalRun run = navigation::navigate_to_image(
           rendered, scene.renderer.render(goal), "trial " + std::to_string(i) + "'s goal", setup);
-      outcome.goal_place = run.goal.place;
+      outcome.goal_place = static_cast<int>(run.goal.place);
       outcome.stopped_at_goal = run.result.reached;
       outcome.result = std::move(run.result);
     } catch (const InputError&) {

@@ -41,6 +41,20 @@ bool replan_without_link(const std::vector<PlaceNode>& places, int place, RouteP
   return true;
 }
 
+// The place of a step's match, -1 when nothing was recognised.
+int place_of(const NavigationStep& step) {
+  return step.match ? static_cast<int>(step.match->place) : -1;
+}
+
+// Where the localiser puts the robot between places on the lattice, when it can tell (the best
+// places' positions weighted by similarity, memory::PositionEstimate).
+std::optional<Eigen::Vector2d> lattice_position(const memory::Localisation& localisation) {
+  if (!localisation.position || localisation.position->frame != memory::PositionFrame::kLattice)
+    return std::nullopt;
+  return Eigen::Vector2d(localisation.position->interpolated_x,
+                         localisation.position->interpolated_y);
+}
+
 }  // namespace
 
 void load_navigator_params(const ConfigReader& section, NavigatorParams& params) {
@@ -71,7 +85,7 @@ void load_navigator_params(const ConfigReader& section, NavigatorParams& params)
 }
 
 NavigationResult navigate(NavigationWorld& world, const std::vector<PlaceNode>& places,
-                          const RoutePlan& initial_plan, const Localiser& localise,
+                          const RoutePlan& initial_plan, const PanoramaLocaliser& localise,
                           const NavigatorParams& params, const GoalHoming& homing) {
   NavigationResult result;
   RoutePlan plan = initial_plan;
@@ -98,12 +112,13 @@ NavigationResult navigate(NavigationWorld& world, const std::vector<PlaceNode>& 
     step.index = index;
     step.truth = world.truth();
     const cv::Mat view = world.view(index);
-    step.match = localise(view);
-    const int place = step.match.place;
-    const int previous = result.steps.empty() ? -1 : result.steps.back().match.place;
+    const memory::Localisation localisation = localise(view);
+    if (!localisation.best.empty()) step.match = localisation.best.front();
+    const int place = place_of(step);
+    const int previous = result.steps.empty() ? -1 : place_of(result.steps.back());
     if (place >= 0) {
       step.heading_estimate_rad =
-          wrap_angle(places[place].heading_rad + step.match.heading_in_place_rad);
+          wrap_angle(places[place].heading_rad + step.match->relative_heading_rad);
     }
 
     if (!homing_from) {
@@ -120,7 +135,7 @@ NavigationResult navigate(NavigationWorld& world, const std::vector<PlaceNode>& 
                     (previous < 0 || (here - places[previous].position_m).norm() > near_m);
         result.jumps += step.jump ? 1 : 0;
       }
-      if (place == plan.goal && step.match.similarity >= params.goal_similarity) {
+      if (place == plan.goal && step.match->similarity >= params.goal_similarity) {
         if (++goal_matches >= params.goal_confirmations) {
           if (!homing || !params.home_on_goal_image || params.homing_max_steps == 0) {
             result.steps.push_back(step);
@@ -184,13 +199,13 @@ NavigationResult navigate(NavigationWorld& world, const std::vector<PlaceNode>& 
     // robot's heading relative to the place is what the image tells, whatever the lattice.
     double direction_in_place = plan.direction_in_place_rad[place];
     if (place == plan.goal || !plan.reaches_goal(place)) {
-      direction_in_place = step.match.heading_in_place_rad;
-    } else if (params.look_ahead_links > 0 && step.match.position && sidestep == 0) {
+      direction_in_place = step.match->relative_heading_rad;
+    } else if (params.look_ahead_links > 0 && lattice_position(localisation) && sidestep == 0) {
       // Sidesteps turn from the place's own direction instead: the line ahead led into the
       // obstacle, and turning from the place's next link measured better (docs/navigation.md).
       const int target = look_ahead_place(places, plan, place, params.look_ahead_links,
                                           look_ahead_tolerance_m, blocked);
-      const Eigen::Vector2d to = places[target].position_m - *step.match.position;
+      const Eigen::Vector2d to = places[target].position_m - *lattice_position(localisation);
       if (to.norm() > 1e-9) {
         direction_in_place =
             signed_difference(std::atan2(to.y(), to.x()), places[place].heading_rad);
@@ -204,7 +219,7 @@ NavigationResult navigate(NavigationWorld& world, const std::vector<PlaceNode>& 
       direction_in_place += sidestep_turn(sidestep, deg_to_rad(params.sidestep_deg));
       result.sidesteps += sidestep > 0 ? 1 : 0;
     }
-    step.turn_rad = signed_difference(direction_in_place, step.match.heading_in_place_rad);
+    step.turn_rad = signed_difference(direction_in_place, step.match->relative_heading_rad);
     const double driven = world.move(step.turn_rad, params.step_m);
     if (driven >= 0.5 * params.step_m) {
       sidestep = 0;

@@ -18,7 +18,7 @@ namespace omninav::navigation {
 // on one map (memory_places.hpp makes each from the map).
 struct GoalNavigationSetup {
   std::vector<PlaceNode> places;  // places_from_memory
-  Localiser localise;             // memory_localiser, or a stand-in
+  PanoramaLocaliser localise;     // memory_localiser, or a stand-in
   // The goal image must match a place within this mean dissimilarity per value (match_limit).
   double match_limit = std::numeric_limits<double>::infinity();
   HomingScale homing;  // homing_scale
@@ -28,7 +28,7 @@ struct GoalNavigationSetup {
 
 // One navigation: the goal image's place, the plan to it and the run.
 struct GoalRun {
-  PlaceMatch goal;
+  memory::PlaceMatch goal;  // the goal image's place
   RoutePlan plan;
   NavigationResult result;
 };

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "omninav/core/pose.hpp"
+#include "omninav/memory/localisation.hpp"
 #include "omninav/navigation/homing.hpp"
 #include "omninav/navigation/route_planner.hpp"
 
@@ -30,22 +31,11 @@ class ConfigReader;
 
 namespace omninav::navigation {
 
-// What a localiser says about a panorama: the best place, how sure it is, and the robot's
-// heading relative to that place's stored heading (counter-clockwise positive).
-struct PlaceMatch {
-  int place = -1;
-  double similarity = 0.0;  // 0..1000 (001 Eq. 3)
-  double heading_in_place_rad = 0.0;
-  // Mean |Δ magnitude| per compared value at the finest level (Eq. 2/6 divided by lines ×
-  // components), grey levels: unlike the similarity, which Eq. 3 rescales so that the best
-  // place always scores 1000, it tells whether the image matches any place at all.
-  double dissimilarity_per_value = 0.0;
-  // Where the robot is between places, on the lattice, when the localiser can tell (the best
-  // places' positions weighted by similarity, memory::PositionEstimate).
-  std::optional<Eigen::Vector2d> position;
-};
-
-using Localiser = std::function<PlaceMatch(const cv::Mat& panorama)>;
+// How the navigator localises what the robot sees: the memory's hierarchical localisation of
+// the panorama (memory_localiser, memory_places.hpp) or a stand-in. Of the localisation it reads
+// the best place (its similarity, the robot's heading relative to the place's stored heading)
+// and, when the position estimate is on the lattice, where the robot is between places.
+using PanoramaLocaliser = std::function<memory::Localisation(const cv::Mat& panorama)>;
 
 struct NavigatorParams {
   double step_m = 0.15;            // distance driven between two images
@@ -104,8 +94,8 @@ class NavigationWorld {
 
 struct NavigationStep {
   int index = 0;
-  CameraPose truth;  // where the robot really was (evaluation only)
-  PlaceMatch match;
+  CameraPose truth;                         // where the robot really was (evaluation only)
+  std::optional<memory::PlaceMatch> match;  // the best place; none when nothing was recognised
   double heading_estimate_rad = 0.0;  // in the lattice frame: place heading + heading in place
   double turn_rad = 0.0;              // the turn commanded
   bool jump = false;                  // matched neither the expected place nor its neighbours
@@ -125,7 +115,7 @@ struct NavigationResult {
 // Drives `world`'s robot along `plan` until it recognises the goal place, then, when `homing`
 // is given and params.home_on_goal_image, homes on the goal image.
 NavigationResult navigate(NavigationWorld& world, const std::vector<PlaceNode>& places,
-                          const RoutePlan& plan, const Localiser& localise,
+                          const RoutePlan& plan, const PanoramaLocaliser& localise,
                           const NavigatorParams& params, const GoalHoming& homing = {});
 
 }  // namespace omninav::navigation
