@@ -13,8 +13,8 @@ using testing::kRoomGridSpacing_m;
 using testing::RoomNavigation;
 
 TEST_F(RoomNavigation, MatchThresholdSeparatesTheRoomFromNoise) {
-  // The limit: 1.3 × the median link of the map (neighbouring places 30 cm apart, 2.08; the
-  // figures of route_planner.hpp come from this test).
+  // The limit: 1.3 × the median link of the map (neighbouring places 30 cm apart, about 2.1
+  // grey levels per value).
   EXPECT_GT(limit(), 1.3 * 1.8);
   EXPECT_LT(limit(), 1.3 * 2.4);
   // Views anywhere in the grid's area, between places and at any heading, match.

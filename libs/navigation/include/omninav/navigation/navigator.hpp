@@ -9,7 +9,7 @@
 // place rather than on it), it first turns a little aside (sidesteps), and when that fails too
 // that link of the memory graph is dropped and the plan is made again from the goal without
 // it; only when no route is left does the robot try escape turns.
-// More goes beyond the paper (docs/navigation.md has the measurements): the robot aims from
+// More goes beyond the paper (docs/navigation.md says what and why): the robot aims from
 // its position estimate at a place several links ahead where the lattice says the straight
 // line follows the route (look_ahead_place, route_planner.hpp), a place the robot keeps coming
 // back to gets the same treatment as a blocked link, and once the goal's place is recognised
