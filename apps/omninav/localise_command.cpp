@@ -282,8 +282,7 @@ void run_localise(const GlobalOptions& global, const LocaliseOptions& options) {
       q.truth = frame->truth;
       q.result = options.exhaustive ? localiser.localise_exhaustive(signature)
                                     : localiser.localise(signature);
-      q.no_match =
-          navigation::no_match_reason(navigation::place_match(localiser, q.result), match_limit);
+      q.no_match = navigation::no_match_reason(q.result, match_limit);
       if (q.no_match) {
         q.result.best.clear();
         q.result.position.reset();

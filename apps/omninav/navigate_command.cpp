@@ -8,7 +8,6 @@
 
 #include "app_config.hpp"
 #include "cli.hpp"
-#include "omninav/report/floor_plan.hpp"
 #include "omninav/core/angles.hpp"
 #include "omninav/core/errors.hpp"
 #include "omninav/core/log.hpp"
@@ -16,11 +15,12 @@
 #include "omninav/core/parse.hpp"
 #include "omninav/eval/plot.hpp"
 #include "omninav/eval/png.hpp"
+#include "omninav/evaluation/navigation_trials.hpp"
+#include "omninav/evaluation/robot_worlds.hpp"
 #include "omninav/io/image_file.hpp"
 #include "omninav/memory/map_file.hpp"
 #include "omninav/navigation/memory_places.hpp"
-#include "omninav/navigation/robot_worlds.hpp"
-#include "omninav/navigation/trials.hpp"
+#include "omninav/report/floor_plan.hpp"
 #include "panorama_input.hpp"
 
 namespace omninav::cli {
@@ -60,8 +60,10 @@ void write_step_rows(std::ostream& csv, const std::string& prefix,
                      const navigation::NavigationResult& result, double lattice_to_world_rad) {
   for (const navigation::NavigationStep& step : result.steps) {
     csv << prefix << step.index << ',' << step.truth.x_m << ',' << step.truth.y_m << ','
-        << rad_to_deg(step.truth.heading_rad) << ',' << step.match.place << ','
-        << step.match.similarity << ',' << step.match.dissimilarity_per_value << ','
+        << rad_to_deg(step.truth.heading_rad) << ','
+        << (step.match ? static_cast<int>(step.match->place) : -1) << ','
+        << (step.match ? step.match->similarity : 0.0) << ','
+        << (step.match ? step.match->dissimilarity_per_value : 0.0) << ','
         << rad_to_deg(step.heading_estimate_rad) << ','
         << rad_to_deg(signed_difference(step.heading_estimate_rad + lattice_to_world_rad,
                                         step.truth.heading_rad))
@@ -77,7 +79,7 @@ std::unique_ptr<OutputFile> open_csv(const std::filesystem::path& file, const st
 }
 
 // trials.csv, one row per trial, and steps.csv, every step of every trial.
-void write_trials_csv(const std::vector<navigation::TrialOutcome>& outcomes,
+void write_trials_csv(const std::vector<evaluation::TrialOutcome>& outcomes,
                       double lattice_to_world_rad, const std::filesystem::path& folder) {
   const std::unique_ptr<OutputFile> trials_file = open_csv(
       folder / "trials.csv",
@@ -89,7 +91,7 @@ void write_trials_csv(const std::vector<navigation::TrialOutcome>& outcomes,
   std::ostream& trials = trials_file->stream();
   std::ostream& steps = steps_file->stream();
   for (std::size_t i = 0; i < outcomes.size(); ++i) {
-    const navigation::TrialOutcome& o = outcomes[i];
+    const evaluation::TrialOutcome& o = outcomes[i];
     const navigation::NavigationResult& r = o.result;
     trials << i << ',' << o.trial.start.x_m << ',' << o.trial.start.y_m << ','
            << rad_to_deg(o.trial.start.heading_rad) << ',' << o.trial.goal.x_m << ','
@@ -117,7 +119,7 @@ void draw_path(const navigation::NavigationResult& result,
   for (const navigation::PlaceNode& place : places)
     lattice_points.emplace_back(place.position_m.x(), place.position_m.y());
   for (const navigation::NavigationStep& step : result.steps) {
-    if (step.match.place >= 0) matched.push_back(lattice_points[step.match.place]);
+    if (step.match) matched.push_back(lattice_points[step.match->place]);
     truth_path.emplace_back(step.truth.x_m, step.truth.y_m);
   }
   for (std::size_t i = 1; i < matched.size(); ++i)
@@ -145,10 +147,10 @@ void draw_path(const navigation::NavigationResult& result,
 }
 
 // The images of a grid database (or any input whose images have poses), as panoramas.
-std::vector<navigation::GridImage> read_grid(const std::filesystem::path& input,
+std::vector<evaluation::GridImage> read_grid(const std::filesystem::path& input,
                                              const std::filesystem::path& config_dir) {
   PanoramaInput panoramas(input, config_dir, false);
-  std::vector<navigation::GridImage> images;
+  std::vector<evaluation::GridImage> images;
   while (std::optional<io::Frame> frame = panoramas.next()) {
     if (!frame->truth) {
       throw InputError(frame->source + ": no pose; a grid world needs the position of every image");
@@ -163,8 +165,7 @@ std::vector<navigation::GridImage> read_grid(const std::filesystem::path& input,
 
 void evaluate_trials(const GlobalOptions& global, const NavigateOptions& options,
                      const memory::VisualMemory& memory,
-                     const std::vector<navigation::PlaceNode>& places,
-                     const navigation::Localiser& localise, NavigationConfig navigation,
+                     const navigation::GoalNavigationSetup& setup, NavigationConfig navigation,
                      const sim::World& world, const sim::Renderer& renderer) {
   if (!memory.all_have_truth()) {
     throw UsageError(options.map.string() +
@@ -172,22 +173,21 @@ void evaluate_trials(const GlobalOptions& global, const NavigateOptions& options
   }
   navigation.trials.count = options.trials;
   navigation.trials.seed = static_cast<std::uint32_t>(options.seed);
-  const navigation::MapTrials map_trials =
-      navigation::run_map_trials(memory, places, localise, world, renderer, navigation.route,
-                                 navigation.navigator, navigation.robot, navigation.trials);
-  const std::vector<navigation::TrialOutcome>& outcomes = map_trials.outcomes;
+  const evaluation::MapTrials map_trials = evaluation::run_map_trials(
+      memory, setup, {world, renderer, navigation.robot}, navigation.trials);
+  const std::vector<evaluation::TrialOutcome>& outcomes = map_trials.outcomes;
   write_trials_csv(outcomes, memory.place(0).heading_rad.value_or(0.0), options.out);
   // The trials worth a look: those that missed their goal and those that drove the long way.
   for (std::size_t i = 0; i < outcomes.size(); ++i) {
-    const navigation::TrialOutcome& o = outcomes[i];
+    const evaluation::TrialOutcome& o = outcomes[i];
     if (o.result.steps.empty()) continue;  // the goal image matched no place: nothing driven
     if (!o.reached || o.result.path_length_m > kDetourRatio * o.straight_m) {
-      draw_path(o.result, places, o.goal_place, memory, world.obstacles, {},
+      draw_path(o.result, setup.places, o.goal_place, memory, world.obstacles, {},
                 cv::Point2d(o.trial.goal.x_m, o.trial.goal.y_m),
                 options.out / ("trial_" + std::to_string(i) + ".png"));
     }
   }
-  summary(global) << navigation::summarise(outcomes).text() << " (seed " << options.seed
+  summary(global) << evaluation::summarise(outcomes).text() << " (seed " << options.seed
                   << "; reached: stopped within " << std::fixed << std::setprecision(2)
                   << map_trials.goal_radius_m
                   << " m of the goal); trials: " << (options.out / "trials.csv").string() << "\n";
@@ -209,10 +209,11 @@ void run_navigate(const GlobalOptions& global, const NavigateOptions& options) {
   check_output_path(options.out / (options.trials > 0 ? "trials.csv" : "steps.csv"));
 
   const memory::VisualMemory memory = memory::load_map(options.map);
-  const std::vector<navigation::PlaceNode> places = navigation::places_from_memory(memory);
   const memory::Localiser localiser(memory, memory_config.localisation);
   signature::SignatureExtractor extractor(memory.parameters().signature);
-  const navigation::Localiser localise = navigation::memory_localiser(localiser, extractor);
+  const navigation::GoalNavigationSetup setup =
+      navigation::goal_navigation_setup(memory, navigation::memory_localiser(localiser, extractor),
+                                        navigation.route, navigation.navigator);
 
   // The robot in a rendered world, or on a grid of stored images.
   std::optional<sim::World> world;
@@ -227,7 +228,7 @@ void run_navigate(const GlobalOptions& global, const NavigateOptions& options) {
     worlds.render.geometry.height_px = memory.place(0).signature.rows;
     renderer = std::make_unique<sim::Renderer>(*world, worlds.render);
     if (options.trials > 0) {
-      evaluate_trials(global, options, memory, places, localise, navigation, *world, *renderer);
+      evaluate_trials(global, options, memory, setup, navigation, *world, *renderer);
       return;
     }
     const Pose2 start = parse_start(options.start);
@@ -239,25 +240,23 @@ void run_navigate(const GlobalOptions& global, const NavigateOptions& options) {
     robot = std::make_unique<sim::VirtualRobot>(
         *world, CameraPose{start.x_m, start.y_m, camera_z, start.heading_rad, 0.0, 0.0},
         navigation.robot);
-    body = std::make_unique<navigation::RenderedWorld>(*robot, *renderer);
+    body = std::make_unique<evaluation::RenderedWorld>(*robot, *renderer);
   } else {
-    std::vector<navigation::GridImage> images = read_grid(options.database, global.config_dir);
-    for (const navigation::GridImage& image : images)
+    std::vector<evaluation::GridImage> images = read_grid(options.database, global.config_dir);
+    for (const evaluation::GridImage& image : images)
       grid.emplace_back(image.pose.x_m, image.pose.y_m);
-    body = std::make_unique<navigation::GridDatabaseWorld>(
+    body = std::make_unique<evaluation::GridDatabaseWorld>(
         std::move(images), parse_start(options.start), navigation.robot);
   }
 
-  const navigation::GoalRun run = navigation::navigate_to_image(
-      *body, io::read_image(options.goal), options.goal.string(), places, localise,
-      navigation::match_limit(memory, navigation.route), navigation::homing_scale(memory, places),
-      navigation.route, navigation.navigator);
+  const navigation::GoalRun run = navigation::navigate_to_image(*body, io::read_image(options.goal),
+                                                                options.goal.string(), setup);
   const navigation::NavigationResult& result = run.result;
 
   const std::unique_ptr<OutputFile> steps = open_csv(options.out / "steps.csv", kStepColumns);
   write_step_rows(steps->stream(), "", result, memory.place(0).heading_rad.value_or(0.0));
   steps->commit();
-  draw_path(result, places, run.goal.place, memory,
+  draw_path(result, setup.places, run.goal.place, memory,
             world ? world->obstacles : std::vector<sim::FloorBox>{}, grid, std::nullopt,
             options.out / "path.png");
   summary(global) << std::fixed << std::setprecision(2)

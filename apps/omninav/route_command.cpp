@@ -14,8 +14,8 @@
 #include "omninav/eval/png.hpp"
 #include "omninav/io/image_file.hpp"
 #include "omninav/memory/map_file.hpp"
-#include "omninav/navigation/figures.hpp"
 #include "omninav/navigation/memory_places.hpp"
+#include "omninav/report/navigation_figures.hpp"
 
 namespace omninav::cli {
 namespace {
@@ -39,7 +39,7 @@ struct RouteStep {
 };
 
 struct Route {
-  navigation::PlaceMatch from, to;
+  memory::PlaceMatch from, to;
   std::vector<RouteStep> steps;
   std::optional<double> turn_deg;  // the start: turn from the robot's heading now
 };
@@ -56,10 +56,10 @@ std::string optional_number(const std::optional<double>& value, int digits) {
 
 Route make_route(const memory::VisualMemory& memory,
                  const std::vector<navigation::PlaceNode>& places,
-                 const navigation::RoutePlan& plan, const navigation::PlaceMatch& from,
-                 const navigation::PlaceMatch& to) {
+                 const navigation::RoutePlan& plan, const memory::PlaceMatch& from,
+                 const memory::PlaceMatch& to) {
   Route route{from, to, {}, std::nullopt};
-  for (const int place : plan.route_from(from.place)) {
+  for (const int place : plan.route_from(static_cast<int>(from.place))) {
     RouteStep step;
     step.place = place;
     step.lattice = places[place].position_m;
@@ -72,9 +72,9 @@ Route make_route(const memory::VisualMemory& memory,
       step.truth_m = Eigen::Vector2d(truth->x_m, truth->y_m);
     route.steps.push_back(step);
   }
-  if (from.place != plan.goal) {
+  if (static_cast<int>(from.place) != plan.goal) {
     route.turn_deg = rad_to_deg(
-        signed_difference(plan.direction_in_place_rad[from.place], from.heading_in_place_rad));
+        signed_difference(plan.direction_in_place_rad[from.place], from.relative_heading_rad));
   }
   return route;
 }
@@ -132,11 +132,11 @@ void print_json(const Route& route, const RouteOptions& options) {
       ".json", cv::FileStorage::WRITE | cv::FileStorage::MEMORY | cv::FileStorage::FORMAT_JSON);
   json << "map" << options.map.string();
   const auto write_match = [&json](const std::string& key, const std::filesystem::path& image,
-                                   const navigation::PlaceMatch& match) {
+                                   const memory::PlaceMatch& match) {
     json << key << "{";
-    json << "image" << image.string() << "place" << match.place << "dissimilarity_per_value"
-         << match.dissimilarity_per_value << "heading_in_place_deg"
-         << rad_to_deg(match.heading_in_place_rad);
+    json << "image" << image.string() << "place" << static_cast<int>(match.place)
+         << "dissimilarity_per_value" << match.dissimilarity_per_value << "heading_in_place_deg"
+         << rad_to_deg(match.relative_heading_rad);
     json << "}";
   };
   write_match("from", options.from, route.from);
@@ -177,16 +177,16 @@ void run_route(const GlobalOptions& global, const RouteOptions& options) {
   }
   const memory::Localiser localiser(memory, memory_config.localisation);
   signature::SignatureExtractor extractor(memory.parameters().signature);
-  const navigation::Localiser localise = navigation::memory_localiser(localiser, extractor);
+  const navigation::PanoramaLocaliser localise = navigation::memory_localiser(localiser, extractor);
   const double limit = navigation::match_limit(memory, navigation.route);
-  const navigation::PlaceMatch from =
+  const memory::PlaceMatch from =
       navigation::match_image(localise, io::read_image(options.from), limit, options.from.string());
-  const navigation::PlaceMatch to =
+  const memory::PlaceMatch to =
       navigation::match_image(localise, io::read_image(options.to), limit, options.to.string());
 
   // §3.5: the search tree grows from the goal, so every place gets its direction at once.
   const navigation::RoutePlan plan =
-      navigation::plan_over_lattice(places, navigation.route, to.place);
+      navigation::plan_over_lattice(places, navigation.route, static_cast<int>(to.place));
   if (!plan.reaches_goal(from.place)) {
     throw InputError(options.map.string() + ": no route from place " + std::to_string(from.place) +
                      " to place " + std::to_string(to.place) +
@@ -208,7 +208,7 @@ void run_route(const GlobalOptions& global, const RouteOptions& options) {
     for (std::size_t i = 0; i < memory.place_count(); ++i)
       truth->emplace_back(memory.place(i).truth->x_m, memory.place(i).truth->y_m);
   }
-  eval::save_png(navigation::route_figure(places, plan, from.place, truth), plot);
+  eval::save_png(report::route_figure(places, plan, static_cast<int>(from.place), truth), plot);
   log_info("route picture: " + plot.string());
 }
 

@@ -5,15 +5,59 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "omninav/core/angles.hpp"
 #include "omninav/core/config.hpp"
 #include "omninav/core/errors.hpp"
-#include "omninav/navigation/robot_worlds.hpp"
 #include "omninav/sim/room.hpp"
+#include "omninav/sim/virtual_robot.hpp"
 
 namespace omninav::navigation {
 namespace {
+
+// What a stand-in localiser says: `place` recognised with full similarity, the robot's heading
+// relative to it, and when given the robot's position on the lattice.
+memory::Localisation recognised(std::size_t place, double relative_heading_rad,
+                                const std::optional<Eigen::Vector2d>& lattice_position = {}) {
+  memory::Localisation localisation;
+  memory::PlaceMatch match;
+  match.place = place;
+  match.similarity = 1000.0;
+  match.relative_heading_rad = relative_heading_rad;
+  localisation.best.push_back(match);
+  if (lattice_position) {
+    memory::PositionEstimate estimate;
+    estimate.frame = memory::PositionFrame::kLattice;
+    estimate.interpolated_x = lattice_position->x();
+    estimate.interpolated_y = lattice_position->y();
+    localisation.position = estimate;
+  }
+  return localisation;
+}
+
+// A virtual robot of libs/sim behind the navigator's interface, moving freely (with motion
+// noise) and stopped by the room's walls and furniture. It shows nothing: the oracle
+// localisers below read its true pose instead.
+class VirtualRobotWorld : public NavigationWorld {
+ public:
+  explicit VirtualRobotWorld(sim::VirtualRobot& robot) : robot_(robot) {}
+  cv::Mat view(int) override { return {}; }
+  double move(double turn_rad, double distance_m) override {
+    return robot_.move(turn_rad, distance_m);
+  }
+  CameraPose truth() const override { return robot_.pose(); }
+
+ private:
+  sim::VirtualRobot& robot_;
+};
+
+NavigationResult navigate(sim::VirtualRobot& robot, const std::vector<PlaceNode>& places,
+                          const RoutePlan& plan, const PanoramaLocaliser& localise,
+                          const NavigatorParams& params) {
+  VirtualRobotWorld world(robot);
+  return navigate(world, places, plan, localise, params);
+}
 
 // The navigation loop with a perfect localiser (the nearest place by true position, the
 // heading by true heading): it isolates planning and control from recognition, whose own
@@ -30,37 +74,30 @@ class OracleNavigation : public ::testing::Test {
           places_.push_back({Eigen::Vector2d(x, y), 0.3 * places_.size()});
       }
     }
-    params_.geometry.width_px = 36;  // the oracle ignores the image
-    params_.geometry.height_px = 4;
-    params_.rays_per_pixel = 1;
   }
 
-  Localiser oracle(const sim::VirtualRobot& robot) const {
+  PanoramaLocaliser oracle(const sim::VirtualRobot& robot) const {
     return [this, &robot](const cv::Mat&) {
-      PlaceMatch match;
+      std::size_t nearest = 0;
       double best = 1e9;
       const Eigen::Vector2d at(robot.pose().x_m, robot.pose().y_m);
       for (std::size_t i = 0; i < places_.size(); ++i) {
         const double distance = (places_[i].position_m - at).norm();
         if (distance < best) {
           best = distance;
-          match.place = static_cast<int>(i);
+          nearest = i;
         }
       }
-      match.similarity = 1000.0;
-      match.heading_in_place_rad =
-          signed_difference(robot.pose().heading_rad, places_[match.place].heading_rad);
-      return match;
+      return recognised(nearest,
+                        signed_difference(robot.pose().heading_rad, places_[nearest].heading_rad));
     };
   }
 
   sim::World world_;
   std::vector<PlaceNode> places_;
-  sim::RenderParams params_;
 };
 
 TEST_F(OracleNavigation, ReachesTheGoalAlongAShortPath) {
-  const sim::Renderer renderer(world_, params_);
   const RoutePlan plan = plan_to_goal(places_, lattice_neighbours(places_, 0.45),
                                       static_cast<int>(places_.size()) - 1);
   const Eigen::Vector2d goal = places_.back().position_m;
@@ -68,8 +105,7 @@ TEST_F(OracleNavigation, ReachesTheGoalAlongAShortPath) {
   sim::VirtualRobot robot(
       world_, {places_.front().position_m.x(), places_.front().position_m.y(), 1.0, 2.0, 0.0, 0.0},
       robot_params);
-  const NavigationResult result =
-      navigate(robot, renderer, places_, plan, oracle(robot), NavigatorParams{});
+  const NavigationResult result = navigate(robot, places_, plan, oracle(robot), NavigatorParams{});
   ASSERT_TRUE(result.reached) << result.steps.size() << " steps";
   EXPECT_LT((Eigen::Vector2d(robot.pose().x_m, robot.pose().y_m) - goal).norm(), 0.3);
   // The route bends round furniture: within 1.5 × the planned route's length.
@@ -78,27 +114,25 @@ TEST_F(OracleNavigation, ReachesTheGoalAlongAShortPath) {
 }
 
 TEST_F(OracleNavigation, FollowsThePlanWhateverTheRobotsStartingHeading) {
-  const sim::Renderer renderer(world_, params_);
   const RoutePlan plan = plan_to_goal(places_, lattice_neighbours(places_, 0.45), 0);
   for (double heading_deg : {-170.0, -60.0, 45.0, 135.0}) {
     sim::VirtualRobot robot(world_,
                             {places_.back().position_m.x(), places_.back().position_m.y(), 1.0,
                              deg_to_rad(heading_deg), 0.0, 0.0},
                             sim::RobotParams{});
-    EXPECT_TRUE(navigate(robot, renderer, places_, plan, oracle(robot), NavigatorParams{}).reached)
+    EXPECT_TRUE(navigate(robot, places_, plan, oracle(robot), NavigatorParams{}).reached)
         << "starting heading " << heading_deg;
   }
 }
 
 TEST_F(OracleNavigation, GivesUpWhenTheBudgetIsSpent) {
-  const sim::Renderer renderer(world_, params_);
   const RoutePlan plan = plan_to_goal(places_, lattice_neighbours(places_, 0.45), 0);
   sim::VirtualRobot robot(
       world_, {places_.back().position_m.x(), places_.back().position_m.y(), 1.0, 0.0, 0.0, 0.0},
       sim::RobotParams{});
   NavigatorParams params;
   params.max_steps = 3;
-  const NavigationResult result = navigate(robot, renderer, places_, plan, oracle(robot), params);
+  const NavigationResult result = navigate(robot, places_, plan, oracle(robot), params);
   EXPECT_FALSE(result.reached);
   EXPECT_EQ(result.steps.size(), 3u);
 }
@@ -142,22 +176,20 @@ class PointWorld : public NavigationWorld {
 // The place whose true position (`truth`, not the lattice) is nearest to the robot, all places
 // facing +x; with `position`, the robot's true position as the localiser's estimate (the
 // lattice must then be the truth). `world` must outlive the localiser.
-Localiser point_oracle(const PointWorld& world, std::vector<Eigen::Vector2d> truth,
-                       bool position = false) {
+PanoramaLocaliser point_oracle(const PointWorld& world, std::vector<Eigen::Vector2d> truth,
+                               bool position = false) {
   return [&world, truth, position](const cv::Mat&) {
-    PlaceMatch match;
+    std::size_t nearest = 0;
     double best = 1e9;
     const Eigen::Vector2d at(world.truth().x_m, world.truth().y_m);
     for (std::size_t i = 0; i < truth.size(); ++i) {
       if ((truth[i] - at).norm() < best) {
         best = (truth[i] - at).norm();
-        match.place = static_cast<int>(i);
+        nearest = i;
       }
     }
-    match.similarity = 1000.0;
-    match.heading_in_place_rad = world.truth().heading_rad;
-    if (position) match.position = at;
-    return match;
+    return recognised(nearest, world.truth().heading_rad,
+                      position ? std::optional<Eigen::Vector2d>(at) : std::nullopt);
   };
 }
 
@@ -173,7 +205,7 @@ TEST(Navigator, ReplansWithoutALinkThatFurnitureBlocks) {
   PointWorld world({kStub});
   std::vector<Eigen::Vector2d> truth;
   for (const PlaceNode& place : places) truth.push_back(place.position_m);
-  const Localiser oracle = point_oracle(world, truth);
+  const PanoramaLocaliser oracle = point_oracle(world, truth);
   const NavigationResult result = navigate(world, places, plan, oracle, NavigatorParams{});
   ASSERT_TRUE(result.reached);
   EXPECT_GE(result.replans, 1);

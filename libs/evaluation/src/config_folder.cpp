@@ -62,7 +62,7 @@ NavigationConfig load_navigation_config(const std::filesystem::path& config_dir)
   navigation::load_route_params(config.section("route"), navigation.route);
   navigation::load_navigator_params(config.section("navigator"), navigation.navigator);
   sim::load_robot_params(config.section("robot"), navigation.robot);
-  navigation::load_trial_params(config.section("trials"), navigation.trials);
+  load_trial_params(config.section("trials"), navigation.trials);
   config.require_all_known();
   return navigation;
 }

@@ -18,6 +18,7 @@
 #include "omninav/core/log.hpp"
 #include "omninav/eval/png.hpp"
 #include "omninav/evaluation/compass_evaluation.hpp"
+#include "omninav/evaluation/navigation_trials.hpp"
 #include "omninav/evaluation/render_database.hpp"
 #include "omninav/io/bob_database.hpp"
 #include "omninav/io/sequence.hpp"
@@ -26,7 +27,6 @@
 #include "omninav/memory/localisation.hpp"
 #include "omninav/memory/map_file.hpp"
 #include "omninav/navigation/memory_places.hpp"
-#include "omninav/navigation/trials.hpp"
 #include "omninav/report/compass_figures.hpp"
 #include "omninav/sim/trajectory.hpp"
 
@@ -394,10 +394,11 @@ class WorldRun {
   void navigate(const fs::path& map_file) {
     comment("navigation: seeded random start and goal pairs on the organised grid map");
     const memory::VisualMemory memory = memory::load_map(map_file);
-    const std::vector<navigation::PlaceNode> places = navigation::places_from_memory(memory);
     const memory::Localiser localiser(memory, config_.memory.localisation);
     signature::SignatureExtractor extractor(memory.parameters().signature);
-    const navigation::Localiser localise = navigation::memory_localiser(localiser, extractor);
+    const navigation::GoalNavigationSetup setup = navigation::goal_navigation_setup(
+        memory, navigation::memory_localiser(localiser, extractor), config_.navigation.route,
+        config_.navigation.navigator);
     // As navigate: the robot's camera makes panoramas of the size the map was built from.
     sim::RenderParams render = worlds_.render;
     render.geometry.width_px = memory.place(0).signature.width_px;
@@ -411,17 +412,16 @@ class WorldRun {
              std::to_string(params_.trials), "--seed", std::to_string(suite_world_.seed), "--out",
              out.string()});
     log_stage("navigation: " + std::to_string(params_.trials) + " trials");
-    const navigation::MapTrials trials =
-        navigation::run_map_trials(memory, places, localise, world_, renderer, navigation.route,
-                                   navigation.navigator, navigation.robot, navigation.trials);
-    const navigation::TrialSummary summary = navigation::summarise(trials.outcomes);
+    const MapTrials trials =
+        run_map_trials(memory, setup, {world_, renderer, navigation.robot}, navigation.trials);
+    const TrialSummary summary = summarise(trials.outcomes);
     std::vector<cv::Point2d> mapped;
     for (std::size_t i = 0; i < memory.place_count(); ++i) {
       mapped.emplace_back(memory.place(i).truth->x_m, memory.place(i).truth->y_m);
     }
     const std::vector<cv::Point2d> hull = convex_hull(mapped);
     double outside_m = 0.0;
-    for (const navigation::TrialOutcome& outcome : trials.outcomes) {
+    for (const TrialOutcome& outcome : trials.outcomes) {
       for (const navigation::NavigationStep& step : outcome.result.steps) {
         outside_m = std::max(outside_m, distance_outside(hull, {step.truth.x_m, step.truth.y_m}));
       }

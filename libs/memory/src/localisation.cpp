@@ -92,6 +92,9 @@ Localisation Localiser::finish(const signature::Signature& query,
     match.dissimilarity = c.dissimilarity;
     match.similarity = c.similarity;
     const Place& place = memory_.place(c.place);
+    match.dissimilarity_per_value =
+        c.dissimilarity /
+        (static_cast<double>(place.signature.lines()) * params_.hierarchy.levels.back());
     // The place's signature is `from`, the query `to`: turn = heading(query) − heading(place).
     const signature::PhaseHeading heading = signature::relative_heading(
         place.signature, query, std::min(place.signature.components, query.components));

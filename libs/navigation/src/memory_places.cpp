@@ -32,38 +32,21 @@ std::vector<PlaceNode> places_from_memory(const memory::VisualMemory& memory) {
   return places;
 }
 
-PlaceMatch place_match(const memory::Localiser& localiser, const memory::Localisation& result) {
-  PlaceMatch match;
-  if (result.best.empty()) return match;
-  match.place = static_cast<int>(result.best.front().place);
-  match.similarity = result.best.front().similarity;
-  match.heading_in_place_rad = result.best.front().relative_heading_rad;
-  const signature::Signature& place = localiser.memory().place(match.place).signature;
-  const int components = localiser.params().hierarchy.levels.back();
-  match.dissimilarity_per_value =
-      result.best.front().dissimilarity / (static_cast<double>(place.lines()) * components);
-  if (result.position && result.position->frame == memory::PositionFrame::kLattice) {
-    match.position =
-        Eigen::Vector2d(result.position->interpolated_x, result.position->interpolated_y);
-  }
-  return match;
-}
-
-Localiser memory_localiser(const memory::Localiser& localiser,
-                           signature::SignatureExtractor& extractor) {
+PanoramaLocaliser memory_localiser(const memory::Localiser& localiser,
+                                   signature::SignatureExtractor& extractor) {
   return [&localiser, &extractor](const cv::Mat& panorama) {
     const int rows = localiser.memory().parameters().panorama_rows;
     if (panorama.rows != rows) {
       throw InputError("a panorama of " + std::to_string(panorama.rows) + " rows; the map's have " +
                        std::to_string(rows));
     }
-    return place_match(localiser,
-                       localiser.localise(extractor.compute(panorama, "the robot's view")));
+    return localiser.localise(extractor.compute(panorama, "the robot's view"));
   };
 }
 
-std::optional<std::string> no_match_reason(const PlaceMatch& match, double limit) {
-  if (match.place < 0) return "matches no place of the map (no candidate)";
+std::optional<std::string> no_match_reason(const memory::Localisation& localisation, double limit) {
+  if (localisation.best.empty()) return "matches no place of the map (no candidate)";
+  const memory::PlaceMatch& match = localisation.best.front();
   if (!(match.dissimilarity_per_value <= limit)) {
     std::ostringstream message;
     message << "matches no place of the map (the nearest, place " << match.place << ", differs by "
@@ -115,19 +98,32 @@ HomingScale homing_scale(const memory::VisualMemory& memory, const std::vector<P
   return scale;
 }
 
-PlaceMatch match_image(const Localiser& localise, const cv::Mat& image, double limit,
-                       const std::string& what) {
+GoalNavigationSetup goal_navigation_setup(const memory::VisualMemory& memory,
+                                          PanoramaLocaliser localise, const RouteParams& route,
+                                          const NavigatorParams& navigator) {
+  GoalNavigationSetup setup;
+  setup.places = places_from_memory(memory);
+  setup.localise = std::move(localise);
+  setup.match_limit = match_limit(memory, route);
+  setup.homing = homing_scale(memory, setup.places);
+  setup.route = route;
+  setup.navigator = navigator;
+  return setup;
+}
+
+memory::PlaceMatch match_image(const PanoramaLocaliser& localise, const cv::Mat& image,
+                               double limit, const std::string& what) {
   require_panorama(image, what);
-  PlaceMatch match;
+  memory::Localisation localisation;
   try {
-    match = localise(image);
+    localisation = localise(image);
   } catch (const InputError& error) {
     throw InputError(what + ": " + error.what());
   }
-  if (const std::optional<std::string> reason = no_match_reason(match, limit)) {
+  if (const std::optional<std::string> reason = no_match_reason(localisation, limit)) {
     throw InputError(what + ": " + *reason);
   }
-  return match;
+  return localisation.best.front();
 }
 
 }  // namespace omninav::navigation

@@ -41,6 +41,20 @@ bool replan_without_link(const std::vector<PlaceNode>& places, int place, RouteP
   return true;
 }
 
+// The place of a step's match, -1 when nothing was recognised.
+int place_of(const NavigationStep& step) {
+  return step.match ? static_cast<int>(step.match->place) : -1;
+}
+
+// Where the localiser puts the robot between places on the lattice, when it can tell (the best
+// places' positions weighted by similarity, memory::PositionEstimate).
+std::optional<Eigen::Vector2d> lattice_position(const memory::Localisation& localisation) {
+  if (!localisation.position || localisation.position->frame != memory::PositionFrame::kLattice)
+    return std::nullopt;
+  return Eigen::Vector2d(localisation.position->interpolated_x,
+                         localisation.position->interpolated_y);
+}
+
 }  // namespace
 
 void load_navigator_params(const ConfigReader& section, NavigatorParams& params) {
@@ -70,164 +84,251 @@ void load_navigator_params(const ConfigReader& section, NavigatorParams& params)
   }
 }
 
-NavigationResult navigate(NavigationWorld& world, const std::vector<PlaceNode>& places,
-                          const RoutePlan& initial_plan, const Localiser& localise,
-                          const NavigatorParams& params, const GoalHoming& homing) {
-  NavigationResult result;
-  RoutePlan plan = initial_plan;
-  int expected = -1;  // the place the plan said we would reach next
-  int goal_matches = 0;
-  // Blocked: first the sidesteps (params.sidesteps), counted here; then the link is dropped and
-  // the plan made again; when no route is left round it, escape: drive a few steps at an angle
-  // from the planned direction, then follow the plan again. Blocked again while escaping, the
-  // robot tries the next escape turn: the other side, then wider (a robot in a corner between
-  // two boxes is blocked both ways at unstick_turn_deg), round to the first after 180°.
-  int sidestep = 0;
-  int escape_steps_left = 0;
-  int escape_turn = 0;
-  // Links the robot could not drive along: the look-ahead keeps its straight lines away.
-  std::vector<Edge> blocked;
-  const double look_ahead_tolerance_m =
-      params.look_ahead_links > 1 ? params.look_ahead_tolerance_spacings * lattice_spacing(places)
-                                  : 0.0;
-  std::vector<int> entries(places.size(), 0);  // times each place was entered (loops)
-  // Homing on the goal image: the cue of the last view, once the goal place was recognised.
-  std::optional<GoalCue> homing_from;
-  for (int index = 0; index < params.max_steps; ++index) {
+namespace {
+
+// One run of the navigator, a small state machine. Each view of the robot is one step:
+//   - following the route (§3.5): recognise the place, turn to its direction towards the goal,
+//     step. Nothing recognised: drive on straight ahead. The goal's place recognised
+//     (goal_confirmations times in a row): arrive, or start homing on the goal image;
+//   - homing (homing.hpp): step towards the goal image while it seems nearer; arrive when it
+//     seems near enough, farther than at the last view, or when blocked every way;
+//   - arrived: the run ends, the goal reached.
+// The run also ends when max_steps views are spent: the goal counts as reached only while
+// homing (its place was recognised, as the paper's robot asks).
+//
+// A blocked move (less than half the step driven) is recovered from in turn by: sidesteps
+// (params.sidesteps turns alternately left and right of the planned direction, wider each
+// time), then dropping the link to the place's next place and planning again without it, and
+// when no route is left round it, escaping: a few steps at an angle from the planned direction.
+// Blocked again while escaping, the robot tries the next escape turn: the other side, then
+// wider (a robot in a corner between two boxes is blocked both ways at unstick_turn_deg),
+// round to the first after 180°.
+class NavigationRun {
+ public:
+  NavigationRun(NavigationWorld& world, const std::vector<PlaceNode>& places, const RoutePlan& plan,
+                const PanoramaLocaliser& localise, const NavigatorParams& params,
+                const GoalHoming& homing)
+      : world_(world),
+        places_(places),
+        localise_(localise),
+        params_(params),
+        homing_(homing),
+        plan_(plan),
+        look_ahead_tolerance_m_(params.look_ahead_links > 1
+                                    ? params.look_ahead_tolerance_spacings * lattice_spacing(places)
+                                    : 0.0),
+        entries_(places.size(), 0) {}
+
+  NavigationResult run() {
+    for (int index = 0; index < params_.max_steps && state_ != State::kArrived; ++index) {
+      take_step(index);
+    }
+    result_.reached = state_ == State::kArrived || state_ == State::kHoming;
+    return std::move(result_);
+  }
+
+ private:
+  enum class State { kFollowingRoute, kHoming, kArrived };
+
+  void take_step(int index) {
     NavigationStep step;
     step.index = index;
-    step.truth = world.truth();
-    const cv::Mat view = world.view(index);
-    step.match = localise(view);
-    const int place = step.match.place;
-    const int previous = result.steps.empty() ? -1 : result.steps.back().match.place;
+    step.truth = world_.truth();
+    const cv::Mat view = world_.view(index);
+    const memory::Localisation localisation = localise_(view);
+    if (!localisation.best.empty()) step.match = localisation.best.front();
+    const int place = place_of(step);
     if (place >= 0) {
       step.heading_estimate_rad =
-          wrap_angle(places[place].heading_rad + step.match.heading_in_place_rad);
+          wrap_angle(places_[place].heading_rad + step.match->relative_heading_rad);
     }
-
-    if (!homing_from) {
-      if (place < 0) {  // nothing recognised (an empty candidate set): go on straight ahead
-        result.path_length_m += world.move(0.0, params.step_m);
-        result.steps.push_back(step);
-        continue;
+    if (state_ == State::kFollowingRoute) {
+      if (place < 0) {
+        drive_blind(step);
+        return;
       }
-      // A jump: neither where we were, nor where we were heading, nor next to either.
-      if (expected >= 0) {
-        const Eigen::Vector2d here = places[place].position_m;
-        const double near_m = 2.0 * params.step_m + 1e-9;
-        step.jump = (here - places[expected].position_m).norm() > near_m &&
-                    (previous < 0 || (here - places[previous].position_m).norm() > near_m);
-        result.jumps += step.jump ? 1 : 0;
-      }
-      if (place == plan.goal && step.match.similarity >= params.goal_similarity) {
-        if (++goal_matches >= params.goal_confirmations) {
-          if (!homing || !params.home_on_goal_image || params.homing_max_steps == 0) {
-            result.steps.push_back(step);
-            result.reached = true;
-            return result;
-          }
-          // The goal place is recognised: from here on, home on the goal image (no view to
-          // compare this first one with yet).
-          homing_from = kNoCue;
-          sidestep = 0;
+      note_jump(step, place);
+      if (goal_confirmed(step, place)) {
+        if (!homing_ || !params_.home_on_goal_image || params_.homing_max_steps == 0) {
+          result_.steps.push_back(step);
+          state_ = State::kArrived;
+          return;
         }
-      } else {
-        goal_matches = 0;
+        start_homing();
       }
     }
-
-    if (homing_from) {
-      // Step towards the goal image, as far as it seems to be (up to a homing step), while it
-      // seems farther than homing_stop_m and nearer than at the last view; stop when it seems
-      // farther (the last step passed the goal), when the phases show no displacement (at the
-      // goal), or when the homing budget is spent.
-      const GoalCue cue = homing(view);
-      if (cue.distance_m <= params.homing_stop_m || cue.distance_m >= homing_from->distance_m ||
-          !cue.valid || result.homing_steps >= params.homing_max_steps) {
-        result.steps.push_back(step);
-        result.reached = true;
-        return result;
-      }
-      step.turn_rad = cue.bearing_rad + sidestep_turn(sidestep, deg_to_rad(params.sidestep_deg));
-      const double distance_m = std::min(cue.distance_m, params.homing_step_m);
-      const double driven = world.move(step.turn_rad, distance_m);
-      result.path_length_m += driven;
-      ++result.homing_steps;
-      result.steps.push_back(step);
-      if (driven >= 0.5 * distance_m) {
-        // After a sidestep the goal may well seem farther: the next view starts afresh.
-        homing_from = sidestep == 0 ? cue : kNoCue;
-        sidestep = 0;
-      } else if (sidestep < params.sidesteps) {
-        // Blocked: the goal lies beyond a corner of furniture. Sidestep as on the way, and
-        // judge the next view against the last one that moved (this one saw the same).
-        ++sidestep;
-        ++result.sidesteps;
-      } else {
-        // Blocked every way: this is as near as the robot gets.
-        result.reached = true;
-        return result;
-      }
-      continue;
-    }
-
-    // Going round in circles: entering the same place again and again. Its direction leads
-    // into places whose directions lead back; plan again without the link it follows.
-    if (place != previous && params.loop_entries > 0 && ++entries[place] >= params.loop_entries &&
-        place != plan.goal) {
-      entries[place] = 0;
-      if (replan_without_link(places, place, plan)) ++result.loops;
-    }
-
-    // Turn to the place's assigned direction, measured against the place's own heading: the
-    // robot's heading relative to the place is what the image tells, whatever the lattice.
-    double direction_in_place = plan.direction_in_place_rad[place];
-    if (place == plan.goal || !plan.reaches_goal(place)) {
-      direction_in_place = step.match.heading_in_place_rad;
-    } else if (params.look_ahead_links > 0 && step.match.position && sidestep == 0) {
-      // Sidesteps turn from the place's own direction instead: the line ahead led into the
-      // obstacle, and turning from the place's next link measured better (docs/navigation.md).
-      const int target = look_ahead_place(places, plan, place, params.look_ahead_links,
-                                          look_ahead_tolerance_m, blocked);
-      const Eigen::Vector2d to = places[target].position_m - *step.match.position;
-      if (to.norm() > 1e-9) {
-        direction_in_place =
-            signed_difference(std::atan2(to.y(), to.x()), places[place].heading_rad);
-      }
-    }
-    const bool escaping = escape_steps_left > 0;
-    if (escaping) {
-      direction_in_place += sidestep_turn(escape_turn, deg_to_rad(params.unstick_turn_deg));
-      --escape_steps_left;
+    if (state_ == State::kHoming) {
+      home(step, view);
     } else {
-      direction_in_place += sidestep_turn(sidestep, deg_to_rad(params.sidestep_deg));
-      result.sidesteps += sidestep > 0 ? 1 : 0;
+      follow_route(step, place, localisation);
     }
-    step.turn_rad = signed_difference(direction_in_place, step.match.heading_in_place_rad);
-    const double driven = world.move(step.turn_rad, params.step_m);
-    if (driven >= 0.5 * params.step_m) {
-      sidestep = 0;
-    } else if (!escaping && sidestep < params.sidesteps) {
-      ++sidestep;
-    } else {
-      sidestep = 0;
-      if (!escaping && plan.next[place] >= 0) blocked.emplace_back(place, plan.next[place]);
-      if (escaping || !replan_without_link(places, place, plan)) {
-        escape_turn = escaping ? escape_turn + 1 : 1;
-        if (std::abs(sidestep_turn(escape_turn, params.unstick_turn_deg)) > 180.0) escape_turn = 1;
-        escape_steps_left = kEscapeSteps;
-      } else {
-        ++result.replans;
-      }
-    }
-    result.path_length_m += driven;
-    expected = plan.next[place] >= 0 ? plan.next[place] : place;
-    result.steps.push_back(step);
   }
-  // The budget ran out while homing: the goal place was recognised, as the paper's robot asks.
-  result.reached = homing_from.has_value();
-  return result;
+
+  // Nothing recognised (an empty candidate set): go on straight ahead.
+  void drive_blind(NavigationStep& step) {
+    result_.path_length_m += world_.move(0.0, params_.step_m);
+    result_.steps.push_back(step);
+  }
+
+  // A jump: neither where the robot was, nor where it was heading, nor next to either.
+  void note_jump(NavigationStep& step, int place) {
+    if (expected_ < 0) return;
+    const int previous = previous_place();
+    const Eigen::Vector2d here = places_[place].position_m;
+    const double near_m = 2.0 * params_.step_m + 1e-9;
+    step.jump = (here - places_[expected_].position_m).norm() > near_m &&
+                (previous < 0 || (here - places_[previous].position_m).norm() > near_m);
+    result_.jumps += step.jump ? 1 : 0;
+  }
+
+  // The goal's place recognised, with the goal similarity, goal_confirmations views in a row.
+  bool goal_confirmed(const NavigationStep& step, int place) {
+    if (place != plan_.goal || step.match->similarity < params_.goal_similarity) {
+      goal_matches_ = 0;
+      return false;
+    }
+    return ++goal_matches_ >= params_.goal_confirmations;
+  }
+
+  // From here on, home on the goal image (no view to compare this first one with yet).
+  void start_homing() {
+    state_ = State::kHoming;
+    homing_from_ = kNoCue;
+    sidestep_ = 0;
+  }
+
+  // Step towards the goal image, as far as it seems to be (up to a homing step), while it seems
+  // farther than homing_stop_m and nearer than at the last view; arrive when it seems farther
+  // (the last step passed the goal), when the phases show no displacement (at the goal), or
+  // when the homing budget is spent.
+  void home(NavigationStep& step, const cv::Mat& view) {
+    const GoalCue cue = homing_(view);
+    if (cue.distance_m <= params_.homing_stop_m || cue.distance_m >= homing_from_.distance_m ||
+        !cue.valid || result_.homing_steps >= params_.homing_max_steps) {
+      result_.steps.push_back(step);
+      state_ = State::kArrived;
+      return;
+    }
+    step.turn_rad = cue.bearing_rad + sidestep_turn(sidestep_, deg_to_rad(params_.sidestep_deg));
+    const double distance_m = std::min(cue.distance_m, params_.homing_step_m);
+    const double driven = world_.move(step.turn_rad, distance_m);
+    result_.path_length_m += driven;
+    ++result_.homing_steps;
+    result_.steps.push_back(step);
+    if (driven >= 0.5 * distance_m) {
+      // After a sidestep the goal may well seem farther: the next view starts afresh.
+      homing_from_ = sidestep_ == 0 ? cue : kNoCue;
+      sidestep_ = 0;
+    } else if (sidestep_ < params_.sidesteps) {
+      // Blocked: the goal lies beyond a corner of furniture. Sidestep as on the way, and judge
+      // the next view against the last one that moved (this one saw the same).
+      ++sidestep_;
+      ++result_.sidesteps;
+    } else {
+      state_ = State::kArrived;  // blocked every way: this is as near as the robot gets
+    }
+  }
+
+  // Turn to the place's direction (recovering from a block as the state says), step, and
+  // recover from a block this step met.
+  void follow_route(NavigationStep& step, int place, const memory::Localisation& localisation) {
+    leave_loop(place);
+    double direction_in_place = route_direction(step, place, localisation);
+    const bool escaping = escape_steps_left_ > 0;
+    if (escaping) {
+      direction_in_place += sidestep_turn(escape_turn_, deg_to_rad(params_.unstick_turn_deg));
+      --escape_steps_left_;
+    } else {
+      direction_in_place += sidestep_turn(sidestep_, deg_to_rad(params_.sidestep_deg));
+      result_.sidesteps += sidestep_ > 0 ? 1 : 0;
+    }
+    step.turn_rad = signed_difference(direction_in_place, step.match->relative_heading_rad);
+    const double driven = world_.move(step.turn_rad, params_.step_m);
+    if (driven >= 0.5 * params_.step_m) {
+      sidestep_ = 0;
+    } else if (!escaping && sidestep_ < params_.sidesteps) {
+      ++sidestep_;
+    } else {
+      drop_link_or_escape(place, escaping);
+    }
+    result_.path_length_m += driven;
+    expected_ = plan_.next[place] >= 0 ? plan_.next[place] : place;
+    result_.steps.push_back(step);
+  }
+
+  // Going round in circles: entering the same place again and again. Its direction leads into
+  // places whose directions lead back; plan again without the link it follows.
+  void leave_loop(int place) {
+    if (place != previous_place() && params_.loop_entries > 0 &&
+        ++entries_[place] >= params_.loop_entries && place != plan_.goal) {
+      entries_[place] = 0;
+      if (replan_without_link(places_, place, plan_)) ++result_.loops;
+    }
+  }
+
+  // The direction to turn to, relative to the place's own heading: the robot's heading relative
+  // to the place is what the image tells, whatever the lattice. The place's direction towards
+  // its next place; at the goal or without a route, straight on.
+  double route_direction(const NavigationStep& step, int place,
+                         const memory::Localisation& localisation) const {
+    if (place == plan_.goal || !plan_.reaches_goal(place)) return step.match->relative_heading_rad;
+    const std::optional<Eigen::Vector2d> position = lattice_position(localisation);
+    if (params_.look_ahead_links > 0 && position && sidestep_ == 0) {
+      // Sidesteps turn from the place's own direction instead: the line ahead led into the
+      // obstacle, and turning from the place's next link measured better.
+      const int target = look_ahead_place(places_, plan_, place, params_.look_ahead_links,
+                                          look_ahead_tolerance_m_, blocked_);
+      const Eigen::Vector2d to = places_[target].position_m - *position;
+      if (to.norm() > 1e-9) {
+        return signed_difference(std::atan2(to.y(), to.x()), places_[place].heading_rad);
+      }
+    }
+    return plan_.direction_in_place_rad[place];
+  }
+
+  // The sidesteps are spent (or the robot was escaping): drop the place's link to its next
+  // place and plan again without it; when no route is left round it (or escaping), escape with
+  // the next escape turn.
+  void drop_link_or_escape(int place, bool escaping) {
+    sidestep_ = 0;
+    if (!escaping && plan_.next[place] >= 0) blocked_.emplace_back(place, plan_.next[place]);
+    if (escaping || !replan_without_link(places_, place, plan_)) {
+      escape_turn_ = escaping ? escape_turn_ + 1 : 1;
+      if (std::abs(sidestep_turn(escape_turn_, params_.unstick_turn_deg)) > 180.0) escape_turn_ = 1;
+      escape_steps_left_ = kEscapeSteps;
+    } else {
+      ++result_.replans;
+    }
+  }
+
+  int previous_place() const { return result_.steps.empty() ? -1 : place_of(result_.steps.back()); }
+
+  NavigationWorld& world_;
+  const std::vector<PlaceNode>& places_;
+  const PanoramaLocaliser& localise_;
+  const NavigatorParams& params_;
+  const GoalHoming& homing_;
+
+  State state_ = State::kFollowingRoute;
+  NavigationResult result_;
+  RoutePlan plan_;             // made again without the links found blocked
+  int expected_ = -1;          // the place the plan said the robot would reach next
+  int goal_matches_ = 0;       // consecutive views of the goal's place
+  int sidestep_ = 0;           // sidesteps tried since the last move that was not blocked
+  int escape_steps_left_ = 0;  // > 0: escaping
+  int escape_turn_ = 0;        // the escape turn in use (sidestep_turn's count)
+  std::vector<Edge> blocked_;  // links found blocked: the look-ahead keeps away from them
+  const double look_ahead_tolerance_m_;
+  std::vector<int> entries_;      // times each place was entered (loops)
+  GoalCue homing_from_ = kNoCue;  // homing: the cue of the last view that moved
+};
+
+}  // namespace
+
+NavigationResult navigate(NavigationWorld& world, const std::vector<PlaceNode>& places,
+                          const RoutePlan& plan, const PanoramaLocaliser& localise,
+                          const NavigatorParams& params, const GoalHoming& homing) {
+  return NavigationRun(world, places, plan, localise, params, homing).run();
 }
 
 }  // namespace omninav::navigation

@@ -7,10 +7,10 @@
 
 #include "omninav/compass/compass_config.hpp"
 #include "omninav/core/panorama.hpp"
+#include "omninav/evaluation/navigation_trials.hpp"
 #include "omninav/lattice/organise.hpp"
 #include "omninav/memory/memory_config.hpp"
 #include "omninav/navigation/navigator.hpp"
-#include "omninav/navigation/trials.hpp"
 #include "omninav/omni/unwrap.hpp"
 #include "omninav/sim/virtual_robot.hpp"
 #include "omninav/sim/world_loader.hpp"
@@ -51,7 +51,7 @@ struct NavigationConfig {
   navigation::RouteParams route;
   navigation::NavigatorParams navigator;
   sim::RobotParams robot;
-  navigation::TrialParams trials;
+  TrialParams trials;
 };
 
 // <config_dir>/navigation.yaml: sections route, navigator, robot and trials.

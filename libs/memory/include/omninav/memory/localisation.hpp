@@ -27,10 +27,15 @@ struct LocalisationParams {
 // top_k).
 void load_localisation_params(const ConfigReader& section, LocalisationParams& params);
 
+// One of the best places for a query, best first in Localisation::best.
 struct PlaceMatch {
   PlaceIndex place = 0;
   double dissimilarity = 0.0;  // at the finest level
   double similarity = 0.0;     // Eq. 3, 0..1000
+  // The finest level's dissimilarity (Eq. 2/6) per compared value (lines × components), grey
+  // levels: unlike the similarity, which Eq. 3 rescales so that the best place always scores
+  // 1000, it tells whether the query matches any place at all.
+  double dissimilarity_per_value = 0.0;
   // heading(query) − heading(place), from the phases, counter-clockwise positive.
   double relative_heading_rad = 0.0;
   double heading_confidence = 0.0;

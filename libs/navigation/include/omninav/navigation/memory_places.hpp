@@ -9,6 +9,7 @@
 
 #include "omninav/memory/localisation.hpp"
 #include "omninav/memory/visual_memory.hpp"
+#include "omninav/navigation/goal_navigation.hpp"
 #include "omninav/navigation/homing.hpp"
 #include "omninav/navigation/navigator.hpp"
 #include "omninav/navigation/route_planner.hpp"
@@ -21,15 +22,12 @@ namespace omninav::navigation {
 // place has no heading (neither stored nor measurable along the exploration).
 std::vector<PlaceNode> places_from_memory(const memory::VisualMemory& memory);
 
-// The best place of `result` (a localisation by `localiser`) as the navigator sees it; place
-// -1 when there is none.
-PlaceMatch place_match(const memory::Localiser& localiser, const memory::Localisation& result);
-
-// A navigator's localiser backed by the memory's hierarchical localisation: the best place,
-// its similarity, and the robot's heading relative to the place from the phases. The
-// localiser and the extractor must outlive the returned function.
-Localiser memory_localiser(const memory::Localiser& localiser,
-                           signature::SignatureExtractor& extractor);
+// The navigator's localiser backed by the memory's hierarchical localisation: the panorama's
+// signature (made by `extractor`) localised by `localiser`. Throws InputError for a panorama
+// of another height than the map's. The localiser and the extractor must outlive the returned
+// function.
+PanoramaLocaliser memory_localiser(const memory::Localiser& localiser,
+                                   signature::SignatureExtractor& extractor);
 
 // The largest mean dissimilarity per value at which an image still matches a place of
 // `memory`: params.match_dissimilarity_ratio × the median over the map's links of their
@@ -43,15 +41,22 @@ double match_limit(const memory::VisualMemory& memory, const RouteParams& params
 // is 0 (homing never moves), with a warning in the log.
 HomingScale homing_scale(const memory::VisualMemory& memory, const std::vector<PlaceNode>& places);
 
-// Why `match` matches no place of the map, none when it does: no candidate, or a mean
-// dissimilarity per value above `limit` (see match_limit). The one criterion of route, navigate
-// and localise.
-std::optional<std::string> no_match_reason(const PlaceMatch& match, double limit);
+// What navigating to goal images on `memory` needs: its places (places_from_memory), its match
+// limit and homing scale, with `localise` and the settings.
+GoalNavigationSetup goal_navigation_setup(const memory::VisualMemory& memory,
+                                          PanoramaLocaliser localise, const RouteParams& route,
+                                          const NavigatorParams& navigator);
+
+// Why `localisation` matches no place of the map, none when it does: no candidate, or a best
+// place whose mean dissimilarity per value is above `limit` (see match_limit). The one
+// criterion of route, navigate and localise.
+std::optional<std::string> no_match_reason(const memory::Localisation& localisation, double limit);
 
 // Localises `image` (named `what` in messages, e.g. "goal.png") and checks that it matches a
 // place: InputError when it matches none (no candidate, or a mean dissimilarity per value above
 // `limit`, see match_limit), when it is not a panorama or has another height than the map's.
-PlaceMatch match_image(const Localiser& localise, const cv::Mat& image, double limit,
-                       const std::string& what);
+// Returns the best place.
+memory::PlaceMatch match_image(const PanoramaLocaliser& localise, const cv::Mat& image,
+                               double limit, const std::string& what);
 
 }  // namespace omninav::navigation

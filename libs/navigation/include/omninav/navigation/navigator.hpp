@@ -9,7 +9,7 @@
 // place rather than on it), it first turns a little aside (sidesteps), and when that fails too
 // that link of the memory graph is dropped and the plan is made again from the goal without
 // it; only when no route is left does the robot try escape turns.
-// More goes beyond the paper (docs/navigation.md has the measurements): the robot aims from
+// More goes beyond the paper (docs/navigation.md says what and why): the robot aims from
 // its position estimate at a place several links ahead where the lattice says the straight
 // line follows the route (look_ahead_place, route_planner.hpp), a place the robot keeps coming
 // back to gets the same treatment as a blocked link, and once the goal's place is recognised
@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "omninav/core/pose.hpp"
+#include "omninav/memory/localisation.hpp"
 #include "omninav/navigation/homing.hpp"
 #include "omninav/navigation/route_planner.hpp"
 
@@ -28,29 +29,13 @@ namespace omninav {
 class ConfigReader;
 }
 
-namespace omninav::sim {
-class VirtualRobot;
-class Renderer;
-}  // namespace omninav::sim
-
 namespace omninav::navigation {
 
-// What a localiser says about a panorama: the best place, how sure it is, and the robot's
-// heading relative to that place's stored heading (counter-clockwise positive).
-struct PlaceMatch {
-  int place = -1;
-  double similarity = 0.0;  // 0..1000 (001 Eq. 3)
-  double heading_in_place_rad = 0.0;
-  // Mean |Δ magnitude| per compared value at the finest level (Eq. 2/6 divided by lines ×
-  // components), grey levels: unlike the similarity, which Eq. 3 rescales so that the best
-  // place always scores 1000, it tells whether the image matches any place at all.
-  double dissimilarity_per_value = 0.0;
-  // Where the robot is between places, on the lattice, when the localiser can tell (the best
-  // places' positions weighted by similarity, memory::PositionEstimate).
-  std::optional<Eigen::Vector2d> position;
-};
-
-using Localiser = std::function<PlaceMatch(const cv::Mat& panorama)>;
+// How the navigator localises what the robot sees: the memory's hierarchical localisation of
+// the panorama (memory_localiser, memory_places.hpp) or a stand-in. Of the localisation it reads
+// the best place (its similarity, the robot's heading relative to the place's stored heading)
+// and, when the position estimate is on the lattice, where the robot is between places.
+using PanoramaLocaliser = std::function<memory::Localisation(const cv::Mat& panorama)>;
 
 struct NavigatorParams {
   double step_m = 0.15;            // distance driven between two images
@@ -93,8 +78,8 @@ struct NavigatorParams {
 void load_navigator_params(const ConfigReader& section, NavigatorParams& params);
 
 // What the navigator acts on: a robot somewhere that shows what it sees and moves when told.
-// The loop is the same whether the world is rendered (RenderedWorld) or a grid of stored
-// images (GridDatabaseWorld, robot_worlds.hpp).
+// The loop is the same whether the world is rendered or a grid of stored images (the
+// evaluation layer's robot worlds) or a stand-in.
 class NavigationWorld {
  public:
   virtual ~NavigationWorld() = default;
@@ -109,8 +94,8 @@ class NavigationWorld {
 
 struct NavigationStep {
   int index = 0;
-  CameraPose truth;  // where the robot really was (evaluation only)
-  PlaceMatch match;
+  CameraPose truth;                         // where the robot really was (evaluation only)
+  std::optional<memory::PlaceMatch> match;  // the best place; none when nothing was recognised
   double heading_estimate_rad = 0.0;  // in the lattice frame: place heading + heading in place
   double turn_rad = 0.0;              // the turn commanded
   bool jump = false;                  // matched neither the expected place nor its neighbours
@@ -130,13 +115,7 @@ struct NavigationResult {
 // Drives `world`'s robot along `plan` until it recognises the goal place, then, when `homing`
 // is given and params.home_on_goal_image, homes on the goal image.
 NavigationResult navigate(NavigationWorld& world, const std::vector<PlaceNode>& places,
-                          const RoutePlan& plan, const Localiser& localise,
+                          const RoutePlan& plan, const PanoramaLocaliser& localise,
                           const NavigatorParams& params, const GoalHoming& homing = {});
-
-// The loop in a rendered world: navigate(RenderedWorld(robot, renderer), ...)
-// (robot_worlds.cpp).
-NavigationResult navigate(sim::VirtualRobot& robot, const sim::Renderer& renderer,
-                          const std::vector<PlaceNode>& places, const RoutePlan& plan,
-                          const Localiser& localise, const NavigatorParams& params);
 
 }  // namespace omninav::navigation

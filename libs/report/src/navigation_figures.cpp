@@ -1,11 +1,11 @@
-#include "omninav/navigation/figures.hpp"
+#include "omninav/report/navigation_figures.hpp"
 
 #include <cmath>
 
 #include "omninav/core/angles.hpp"
 #include "omninav/eval/plot.hpp"
 
-namespace omninav::navigation {
+namespace omninav::report {
 namespace {
 
 cv::Point2d point(const Eigen::Vector2d& position) {
@@ -40,14 +40,15 @@ void add_route(eval::PointsPlot& plot, const std::vector<Eigen::Vector2d>& posit
 
 }  // namespace
 
-cv::Mat route_figure(const std::vector<PlaceNode>& places, const RoutePlan& plan, int start,
+cv::Mat route_figure(const std::vector<navigation::PlaceNode>& places,
+                     const navigation::RoutePlan& plan, int start,
                      const std::optional<std::vector<Eigen::Vector2d>>& truth_m) {
   const std::vector<int> route = plan.route_from(start);
   std::vector<Eigen::Vector2d> lattice;
-  for (const PlaceNode& place : places) lattice.push_back(place.position_m);
+  for (const navigation::PlaceNode& place : places) lattice.push_back(place.position_m);
   eval::PointsPlot lattice_plot("Route on the lattice: each place's direction to the goal",
                                 "lattice x", "lattice y");
-  const double arrow = 0.45 * lattice_spacing(places);
+  const double arrow = 0.45 * navigation::lattice_spacing(places);
   for (std::size_t place = 0; place < places.size(); ++place) {
     if (plan.next[place] >= 0)
       add_arrow(lattice_plot, places[place].position_m, plan.direction_rad[place], arrow);
@@ -62,4 +63,4 @@ cv::Mat route_figure(const std::vector<PlaceNode>& places, const RoutePlan& plan
   return picture;
 }
 
-}  // namespace omninav::navigation
+}  // namespace omninav::report

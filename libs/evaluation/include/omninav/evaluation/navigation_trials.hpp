@@ -1,21 +1,19 @@
 #pragma once
-// Navigating to a goal image, once or over many seeded random start and goal poses: the
-// evaluation of DESIGN.md ("share of start/goal pairs reached, and path length") and of issue
-// 5's target (≥ 95% of 100 random pairs in the built-in room reached, mean path ≤ 1.5× the
-// straight line). The trials read ground truth (the goal's pose, the robot's true path) only
-// to score; the navigator itself never sees it.
+// Navigation trials over seeded random start and goal poses: the evaluation of DESIGN.md
+// ("share of start/goal pairs reached, and path length"), whose target is at least 95% of 100
+// random pairs in the built-in room reached with a mean path at most 1.5 times the straight
+// line. The trials read ground truth (the goal's pose, the robot's true path) only to score;
+// the navigator itself never sees it.
 
 #include <Eigen/Core>
 #include <cstdint>
-#include <functional>
-#include <opencv2/core.hpp>
 #include <string>
 #include <vector>
 
 #include "omninav/core/pose.hpp"
 #include "omninav/memory/visual_memory.hpp"
+#include "omninav/navigation/goal_navigation.hpp"
 #include "omninav/navigation/navigator.hpp"
-#include "omninav/navigation/route_planner.hpp"
 #include "omninav/sim/renderer.hpp"
 #include "omninav/sim/virtual_robot.hpp"
 #include "omninav/sim/world.hpp"
@@ -24,22 +22,7 @@ namespace omninav {
 class ConfigReader;
 }
 
-namespace omninav::navigation {
-
-// One navigation: the goal image's place, the plan to it and the run.
-struct GoalRun {
-  PlaceMatch goal;
-  RoutePlan plan;
-  NavigationResult result;
-};
-
-// Matches `goal_image` (named `what` in messages) to a place (match_image with `match_limit`:
-// InputError when it matches none), plans to it over the lattice and drives `world`'s robot
-// there, homing on the goal image at the end (homing_scale gives `homing` for a map).
-GoalRun navigate_to_image(NavigationWorld& world, const cv::Mat& goal_image,
-                          const std::string& what, const std::vector<PlaceNode>& places,
-                          const Localiser& localise, double match_limit, const HomingScale& homing,
-                          const RouteParams& route, const NavigatorParams& navigator);
+namespace omninav::evaluation {
 
 struct TrialParams {
   int count = 100;         // start and goal pairs
@@ -69,25 +52,31 @@ std::vector<Trial> random_trials(const sim::World& world,
                                  const std::vector<Eigen::Vector2d>& mapped_m, double spacing_m,
                                  double clearance_m, double z_m, const TrialParams& params);
 
+// Where the trials run: a rendered world, its renderer (which renders the goal images and the
+// robot's views) and the robot's motion (the noise of trial i seeded by robot.seed + i). The
+// world and the renderer must outlive the scene.
+struct TrialScene {
+  const sim::World& world;
+  const sim::Renderer& renderer;
+  sim::RobotParams robot;
+};
+
 struct TrialOutcome {
   Trial trial;
-  int goal_place = -1;           // -1: the goal image matched no place (the trial fails)
-  bool stopped_at_goal = false;  // the navigator recognised the goal place and stopped
-  bool reached = false;          // ... and truly stands within the goal radius
-  double final_error_m = 0.0;    // from where the robot stopped to the goal pose (truth)
-  double straight_m = 0.0;       // from start to goal, straight
-  NavigationResult result;       // the run, step by step (empty when the goal matched no place)
+  int goal_place = -1;                  // -1: the goal image matched no place (the trial fails)
+  bool stopped_at_goal = false;         // the navigator recognised the goal place and stopped
+  bool reached = false;                 // ... and truly stands within the goal radius
+  double final_error_m = 0.0;           // from where the robot stopped to the goal pose (truth)
+  double straight_m = 0.0;              // from start to goal, straight
+  navigation::NavigationResult result;  // the run, step by step (empty when the goal matched
+                                        // no place)
 };
 
 // Runs every trial: the goal image rendered at the goal pose, a fresh virtual robot at the
-// start (motion noise seeded by robot.seed + the trial's index), navigate_to_image.
-std::vector<TrialOutcome> run_trials(const std::vector<Trial>& trials, const sim::World& world,
-                                     const sim::Renderer& renderer,
-                                     const std::vector<PlaceNode>& places,
-                                     const Localiser& localise, double match_limit,
-                                     const HomingScale& homing, const RouteParams& route,
-                                     const NavigatorParams& navigator,
-                                     const sim::RobotParams& robot, double goal_radius_m);
+// start, navigate_to_image; a trial is reached within `goal_radius_m` of its goal pose.
+std::vector<TrialOutcome> run_trials(const std::vector<Trial>& trials, const TrialScene& scene,
+                                     const navigation::GoalNavigationSetup& setup,
+                                     double goal_radius_m);
 
 // The evaluation of `navigate --trials` (and of `omninav evaluate`) on a map whose places have
 // ground truth: random_trials over the places' true positions (spacing: their typical
@@ -99,10 +88,8 @@ struct MapTrials {
   double goal_radius_m = 0.0;
   std::vector<TrialOutcome> outcomes;
 };
-MapTrials run_map_trials(const memory::VisualMemory& memory, const std::vector<PlaceNode>& places,
-                         const Localiser& localise, const sim::World& world,
-                         const sim::Renderer& renderer, const RouteParams& route,
-                         const NavigatorParams& navigator, const sim::RobotParams& robot,
+MapTrials run_map_trials(const memory::VisualMemory& memory,
+                         const navigation::GoalNavigationSetup& setup, const TrialScene& scene,
                          const TrialParams& params);
 
 struct TrialSummary {
@@ -119,4 +106,4 @@ struct TrialSummary {
 
 TrialSummary summarise(const std::vector<TrialOutcome>& outcomes);
 
-}  // namespace omninav::navigation
+}  // namespace omninav::evaluation

@@ -10,13 +10,14 @@
 
 #include "omninav/navigation/route_planner.hpp"
 
-namespace omninav::navigation {
+namespace omninav::report {
 
 // The lattice panel: every place, an arrow at each place that reaches the goal along its
 // direction (lattice frame), the route from `start` drawn over them, start and goal marked.
 // With `truth_m` (one true position per place) a second panel beside it draws the route over
 // the true positions. BGR, CV_8UC3.
-cv::Mat route_figure(const std::vector<PlaceNode>& places, const RoutePlan& plan, int start,
+cv::Mat route_figure(const std::vector<navigation::PlaceNode>& places,
+                     const navigation::RoutePlan& plan, int start,
                      const std::optional<std::vector<Eigen::Vector2d>>& truth_m);
 
-}  // namespace omninav::navigation
+}  // namespace omninav::report

@@ -1,7 +1,8 @@
-#include "omninav/navigation/trials.hpp"
+#include "omninav/evaluation/navigation_trials.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <iomanip>
 #include <limits>
 #include <sstream>
@@ -11,11 +12,10 @@
 #include "omninav/core/errors.hpp"
 #include "omninav/core/progress.hpp"
 #include "omninav/core/statistics.hpp"
+#include "omninav/evaluation/robot_worlds.hpp"
 #include "omninav/memory/localisation.hpp"
-#include "omninav/navigation/memory_places.hpp"
-#include "omninav/navigation/robot_worlds.hpp"
 
-namespace omninav::navigation {
+namespace omninav::evaluation {
 namespace {
 
 // Draws tried per pose before the area is declared too small: a mapped area that is mostly
@@ -29,18 +29,6 @@ double nearest_m(const std::vector<Eigen::Vector2d>& points, const Eigen::Vector
 }
 
 }  // namespace
-
-GoalRun navigate_to_image(NavigationWorld& world, const cv::Mat& goal_image,
-                          const std::string& what, const std::vector<PlaceNode>& places,
-                          const Localiser& localise, double match_limit, const HomingScale& homing,
-                          const RouteParams& route, const NavigatorParams& navigator) {
-  GoalRun run;
-  run.goal = match_image(localise, goal_image, match_limit, what);
-  run.plan = plan_over_lattice(places, route, run.goal.place);
-  run.result =
-      navigate(world, places, run.plan, localise, navigator, goal_homing(goal_image, homing));
-  return run;
-}
 
 void load_trial_params(const ConfigReader& section, TrialParams& params) {
   section.read("min_separation_spacings", params.min_separation_spacings, 0.0, 1000.0);
@@ -84,13 +72,9 @@ std::vector<Trial> random_trials(const sim::World& world,
   return trials;
 }
 
-std::vector<TrialOutcome> run_trials(const std::vector<Trial>& trials, const sim::World& world,
-                                     const sim::Renderer& renderer,
-                                     const std::vector<PlaceNode>& places,
-                                     const Localiser& localise, double match_limit,
-                                     const HomingScale& homing, const RouteParams& route,
-                                     const NavigatorParams& navigator,
-                                     const sim::RobotParams& robot, double goal_radius_m) {
+std::vector<TrialOutcome> run_trials(const std::vector<Trial>& trials, const TrialScene& scene,
+                                     const navigation::GoalNavigationSetup& setup,
+                                     double goal_radius_m) {
   std::vector<TrialOutcome> outcomes;
   Progress progress("navigation trials", trials.size());
   for (std::size_t i = 0; i < trials.size(); ++i) {
@@ -99,15 +83,14 @@ std::vector<TrialOutcome> run_trials(const std::vector<Trial>& trials, const sim
     const CameraPose& start = trials[i].start;
     const CameraPose& goal = trials[i].goal;
     outcome.straight_m = std::hypot(goal.x_m - start.x_m, goal.y_m - start.y_m);
-    sim::RobotParams noise = robot;
-    noise.seed = robot.seed + static_cast<std::uint32_t>(i);
-    sim::VirtualRobot virtual_robot(world, start, noise);
-    RenderedWorld rendered(virtual_robot, renderer);
+    sim::RobotParams noise = scene.robot;
+    noise.seed = scene.robot.seed + static_cast<std::uint32_t>(i);
+    sim::VirtualRobot virtual_robot(scene.world, start, noise);
+    RenderedWorld rendered(virtual_robot, scene.renderer);
     try {
-      GoalRun run = navigate_to_image(rendered, renderer.render(goal),
-                                      "trial " + std::to_string(i) + "'s goal", places, localise,
-                                      match_limit, homing, route, navigator);
-      outcome.goal_place = run.goal.place;
+      navigation::GoalRun run = navigation::navigate_to_image(
+          rendered, scene.renderer.render(goal), "trial " + std::to_string(i) + "'s goal", setup);
+      outcome.goal_place = static_cast<int>(run.goal.place);
       outcome.stopped_at_goal = run.result.reached;
       outcome.result = std::move(run.result);
     } catch (const InputError&) {
@@ -122,10 +105,8 @@ std::vector<TrialOutcome> run_trials(const std::vector<Trial>& trials, const sim
   return outcomes;
 }
 
-MapTrials run_map_trials(const memory::VisualMemory& memory, const std::vector<PlaceNode>& places,
-                         const Localiser& localise, const sim::World& world,
-                         const sim::Renderer& renderer, const RouteParams& route,
-                         const NavigatorParams& navigator, const sim::RobotParams& robot,
+MapTrials run_map_trials(const memory::VisualMemory& memory,
+                         const navigation::GoalNavigationSetup& setup, const TrialScene& scene,
                          const TrialParams& params) {
   if (memory.place_count() == 0 || !memory.all_have_truth()) {
     throw UsageError("trials score against ground truth, and the map's places have none");
@@ -139,11 +120,10 @@ MapTrials run_map_trials(const memory::VisualMemory& memory, const std::vector<P
   MapTrials result;
   result.spacing_m = memory::typical_spacing(points);
   result.goal_radius_m = params.goal_radius_spacings * result.spacing_m;
-  const std::vector<Trial> trials = random_trials(world, mapped, result.spacing_m, robot.radius_m,
-                                                  memory.place(0).truth->z_m, params);
-  result.outcomes =
-      run_trials(trials, world, renderer, places, localise, match_limit(memory, route),
-                 homing_scale(memory, places), route, navigator, robot, result.goal_radius_m);
+  const std::vector<Trial> trials =
+      random_trials(scene.world, mapped, result.spacing_m, scene.robot.radius_m,
+                    memory.place(0).truth->z_m, params);
+  result.outcomes = run_trials(trials, scene, setup, result.goal_radius_m);
   return result;
 }
 
@@ -177,4 +157,4 @@ std::string TrialSummary::text() const {
   return text.str();
 }
 
-}  // namespace omninav::navigation
+}  // namespace omninav::evaluation

@@ -1,5 +1,5 @@
 #pragma once
-// The worlds the navigator can drive a robot in (navigator.hpp, NavigationWorld):
+// The worlds the navigator can drive a robot in (navigation/navigator.hpp, NavigationWorld):
 //   - RenderedWorld: a virtual robot in a world drawn by libs/sim's renderer, moving freely
 //     (with motion noise) and stopped by walls and furniture;
 //   - GridDatabaseWorld: a grid of stored panoramas (a BoB grid database): the robot stands on
@@ -15,9 +15,9 @@
 #include "omninav/sim/renderer.hpp"
 #include "omninav/sim/virtual_robot.hpp"
 
-namespace omninav::navigation {
+namespace omninav::evaluation {
 
-class RenderedWorld : public NavigationWorld {
+class RenderedWorld : public navigation::NavigationWorld {
  public:
   // `robot` and `renderer` must outlive this world.
   RenderedWorld(sim::VirtualRobot& robot, const sim::Renderer& renderer)
@@ -38,7 +38,7 @@ struct GridImage {
   CameraPose pose;
 };
 
-class GridDatabaseWorld : public NavigationWorld {
+class GridDatabaseWorld : public navigation::NavigationWorld {
  public:
   // The robot starts on the grid image nearest to `start`, with start's heading. Turns get
   // params.turn_noise_deg of seeded noise, as the virtual robot's; distances are the grid's.
@@ -70,4 +70,4 @@ class GridDatabaseWorld : public NavigationWorld {
   cv::RNG rng_;
 };
 
-}  // namespace omninav::navigation
+}  // namespace omninav::evaluation

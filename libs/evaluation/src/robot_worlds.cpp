@@ -1,4 +1,4 @@
-#include "omninav/navigation/robot_worlds.hpp"
+#include "omninav/evaluation/robot_worlds.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -9,7 +9,7 @@
 #include "omninav/core/panorama.hpp"
 #include "omninav/memory/localisation.hpp"
 
-namespace omninav::navigation {
+namespace omninav::evaluation {
 
 cv::Mat RenderedWorld::view(int step) {
   return renderer_.render(robot_.pose(), robot_.elapsed_s(), step);
@@ -17,13 +17,6 @@ cv::Mat RenderedWorld::view(int step) {
 
 double RenderedWorld::move(double turn_rad, double distance_m) {
   return robot_.move(turn_rad, distance_m);
-}
-
-NavigationResult navigate(sim::VirtualRobot& robot, const sim::Renderer& renderer,
-                          const std::vector<PlaceNode>& places, const RoutePlan& plan,
-                          const Localiser& localise, const NavigatorParams& params) {
-  RenderedWorld world(robot, renderer);
-  return navigate(world, places, plan, localise, params);
 }
 
 GridDatabaseWorld::GridDatabaseWorld(std::vector<GridImage> images, const Pose2& start,
@@ -90,4 +83,4 @@ CameraPose GridDatabaseWorld::truth() const {
   return pose;
 }
 
-}  // namespace omninav::navigation
+}  // namespace omninav::evaluation

@@ -1,0 +1,84 @@
+#include "omninav/report/navigation_figures.hpp"
+
+#include <gtest/gtest.h>
+
+#include "omninav/eval/plot.hpp"
+
+namespace omninav::report {
+namespace {
+
+// The pixels of `panel` in exactly `colour` in the middle band of rows (35% to 65% of the
+// height: the plot area's middle, where points on one horizontal line are drawn, below the
+// legend in the top right corner): how many, and their mean column.
+struct ColourPixels {
+  int count = 0;
+  double mean_column = 0.0;
+};
+
+ColourPixels pixels_of(const cv::Mat& panel, const cv::Scalar& colour) {
+  const cv::Vec3b bgr(static_cast<uchar>(colour[0]), static_cast<uchar>(colour[1]),
+                      static_cast<uchar>(colour[2]));
+  ColourPixels found;
+  for (int row = panel.rows * 35 / 100; row < panel.rows * 65 / 100; ++row) {
+    for (int column = 0; column < panel.cols; ++column) {
+      if (panel.at<cv::Vec3b>(row, column) != bgr) continue;
+      ++found.count;
+      found.mean_column += column;
+    }
+  }
+  if (found.count > 0) found.mean_column /= found.count;
+  return found;
+}
+
+// Six places in a row on the lattice, a route planned along the first five from the west end
+// to place 4, the sixth (east of them) linked to none; their true positions are the lattice
+// mirrored (x → −x), so that the truth panel, if it draws the truth, shows the goal west of
+// the start where the lattice panel shows it east. The figure adds its point sets in the
+// order places, route, start, goal, and a PointsPlot gives the k-th set palette colour k
+// (eval/plot.hpp): only the sixth place shows the places' colour (the route's markers cover the
+// others), the start is drawn in colour 2, the goal in colour 3.
+TEST(NavigationFigures, RoutePictureDrawsTheRouteOnTheLatticeAndOverTheTruth) {
+  std::vector<navigation::PlaceNode> places;
+  std::vector<Eigen::Vector2d> truth;
+  std::vector<navigation::Edge> chain;
+  for (int x = 0; x < 6; ++x) {
+    places.push_back({Eigen::Vector2d(x, 0.0), 0.0});
+    truth.emplace_back(-x, 0.0);
+    if (x > 0 && x < 5) chain.emplace_back(x - 1, x);
+  }
+  const navigation::RoutePlan plan = navigation::plan_to_goal(places, chain, 4);
+  const cv::Mat lattice_only = route_figure(places, plan, 0, std::nullopt);
+  const cv::Mat both = route_figure(places, plan, 0, truth);
+  ASSERT_EQ(both.type(), CV_8UC3);
+  ASSERT_EQ(both.rows, lattice_only.rows);
+  ASSERT_EQ(both.cols, 2 * lattice_only.cols);
+  const int width = lattice_only.cols;
+  const cv::Mat lattice_panel = both.colRange(0, width);
+  const cv::Mat truth_panel = both.colRange(width, 2 * width);
+
+  // Without truth, the lattice panel alone.
+  EXPECT_EQ(cv::norm(lattice_panel, lattice_only, cv::NORM_INF), 0.0);
+  // Both panels show every point set: places, route, start and goal.
+  for (std::size_t set = 0; set < 4; ++set) {
+    EXPECT_GT(pixels_of(lattice_panel, eval::palette_colour(set)).count, 0) << "set " << set;
+    EXPECT_GT(pixels_of(truth_panel, eval::palette_colour(set)).count, 0) << "set " << set;
+  }
+  // The goal east of the start on the lattice, west of it over the truth.
+  const auto start_column = [](const cv::Mat& panel) {
+    return pixels_of(panel, eval::palette_colour(2)).mean_column;
+  };
+  const auto goal_column = [](const cv::Mat& panel) {
+    return pixels_of(panel, eval::palette_colour(3)).mean_column;
+  };
+  EXPECT_GT(goal_column(lattice_panel), start_column(lattice_panel) + 50.0);
+  EXPECT_LT(goal_column(truth_panel), start_column(truth_panel) - 50.0);
+  // The place off the route lies east of the goal on the lattice, west of it over the truth.
+  const auto place_column = [](const cv::Mat& panel) {
+    return pixels_of(panel, eval::palette_colour(0)).mean_column;
+  };
+  EXPECT_GT(place_column(lattice_panel), goal_column(lattice_panel) + 50.0);
+  EXPECT_LT(place_column(truth_panel), goal_column(truth_panel) - 50.0);
+}
+
+}  // namespace
+}  // namespace omninav::report
