@@ -17,7 +17,7 @@
 #include "omninav/eval/plot.hpp"
 #include "omninav/eval/png.hpp"
 #include "omninav/io/image_file.hpp"
-#include "omninav/memory/map_file.hpp"
+#include "omninav/memory/map_store.hpp"
 #include "omninav/navigation/memory_places.hpp"
 #include "omninav/navigation/robot_worlds.hpp"
 #include "omninav/navigation/trials.hpp"

@@ -67,7 +67,7 @@ TEST(Exploration, EveryNFramesAndEveryMetres) {
     for (const io::Frame& f : route_frames()) explorer.add(f);
     EXPECT_EQ(place_frames(memory), (std::vector<int>{0, 6, 12, 18, 24, 30, 36, 42, 48, 54}));
     // The spacing is the map's scale for the lattice.
-    EXPECT_EQ(memory.notes().at("exploration.every_m"), "0.3");
+    EXPECT_EQ(memory.exploration_spacing_m(), 0.3);
   }
 }
 
@@ -85,7 +85,7 @@ TEST(Exploration, AStreamsEdgesAreStepsAGridDatabasesAreListed) {
   for (const VisualMemory::EdgeRef& edge : grid.edges())
     EXPECT_EQ(edge.edge->kind, EdgeKind::kListed);
   // No every_m rule, no scale noted.
-  EXPECT_EQ(stream.notes().count("exploration.every_m"), 0u);
+  EXPECT_FALSE(stream.exploration_spacing_m());
 }
 
 TEST(Exploration, DissimilarityThresholdSpacesPlacesByChangeOfView) {
@@ -151,7 +151,7 @@ TEST(Exploration, HeadingsFromTheCompassTruthOrNoneAndSaidSo) {
     VisualMemory memory;
     Explorer explorer(memory, only(0.0, 10, 0.0), "route", "test");
     for (const io::Frame& f : route_frames()) explorer.add(f);
-    EXPECT_EQ(explorer.run().heading_source, "compass");
+    EXPECT_EQ(explorer.run().heading_source, HeadingSource::kCompass);
     ASSERT_EQ(memory.place_count(), 6u);
     for (PlaceIndex i = 0; i < memory.place_count(); ++i) {
       const Place& place = memory.place(i);
@@ -171,7 +171,7 @@ TEST(Exploration, HeadingsFromTheCompassTruthOrNoneAndSaidSo) {
     params.heading_source = "truth";
     Explorer explorer(memory, params, "route", "test");
     for (const io::Frame& f : route_frames()) explorer.add(f);
-    EXPECT_EQ(explorer.run().heading_source, "truth");
+    EXPECT_EQ(explorer.run().heading_source, HeadingSource::kTruth);
     EXPECT_EQ(memory.place(2).heading_source, HeadingSource::kTruth);
     EXPECT_EQ(*memory.place(2).heading_rad, route_frames()[20].truth->heading_rad);
     EXPECT_TRUE(memory.place(2).truth.has_value());
@@ -182,7 +182,7 @@ TEST(Exploration, HeadingsFromTheCompassTruthOrNoneAndSaidSo) {
     params.heading_source = "none";
     Explorer explorer(memory, params, "route", "test");
     for (const io::Frame& f : route_frames()) explorer.add(f);
-    EXPECT_EQ(explorer.run().heading_source, "none");
+    EXPECT_EQ(explorer.run().heading_source, HeadingSource::kNone);
     EXPECT_EQ(memory.place(2).heading_source, HeadingSource::kNone);
     EXPECT_FALSE(memory.place(2).heading_rad.has_value());
     EXPECT_TRUE(memory.place(2).truth.has_value()) << "truth is kept apart, for evaluation";
@@ -255,7 +255,7 @@ std::vector<double> grid_heading_errors_deg(const std::string& heading_source, F
   params.heading_source = heading_source;
   Explorer explorer(memory, params, "grid", "test", order);
   for (const io::Frame& frame : testing::grid_frames()) explorer.add_place(frame);
-  EXPECT_EQ(explorer.run().heading_source, "compass");
+  EXPECT_EQ(explorer.run().heading_source, HeadingSource::kCompass);
   std::vector<double> errors;
   for (PlaceIndex i = 0; i < memory.place_count(); ++i) {
     const Place& place = memory.place(i);
@@ -283,7 +283,7 @@ TEST(Exploration, AutoHeadingsAreAGridDatabasesOwnOrTheCompass) {
     Explorer explorer(memory, {}, "grid", "test", FrameOrder::kUnordered);
     explorer.add_place(testing::grid_frames()[0]);
     explorer.add_place(testing::grid_frames()[1]);
-    EXPECT_EQ(explorer.run().heading_source, "truth");
+    EXPECT_EQ(explorer.run().heading_source, HeadingSource::kTruth);
     EXPECT_EQ(memory.place(1).heading_source, HeadingSource::kTruth);
   }
   {
@@ -294,7 +294,7 @@ TEST(Exploration, AutoHeadingsAreAGridDatabasesOwnOrTheCompass) {
       frame.truth.reset();
       explorer.add_place(frame);
     }
-    EXPECT_EQ(explorer.run().heading_source, "compass");
+    EXPECT_EQ(explorer.run().heading_source, HeadingSource::kCompass);
     EXPECT_EQ(memory.place(1).heading_source, HeadingSource::kCompass);
   }
 }

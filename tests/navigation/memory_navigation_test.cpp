@@ -65,12 +65,13 @@ RoomMap* build_room_map() {
   }
   // Lattice from the truth, in the lattice frame: origin at the first place, its heading +x.
   const CameraPose first = *map->memory.place(0).truth;
+  std::vector<Eigen::Vector2d> lattice_positions;
   for (std::size_t i = 0; i < map->memory.place_count(); ++i) {
     const CameraPose& truth = *map->memory.place(i).truth;
-    const Eigen::Vector2d offset = Eigen::Rotation2Dd(-first.heading_rad) *
-                                   Eigen::Vector2d(truth.x_m - first.x_m, truth.y_m - first.y_m);
-    map->memory.place(i).lattice = memory::LatticePosition{offset.x(), offset.y()};
+    lattice_positions.push_back(Eigen::Rotation2Dd(-first.heading_rad) *
+                                Eigen::Vector2d(truth.x_m - first.x_m, truth.y_m - first.y_m));
   }
+  map->memory.set_lattice_positions(lattice_positions);
   map->places = places_from_memory(map->memory);
   map->localiser = std::make_unique<memory::Localiser>(map->memory, memory::LocalisationParams{});
   map->extractor =

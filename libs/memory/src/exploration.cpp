@@ -65,10 +65,10 @@ Explorer::Explorer(VisualMemory& memory, ExplorationParams params, std::string i
   run.started_utc = utc_now();
   // "auto" is settled by the first frame (track_heading); until then a stream's choice.
   heading_source_ = params_.heading_source;
-  run.heading_source = heading_source_ == "auto" ? "compass" : heading_source_;
+  run.heading_source = heading_source_ == "auto" ? HeadingSource::kCompass
+                                                 : heading_source_from_string(heading_source_);
   places_before_run_ = memory_.place_count();
-  memory_.runs().push_back(run);
-  run_index_ = memory_.runs().size() - 1;
+  run_index_ = memory_.add_run(std::move(run));
 }
 
 const Run& Explorer::run() const {
@@ -79,7 +79,7 @@ std::optional<PlaceIndex> Explorer::add(const io::Frame& frame) {
   const signature::Signature signature = extractor_.compute(frame.image, frame.source);
   track_heading(frame, signature);
   ++frames_;
-  memory_.runs()[run_index_].frames = frames_;
+  memory_.record_run_progress(run_index_, frames_, places_);
   ++frames_since_place_;
   if (frame.truth && previous_pose_) {
     metres_since_place_ +=
@@ -96,9 +96,7 @@ std::optional<PlaceIndex> Explorer::add(const io::Frame& frame) {
       metres_since_place_ >= params_.every_m * (1.0 - 1e-9)) {
     new_place = true;
     // The map's scale, for the lattice (lattice/organise.hpp): consecutive places every_m apart.
-    std::ostringstream every_m;
-    every_m << params_.every_m;
-    memory_.set_note("exploration.every_m", every_m.str());
+    memory_.set_exploration_spacing_m(params_.every_m);
   }
   if (!new_place && params_.new_place_dissimilarity > 0.0) {
     const signature::Signature& last = memory_.place(*last_place_).signature;
@@ -115,7 +113,7 @@ PlaceIndex Explorer::add_place(const io::Frame& frame) {
   const signature::Signature signature = extractor_.compute(frame.image, frame.source);
   track_heading(frame, signature);
   ++frames_;
-  memory_.runs()[run_index_].frames = frames_;
+  memory_.record_run_progress(run_index_, frames_, places_);
   previous_pose_ = frame.truth;
   return make_place(frame, signature);
 }
@@ -123,7 +121,7 @@ PlaceIndex Explorer::add_place(const io::Frame& frame) {
 void Explorer::track_heading(const io::Frame& frame, const signature::Signature& signature) {
   if (heading_source_ == "auto") {
     heading_source_ = order_ == FrameOrder::kUnordered && frame.truth ? "truth" : "compass";
-    memory_.runs()[run_index_].heading_source = heading_source_;
+    memory_.set_run_heading_source(run_index_, heading_source_from_string(heading_source_));
   }
   if (heading_source_ != "compass") return;
   cv::Mat panorama = frame.image;
@@ -207,7 +205,7 @@ PlaceIndex Explorer::make_place(const io::Frame& frame, const signature::Signatu
   place.signature = signature;
   place.source = frame.source;
   place.frame_index = frame.index;
-  place.run = memory_.runs()[run_index_].id;
+  place.run = run().id;
   place.time_s = frame.time_s;
   place.truth = frame.truth;
   if (heading_source_ == "truth" && !frame.truth) {
@@ -249,7 +247,7 @@ PlaceIndex Explorer::make_place(const io::Frame& frame, const signature::Signatu
   last_place_ = index;
   frames_since_place_ = 0;
   metres_since_place_ = 0.0;
-  memory_.runs()[run_index_].places += 1;
+  memory_.record_run_progress(run_index_, frames_, ++places_);
   return index;
 }
 

@@ -17,8 +17,8 @@ namespace omninav::lattice {
 
 struct OrganiseParams {
   // The scale: the distance between consecutive places of the exploration, metres. 0: take it
-  // from the map (the exploration's spacing policy, note "exploration.every_m"); a value given
-  // here (by the user) wins over the map's.
+  // from the map (the exploration's spacing, VisualMemory::exploration_spacing_m); a value
+  // given here (by the user) wins over the map's.
   double step_m = 0.0;
   int neighbours = 8;           // springs per place: its most similar places
   double range_fraction = 0.4;  // x₁ where dissimilarity reaches this share of its plateau
