@@ -33,7 +33,9 @@ void run_explore(const GlobalOptions& global, const ExploreOptions& options) {
   if (options.dissimilarity >= 0.0) params.new_place_dissimilarity = options.dissimilarity;
   if (options.every_n_frames >= 0) params.every_n_frames = options.every_n_frames;
   if (options.every_m >= 0.0) params.every_m = options.every_m;
-  if (!options.heading_source.empty()) params.heading_source = options.heading_source;
+  if (!options.heading_source.empty()) {
+    params.heading_source = memory::heading_policy_from_string(options.heading_source);
+  }
   use_compass_config(global.config_dir, params);
   if (!options.colour.empty()) {
     config.map.signature.colour = signature::colour_mode_from_string(options.colour);

@@ -168,7 +168,7 @@ TEST(Exploration, HeadingsFromTheCompassTruthOrNoneAndSaidSo) {
   {
     VisualMemory memory;
     ExplorationParams params = only(0.0, 10, 0.0);
-    params.heading_source = "truth";
+    params.heading_source = HeadingPolicy::kTruth;
     Explorer explorer(memory, params, "route", "test");
     for (const io::Frame& f : route_frames()) explorer.add(f);
     EXPECT_EQ(explorer.run().heading_source, HeadingSource::kTruth);
@@ -179,7 +179,7 @@ TEST(Exploration, HeadingsFromTheCompassTruthOrNoneAndSaidSo) {
   {
     VisualMemory memory;
     ExplorationParams params = only(0.0, 10, 0.0);
-    params.heading_source = "none";
+    params.heading_source = HeadingPolicy::kNone;
     Explorer explorer(memory, params, "route", "test");
     for (const io::Frame& f : route_frames()) explorer.add(f);
     EXPECT_EQ(explorer.run().heading_source, HeadingSource::kNone);
@@ -190,7 +190,7 @@ TEST(Exploration, HeadingsFromTheCompassTruthOrNoneAndSaidSo) {
   {
     VisualMemory memory;
     ExplorationParams params = only(0.0, 1, 0.0);
-    params.heading_source = "truth";
+    params.heading_source = HeadingPolicy::kTruth;
     Explorer explorer(memory, params, "no poses", "test");
     io::Frame frame = route_frames()[0];
     frame.truth.reset();
@@ -224,7 +224,7 @@ TEST(Exploration, ASecondRunTakesItsCompassGaugeFromTheMap) {
   VisualMemory memory;
   {
     ExplorationParams params = only(0.0, 5, 0.0);
-    params.heading_source = "truth";
+    params.heading_source = HeadingPolicy::kTruth;
     Explorer first(memory, params, "route", "first");
     for (const io::Frame& f : route_frames()) first.add(f);
   }
@@ -249,7 +249,7 @@ TEST(Exploration, ASecondRunTakesItsCompassGaugeFromTheMap) {
 }
 
 // Heading errors against the truth, degrees, of every place explored from the rendered grid.
-std::vector<double> grid_heading_errors_deg(const std::string& heading_source, FrameOrder order) {
+std::vector<double> grid_heading_errors_deg(HeadingPolicy heading_source, FrameOrder order) {
   VisualMemory memory;
   ExplorationParams params;
   params.heading_source = heading_source;
@@ -269,8 +269,10 @@ TEST(Exploration, GridImagesTakeTheirCompassHeadingFromTheMostSimilarEarlierPlac
   // The grid at the room's corner, in raster order (rows of 2.7 m all run one way): Algorithm 1
   // along that order errs by a median 21 degrees; each image against its most similar earlier
   // place, the step brought to the front, by 11 (exploration.hpp's table).
-  const std::vector<double> stream = grid_heading_errors_deg("compass", FrameOrder::kStream);
-  const std::vector<double> unordered = grid_heading_errors_deg("compass", FrameOrder::kUnordered);
+  const std::vector<double> stream =
+      grid_heading_errors_deg(HeadingPolicy::kCompass, FrameOrder::kStream);
+  const std::vector<double> unordered =
+      grid_heading_errors_deg(HeadingPolicy::kCompass, FrameOrder::kUnordered);
   std::cout << "median heading error, deg: Algorithm 1 in raster order " << median(stream)
             << ", most similar earlier place " << median(unordered) << "\n";
   EXPECT_LT(median(unordered), 0.75 * median(stream));

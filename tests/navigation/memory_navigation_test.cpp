@@ -47,7 +47,7 @@ RoomMap* build_room_map() {
   map->renderer = std::make_unique<sim::Renderer>(map->world, map->render);
   // Headings from the truth: these tests isolate navigation from the visual compass too.
   memory::ExplorationParams exploration;
-  exploration.heading_source = "truth";
+  exploration.heading_source = memory::HeadingPolicy::kTruth;
   memory::Explorer explorer(map->memory, exploration, "rendered grid", "test");
   int index = 0;
   for (int iy = 0; iy < 8; ++iy) {

@@ -56,6 +56,13 @@ class ConfigReader;
 
 namespace omninav::memory {
 
+// Where a run's headings come from (see the headings above): kAuto settles on compass or truth
+// by the input at its first frame; each of the others is the HeadingSource of its places.
+enum class HeadingPolicy { kAuto, kCompass, kTruth, kNone };
+std::string to_string(HeadingPolicy policy);
+// "auto", "compass", "truth" or "none"; throws UsageError otherwise.
+HeadingPolicy heading_policy_from_string(const std::string& text);
+
 struct ExplorationParams {
   // Mean |Δ magnitude| per compared value (Dis of Eq. 6 divided by lines × components), grey
   // levels, that makes a new place; 0: off. On the rendered 30 cm grid of the built-in room,
@@ -65,9 +72,9 @@ struct ExplorationParams {
   int every_n_frames = 0;        // a place at least every n frames; 0: off
   double every_m = 0.0;          // a place every d metres travelled (poses needed); 0: off
   int thumbnail_width_px = 180;  // thumbnails keep the panorama's aspect ratio
-  // Where headings come from: "auto" (above), "compass" (the visual compass, above), "truth"
-  // (the input's poses, required) or "none".
-  std::string heading_source = "auto";
+  // Where headings come from: auto (above), compass (the visual compass, above), truth (the
+  // input's poses, required) or none.
+  HeadingPolicy heading_source = HeadingPolicy::kAuto;
   // The visual compass used by heading_source "compass" (config/compass.yaml), and the width its
   // panoramas are resampled to first (absent: their own width).
   compass::CompassParams compass;
@@ -130,8 +137,8 @@ class Explorer {
   std::optional<CameraPose> previous_pose_;
   std::size_t places_before_run_ = 0;  // places of earlier runs (candidates for the gauge)
   FrameOrder order_;
-  std::string heading_source_;                       // params_.heading_source, with "auto" settled
-  std::unique_ptr<compass::VisualCompass> compass_;  // streams
+  std::optional<HeadingSource> heading_source_;  // params_.heading_source; auto: at the first frame
+  std::unique_ptr<compass::VisualCompass> compass_;      // streams
   std::unique_ptr<compass::PairMatcher> place_matcher_;  // unordered inputs
   std::vector<cv::Mat> run_place_panoramas_;  // unordered: this run's places, at compass width
   double compass_heading_rad_ = 0.0;  // the compass's heading of the latest frame (unwrapped)
