@@ -19,6 +19,7 @@
 
 namespace {
 
+namespace evaluation = omninav::evaluation;
 namespace lattice = omninav::lattice;
 namespace memory = omninav::memory;
 namespace sim = omninav::sim;
@@ -62,10 +63,10 @@ void organise_rendered_grid(benchmark::State& state) {
   state.counters["springs"] = static_cast<double>(result.lattice.springs_given);
   state.counters["springs_kept"] = static_cast<double>(result.lattice.springs_kept);
   state.counters["motions"] = static_cast<double>(result.motions.size());
-  const std::optional<evaluation::LatticeScore> evaluation = evaluation::score_lattice(map, false);
-  if (evaluation) {
-    state.counters["rmse_spacings"] = evaluation->rmse.all;
-    state.counters["rmse_interior"] = evaluation->rmse.interior;
+  const std::optional<evaluation::LatticeScore> score = evaluation::score_lattice(map, false);
+  if (score) {
+    state.counters["rmse_spacings"] = score->rmse.all;
+    state.counters["rmse_interior"] = score->rmse.interior;
   }
 }
 
