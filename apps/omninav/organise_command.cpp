@@ -40,7 +40,7 @@ void run_organise(const GlobalOptions& global, const OrganiseOptions& options) {
   summary(global) << std::fixed << std::setprecision(3) << "organised " << memory.place_count()
                   << " places of " << options.map.string() << "\n"
                   << "  scale:    " << calibration.step_m << " m between consecutive places ("
-                  << calibration.step_source << "), dissimilarity "
+                  << lattice::to_string(calibration.step_source) << "), dissimilarity "
                   << calibration.step_dissimilarity
                   << " per step (median of the places' own), plateau "
                   << calibration.plateau_dissimilarity << "\n"

@@ -93,7 +93,7 @@ TEST(Organise, AZigZagEverySixtyCentimetresDoesNotFold) {
         "organise_test.cpp");
     ASSERT_EQ(map.place_count(), 100u);
     const OrganiseResult result = organise(map, {});  // the scale from the map
-    EXPECT_EQ(result.calibration.step_source, "map: exploration.every_m");
+    EXPECT_EQ(result.calibration.step_source, ScaleSource::kMap);
     EXPECT_DOUBLE_EQ(result.calibration.step_m, 0.6);
     const auto steps = std::count_if(result.motions.begin(), result.motions.end(),
                                      [](const MotionMeasurement& motion) { return motion.step; });

@@ -17,18 +17,20 @@ namespace omninav::lattice {
 namespace {
 
 // The step between consecutive places: the user's, else the map's spacing policy.
-std::pair<double, std::string> scale_of(const memory::VisualMemory& memory,
+std::pair<double, ScaleSource> scale_of(const memory::VisualMemory& memory,
                                         const OrganiseParams& params) {
-  if (params.step_m > 0.0) return {params.step_m, "user"};
-  if (memory.exploration_spacing_m()) {
-    return {*memory.exploration_spacing_m(), "map: exploration.every_m"};
-  }
+  if (params.step_m > 0.0) return {params.step_m, ScaleSource::kUser};
+  if (memory.exploration_spacing_m()) return {*memory.exploration_spacing_m(), ScaleSource::kMap};
   throw UsageError(
       "organise: the map does not say how far apart consecutive places are (explore with a "
       "spacing in metres, or give the step, e.g. --step-m 0.3)");
 }
 
 }  // namespace
+
+std::string to_string(ScaleSource source) {
+  return source == ScaleSource::kMap ? "map: exploration.every_m" : "user";
+}
 
 std::vector<std::optional<double>> lattice_headings(const memory::VisualMemory& memory) {
   std::vector<std::optional<double>> headings(memory.place_count());

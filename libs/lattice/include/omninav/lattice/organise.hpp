@@ -60,9 +60,15 @@ void load_organise_params(const ConfigReader& section, OrganiseParams& params);
 // Beyond a short range D saturates (the plateau: the 90th percentile of all pairs) and says
 // little; x₁ of Eq. 5, where stiffness falls to 0.1, is where the median step's line reaches
 // range_fraction of the plateau.
+// Where the scale came from: the user (OrganiseParams::step_m) or the map
+// (VisualMemory::exploration_spacing_m).
+enum class ScaleSource { kUser, kMap };
+// "user" or "map: exploration.every_m".
+std::string to_string(ScaleSource source);
+
 struct DistanceCalibration {
-  double step_m = 0.0;                 // the scale used
-  std::string step_source;             // "user" or "map: exploration.every_m"
+  double step_m = 0.0;  // the scale used
+  ScaleSource step_source = ScaleSource::kUser;
   double step_dissimilarity = 0.0;     // the median of the places' local step dissimilarity
   double plateau_dissimilarity = 0.0;  // the 90th percentile of all pairs' dissimilarity
   double correlation_range_m = 0.0;    // x₁
