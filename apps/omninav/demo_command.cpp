@@ -12,7 +12,7 @@
 #include "omninav/core/angles.hpp"
 #include "omninav/core/errors.hpp"
 #include "omninav/core/output_file.hpp"
-#include "omninav/memory/map_file.hpp"
+#include "omninav/memory/map_store.hpp"
 
 namespace omninav::cli {
 namespace {

@@ -6,7 +6,7 @@
 #include "omninav/core/errors.hpp"
 #include "omninav/core/log.hpp"
 #include "omninav/memory/exploration.hpp"
-#include "omninav/memory/map_file.hpp"
+#include "omninav/memory/map_store.hpp"
 #include "panorama_input.hpp"
 
 namespace omninav::cli {
@@ -33,7 +33,9 @@ void run_explore(const GlobalOptions& global, const ExploreOptions& options) {
   if (options.dissimilarity >= 0.0) params.new_place_dissimilarity = options.dissimilarity;
   if (options.every_n_frames >= 0) params.every_n_frames = options.every_n_frames;
   if (options.every_m >= 0.0) params.every_m = options.every_m;
-  if (!options.heading_source.empty()) params.heading_source = options.heading_source;
+  if (!options.heading_source.empty()) {
+    params.heading_source = memory::heading_policy_from_string(options.heading_source);
+  }
   use_compass_config(global.config_dir, params);
   if (!options.colour.empty()) {
     config.map.signature.colour = signature::colour_mode_from_string(options.colour);
@@ -44,11 +46,11 @@ void run_explore(const GlobalOptions& global, const ExploreOptions& options) {
   }
 
   // The map is checked before the work: only a map may be replaced.
-  if (options.overwrite) memory::check_map_replaceable(options.out);
+  memory::MapStore store(options.out);
+  if (options.overwrite) store.check_replaceable();
   std::error_code error;
   const bool extending = std::filesystem::exists(options.out, error) && !options.overwrite;
-  memory::VisualMemory memory =
-      extending ? memory::load_map(options.out) : memory::VisualMemory(config.map);
+  memory::VisualMemory memory = extending ? store.load() : memory::VisualMemory(config.map);
   if (extending) {
     const memory::MapParameters& map = memory.parameters();
     if (map.signature.colour != config.map.signature.colour ||
@@ -76,14 +78,14 @@ void run_explore(const GlobalOptions& global, const ExploreOptions& options) {
   const memory::Run run =
       memory::explore_frames(memory, params, options.input.string(), input.is_grid(),
                              options.all_frames, input.size(), [&input] { return input.next(); });
-  memory::save_map(memory, options.out, {.overwrite = options.overwrite, .after_place = {}});
+  store.save(memory, {.overwrite = options.overwrite, .after_place = {}});
   const std::size_t added = memory.place_count() - places_before;
   summary(global) << "explored " << run.frames << " frames of " << options.input.string()
                   << ": added " << added << (added == 1 ? " place" : " places") << " ("
                   << memory.place_count() << " in the map, " << memory.edge_count() << " edges, "
                   << memory.runs().size() << (memory.runs().size() == 1 ? " run" : " runs")
-                  << ", headings: " << run.heading_source << ") to " << options.out.string()
-                  << "\n";
+                  << ", headings: " << memory::to_string(run.heading_source) << ") to "
+                  << options.out.string() << "\n";
 }
 
 }  // namespace

@@ -8,8 +8,8 @@
 #include "omninav/core/log.hpp"
 #include "omninav/core/output_file.hpp"
 #include "omninav/memory/export.hpp"
-#include "omninav/memory/figures.hpp"
-#include "omninav/memory/map_file.hpp"
+#include "omninav/memory/map_store.hpp"
+#include "omninav/report/memory_figures.hpp"
 
 namespace omninav::cli {
 namespace {
@@ -26,7 +26,7 @@ void run_export(const GlobalOptions& global, const ExportOptions& options) {
   const memory::VisualMemory map = memory::load_map(options.map);
   if (options.what == "figures") {
     if (options.out.empty()) throw UsageError("--what figures needs --out <folder>");
-    const memory::SignatureFigures figures = memory::write_signature_figures(map, options.out);
+    const report::SignatureFigures figures = report::write_signature_figures(map, options.out);
     summary(global) << figures.summary;
     log_info("wrote " + std::to_string(figures.files.size()) + " files to " + options.out.string());
     return;

@@ -12,10 +12,11 @@
 #include "omninav/core/output_file.hpp"
 #include "omninav/core/parse.hpp"
 #include "omninav/eval/png.hpp"
-#include "omninav/memory/figures.hpp"
+#include "omninav/evaluation/localisation_score.hpp"
 #include "omninav/memory/localisation.hpp"
-#include "omninav/memory/map_file.hpp"
+#include "omninav/memory/map_store.hpp"
 #include "omninav/navigation/memory_places.hpp"
+#include "omninav/report/memory_figures.hpp"
 #include "panorama_input.hpp"
 
 namespace omninav::cli {
@@ -88,7 +89,7 @@ struct QueryResult {
   std::string source;
   memory::Localisation result;
   std::optional<CameraPose> truth;
-  std::optional<memory::LocalisationScore::Query> score;
+  std::optional<evaluation::LocalisationScore::Query> score;
   std::optional<std::string> no_match;  // why the query matches no place of the map
 };
 
@@ -110,12 +111,12 @@ void print_text(const QueryResult& q, const memory::VisualMemory& map) {
   std::cout << "\n";
   if (r.position) {
     const std::string unit = r.position->frame == memory::PositionFrame::kTruth ? " m" : "";
-    std::cout << "  position " << number(r.position->x, 2) << ", " << number(r.position->y, 2)
-              << unit << " (the best place; from "
+    std::cout << "  position " << number(r.position->position.x(), 2) << ", "
+              << number(r.position->position.y(), 2) << unit << " (the best place; from "
               << (r.position->frame == memory::PositionFrame::kTruth ? "the places' ground truth"
                                                                      : "the lattice")
-              << "), between places " << number(r.position->interpolated_x, 2) << ", "
-              << number(r.position->interpolated_y, 2) << unit << "\n";
+              << "), between places " << number(r.position->interpolated_position.x(), 2) << ", "
+              << number(r.position->interpolated_position.y(), 2) << unit << "\n";
   }
   for (const signature::LevelResult& level : r.search.levels) {
     std::cout << "  m=" << level.components << ": " << level.candidates.size() << " candidate"
@@ -165,9 +166,10 @@ void print_csv(const QueryResult& q) {
     std::cout << ",,,,,";
   }
   if (r.position) {
-    std::cout << memory::to_string(r.position->frame) << ',' << number(r.position->x, 4) << ','
-              << number(r.position->y, 4) << ',' << number(r.position->interpolated_x, 4) << ','
-              << number(r.position->interpolated_y, 4);
+    std::cout << memory::to_string(r.position->frame) << ',' << number(r.position->position.x(), 4)
+              << ',' << number(r.position->position.y(), 4) << ','
+              << number(r.position->interpolated_position.x(), 4) << ','
+              << number(r.position->interpolated_position.y(), 4);
   } else {
     std::cout << ",,,,";
   }
@@ -218,9 +220,10 @@ std::string to_json(const QueryResult& q) {
   j << "], \"position\": ";
   if (r.position) {
     j << "{\"frame\": " << json_string(memory::to_string(r.position->frame))
-      << ", \"x\": " << number(r.position->x, 4) << ", \"y\": " << number(r.position->y, 4)
-      << ", \"interpolated_x\": " << number(r.position->interpolated_x, 4)
-      << ", \"interpolated_y\": " << number(r.position->interpolated_y, 4) << "}";
+      << ", \"x\": " << number(r.position->position.x(), 4)
+      << ", \"y\": " << number(r.position->position.y(), 4)
+      << ", \"interpolated_x\": " << number(r.position->interpolated_position.x(), 4)
+      << ", \"interpolated_y\": " << number(r.position->interpolated_position.y(), 4) << "}";
   } else {
     j << "null";
   }
@@ -259,7 +262,7 @@ void run_localise(const GlobalOptions& global, const LocaliseOptions& options) {
   // A query matches a place by route's and navigate's criterion (navigation.yaml).
   const double match_limit =
       navigation::match_limit(map, load_navigation_config(global.config_dir).route);
-  std::optional<memory::LocalisationScore> score;
+  std::optional<evaluation::LocalisationScore> score;
   if (map.all_have_truth()) score.emplace(map);
   if (!options.plot.empty() && !memory::place_positions(map)) {
     throw UsageError(options.map.string() +
@@ -289,11 +292,11 @@ void run_localise(const GlobalOptions& global, const LocaliseOptions& options) {
       }
       if (score && q.truth) q.score = score->add(q.result, *q.truth);
       if (!options.plot.empty()) {
-        std::optional<cv::Point2d> truth;
+        std::optional<Eigen::Vector2d> truth;
         if (q.truth && memory::place_positions(map)->first == memory::PositionFrame::kTruth) {
-          truth = cv::Point2d(q.truth->x_m, q.truth->y_m);
+          truth = q.truth->floor_position();
         }
-        cv::Mat figure = memory::localisation_figure(
+        cv::Mat figure = report::localisation_figure(
             localiser, signature, q.result, truth,
             "hierarchical localisation of " + std::filesystem::path(q.source).filename().string());
         if (results.empty()) {

@@ -18,7 +18,7 @@
 #include "omninav/evaluation/navigation_trials.hpp"
 #include "omninav/evaluation/robot_worlds.hpp"
 #include "omninav/io/image_file.hpp"
-#include "omninav/memory/map_file.hpp"
+#include "omninav/memory/map_store.hpp"
 #include "omninav/navigation/memory_places.hpp"
 #include "omninav/report/floor_plan.hpp"
 #include "panorama_input.hpp"

@@ -9,8 +9,9 @@
 #include "omninav/core/errors.hpp"
 #include "omninav/core/output_file.hpp"
 #include "omninav/eval/png.hpp"
-#include "omninav/lattice/lattice_report.hpp"
-#include "omninav/memory/map_file.hpp"
+#include "omninav/evaluation/organised_map.hpp"
+#include "omninav/memory/map_store.hpp"
+#include "omninav/report/lattice_figures.hpp"
 
 namespace omninav::cli {
 namespace {
@@ -30,7 +31,8 @@ void run_organise(const GlobalOptions& global, const OrganiseOptions& options) {
       options.picture.empty() ? std::filesystem::path(options.map).replace_extension(".lattice.png")
                               : options.picture;
   check_output_path(picture);  // before the work, not after it
-  const lattice::OrganisedMap result = lattice::organise_map_file(options.map, params);
+  memory::MapStore store(options.map);
+  const evaluation::OrganisedMap result = evaluation::organise_stored_map(store, params);
   const memory::VisualMemory& memory = result.memory;
   const lattice::OrganiseResult& organised = result.organised;
 
@@ -38,7 +40,7 @@ void run_organise(const GlobalOptions& global, const OrganiseOptions& options) {
   summary(global) << std::fixed << std::setprecision(3) << "organised " << memory.place_count()
                   << " places of " << options.map.string() << "\n"
                   << "  scale:    " << calibration.step_m << " m between consecutive places ("
-                  << calibration.step_source << "), dissimilarity "
+                  << lattice::to_string(calibration.step_source) << "), dissimilarity "
                   << calibration.step_dissimilarity
                   << " per step (median of the places' own), plateau "
                   << calibration.plateau_dissimilarity << "\n"
@@ -50,7 +52,7 @@ void run_organise(const GlobalOptions& global, const OrganiseOptions& options) {
                   << organised.lattice.motion_constraints
                   << " motions (directions from the phases)\n"
                   << "  solver:   " << organised.lattice.summary << "\n";
-  const std::optional<lattice::LatticeEvaluation>& evaluation = result.evaluation;
+  const std::optional<evaluation::LatticeScore>& evaluation = result.score;
   if (evaluation) {
     // An RMSE over no places (a map without interior places) is NaN: said in words.
     const auto rmse = [](double value, const char* places) {
@@ -71,9 +73,10 @@ void run_organise(const GlobalOptions& global, const OrganiseOptions& options) {
                     << evaluation->neighbour_triangles
                     << " triangles of true neighbours turned over in the lattice\n";
   }
-  eval::save_png(lattice::lattice_picture(memory, organised, evaluation), picture);
+  eval::save_png(report::lattice_picture(memory, organised, evaluation ? &*evaluation : nullptr),
+                 picture);
   // The map last: a failure above leaves it as it was.
-  memory::save_lattice_positions(options.map, result.positions);
+  store.save(result.memory);
   summary(global) << "  picture:  " << picture.string() << "\n";
 }
 

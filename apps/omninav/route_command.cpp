@@ -13,7 +13,7 @@
 #include "omninav/core/output_file.hpp"
 #include "omninav/eval/png.hpp"
 #include "omninav/io/image_file.hpp"
-#include "omninav/memory/map_file.hpp"
+#include "omninav/memory/map_store.hpp"
 #include "omninav/navigation/memory_places.hpp"
 #include "omninav/report/navigation_figures.hpp"
 

@@ -12,13 +12,14 @@
 #include <cmath>
 #include <map>
 
-#include "omninav/lattice/lattice_report.hpp"
+#include "omninav/evaluation/lattice_score.hpp"
 #include "omninav/lattice/organise.hpp"
 #include "omninav/sim/room.hpp"
 #include "support/rendered_map.hpp"
 
 namespace {
 
+namespace evaluation = omninav::evaluation;
 namespace lattice = omninav::lattice;
 namespace memory = omninav::memory;
 namespace sim = omninav::sim;
@@ -62,11 +63,10 @@ void organise_rendered_grid(benchmark::State& state) {
   state.counters["springs"] = static_cast<double>(result.lattice.springs_given);
   state.counters["springs_kept"] = static_cast<double>(result.lattice.springs_kept);
   state.counters["motions"] = static_cast<double>(result.motions.size());
-  const std::optional<lattice::LatticeEvaluation> evaluation =
-      lattice::evaluate_against_truth(map, false);
-  if (evaluation) {
-    state.counters["rmse_spacings"] = evaluation->rmse.all;
-    state.counters["rmse_interior"] = evaluation->rmse.interior;
+  const std::optional<evaluation::LatticeScore> score = evaluation::score_lattice(map, false);
+  if (score) {
+    state.counters["rmse_spacings"] = score->rmse.all;
+    state.counters["rmse_interior"] = score->rmse.interior;
   }
 }
 

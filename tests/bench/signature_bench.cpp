@@ -21,7 +21,7 @@
 #include "../signature/rendered_room.hpp"
 #include "../signature/synthetic_signatures.hpp"
 #include "omninav/memory/exploration.hpp"
-#include "omninav/memory/map_file.hpp"
+#include "omninav/memory/map_store.hpp"
 #include "omninav/signature/hierarchy.hpp"
 #include "omninav/signature/motion.hpp"
 #include "omninav/signature/phase_heading.hpp"
@@ -286,7 +286,7 @@ void bytes_per_place(benchmark::State& state, ColourMode mode) {
                                      ("signature_bench_" + std::to_string(::getpid()) + ".vmem");
   for (auto _ : state) {
     std::filesystem::remove(file);
-    memory::save_map(map, file, {.overwrite = true, .after_place = {}});
+    memory::MapStore(file).save(map, {.overwrite = true, .after_place = {}});
   }
   signature::SignatureIndex index(45, mode == ColourMode::kLuminance ? 1 : 3, {2, 5, 15});
   for (int i = 0; i < n; ++i) index.add(map.place(static_cast<std::size_t>(i)).signature);

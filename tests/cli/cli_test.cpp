@@ -8,7 +8,7 @@
 #include "command_line_test.hpp"
 #include "omninav/core/angles.hpp"
 #include "omninav/io/sequence.hpp"
-#include "omninav/memory/map_file.hpp"
+#include "omninav/memory/map_store.hpp"
 #include "omninav/omni/unwrap.hpp"
 
 namespace omninav::cli {

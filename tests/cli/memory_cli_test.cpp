@@ -9,7 +9,7 @@
 #include "command_line_test.hpp"
 #include "omninav/core/angles.hpp"
 #include "omninav/io/sequence.hpp"
-#include "omninav/memory/map_file.hpp"
+#include "omninav/memory/map_store.hpp"
 
 namespace omninav::cli {
 namespace {

@@ -13,7 +13,7 @@
 
 #include "command_line_test.hpp"
 #include "omninav/io/sequence.hpp"
-#include "omninav/memory/map_file.hpp"
+#include "omninav/memory/map_store.hpp"
 
 namespace omninav::cli {
 namespace {
@@ -25,6 +25,24 @@ std::string read_bytes(const fs::path& file) {
   std::ostringstream bytes;
   bytes << stream.rdbuf();
   return bytes.str();
+}
+
+// `map` again with place `index`'s true x replaced: a truth no explorer would write, as a
+// damaged or hand-edited file holds it.
+memory::VisualMemory with_true_x(const memory::VisualMemory& map, memory::PlaceIndex index,
+                                 double x_m) {
+  memory::VisualMemory copy(map.parameters());
+  if (map.exploration_spacing_m()) copy.set_exploration_spacing_m(*map.exploration_spacing_m());
+  for (const memory::Run& run : map.runs()) copy.add_run(run);
+  for (memory::PlaceIndex i = 0; i < map.place_count(); ++i) {
+    memory::Place place = map.place(i);
+    if (i == index) place.truth->x_m = x_m;
+    copy.add_place(std::move(place));
+  }
+  for (const memory::VisualMemory::EdgeRef& edge : map.edges()) {
+    copy.add_edge(edge.from, edge.to, *edge.edge);
+  }
+  return copy;
 }
 
 class Reliability : public CommandLineTest {
@@ -159,9 +177,8 @@ TEST_F(Reliability, OrganiseChecksItsOutputsBeforeChangingTheMap) {
 
   // A truth of 1e12 mm (OpenCV's triangulation threw on it, after the map had been changed) is
   // refused where the map is read, so organise fails before it changes anything.
-  memory::VisualMemory memory = memory::load_map(map_);
-  memory.place(2).truth->x_m = 1e9;
-  memory::save_map(memory, map_, {.overwrite = true, .after_place = {}});
+  memory::MapStore(map_).save(with_true_x(memory::load_map(map_), 2, 1e9),
+                              {.overwrite = true, .after_place = {}});
   const std::string absurd = read_bytes(map_);
   EXPECT_EQ(run_omninav({"organise", map_.string(), "--step-m", "0.3"}), 1) << errors_;
   EXPECT_NE(errors_.find("place_truth of place 2: x_m: 1e+09 m is not a position"),
@@ -190,9 +207,8 @@ TEST_F(Reliability, EveryCommandChecksItsOutputPathsBeforeTheWork) {
 
 TEST_F(Reliability, FiguresRefuseAnAbsurdTruthInsteadOfSpinning) {
   make_map();
-  memory::VisualMemory memory = memory::load_map(map_);
-  memory.place(2).truth->x_m = 1e160;
-  memory::save_map(memory, map_, {.overwrite = true, .after_place = {}});
+  memory::MapStore(map_).save(with_true_x(memory::load_map(map_), 2, 1e160),
+                              {.overwrite = true, .after_place = {}});
   EXPECT_EQ(run_omninav({"export", map_.string(), "--what", "figures", "--out",
                          (folder_ / "figures").string()}),
             1);

@@ -10,7 +10,7 @@
 
 #include "command_line_test.hpp"
 #include "omninav/io/sequence.hpp"
-#include "omninav/memory/map_file.hpp"
+#include "omninav/memory/map_store.hpp"
 
 namespace omninav::cli {
 namespace {
@@ -26,16 +26,18 @@ class RouteAndNavigate : public CommandLineTest {
   // The places' lattice positions from their ground truth, in the lattice frame (origin at the
   // first place, its heading along +x).
   void set_truth_lattice() {
-    const memory::VisualMemory memory = memory::load_map(map_);
+    memory::MapStore store(map_);
+    memory::VisualMemory memory = store.load();
     const CameraPose first = *memory.place(0).truth;
-    std::vector<memory::LatticePosition> positions;
+    std::vector<Eigen::Vector2d> positions;
     for (std::size_t i = 0; i < memory.place_count(); ++i) {
       const CameraPose& truth = *memory.place(i).truth;
       const double dx = truth.x_m - first.x_m, dy = truth.y_m - first.y_m;
       const double c = std::cos(first.heading_rad), s = std::sin(first.heading_rad);
-      positions.push_back({c * dx + s * dy, -s * dx + c * dy});
+      positions.emplace_back(c * dx + s * dy, -s * dx + c * dy);
     }
-    memory::save_lattice_positions(map_, positions);
+    memory.set_lattice_positions(positions);
+    store.save(memory);
   }
 
   // The frame whose true position is (x, y).
@@ -107,7 +109,7 @@ TEST_F(RouteAndNavigate, RouteErrorsAreClear) {
   // An empty map: an input error.
   const std::filesystem::path empty = folder_ / "empty.vmem";
   memory::VisualMemory nothing;
-  memory::save_map(nothing, empty);
+  memory::MapStore(empty).save(nothing);
   EXPECT_EQ(run_omninav({"route", empty.string(), "--from", image, "--to", image}), 1);
   EXPECT_NE(errors_.find("no places"), std::string::npos) << errors_;
 

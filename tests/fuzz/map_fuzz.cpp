@@ -1,7 +1,7 @@
 // libFuzzer target: the map loader (libs/memory load_map, an SQLite file); the seed corpus
 // holds small valid maps for the mutations to start from.
 #include "fuzz_support.hpp"
-#include "omninav/memory/map_file.hpp"
+#include "omninav/memory/map_store.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace omninav;

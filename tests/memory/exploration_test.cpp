@@ -67,7 +67,7 @@ TEST(Exploration, EveryNFramesAndEveryMetres) {
     for (const io::Frame& f : route_frames()) explorer.add(f);
     EXPECT_EQ(place_frames(memory), (std::vector<int>{0, 6, 12, 18, 24, 30, 36, 42, 48, 54}));
     // The spacing is the map's scale for the lattice.
-    EXPECT_EQ(memory.notes().at("exploration.every_m"), "0.3");
+    EXPECT_EQ(memory.exploration_spacing_m(), 0.3);
   }
 }
 
@@ -85,7 +85,7 @@ TEST(Exploration, AStreamsEdgesAreStepsAGridDatabasesAreListed) {
   for (const VisualMemory::EdgeRef& edge : grid.edges())
     EXPECT_EQ(edge.edge->kind, EdgeKind::kListed);
   // No every_m rule, no scale noted.
-  EXPECT_EQ(stream.notes().count("exploration.every_m"), 0u);
+  EXPECT_FALSE(stream.exploration_spacing_m());
 }
 
 TEST(Exploration, DissimilarityThresholdSpacesPlacesByChangeOfView) {
@@ -151,7 +151,7 @@ TEST(Exploration, HeadingsFromTheCompassTruthOrNoneAndSaidSo) {
     VisualMemory memory;
     Explorer explorer(memory, only(0.0, 10, 0.0), "route", "test");
     for (const io::Frame& f : route_frames()) explorer.add(f);
-    EXPECT_EQ(explorer.run().heading_source, "compass");
+    EXPECT_EQ(explorer.run().heading_source, HeadingSource::kCompass);
     ASSERT_EQ(memory.place_count(), 6u);
     for (PlaceIndex i = 0; i < memory.place_count(); ++i) {
       const Place& place = memory.place(i);
@@ -168,10 +168,10 @@ TEST(Exploration, HeadingsFromTheCompassTruthOrNoneAndSaidSo) {
   {
     VisualMemory memory;
     ExplorationParams params = only(0.0, 10, 0.0);
-    params.heading_source = "truth";
+    params.heading_source = HeadingPolicy::kTruth;
     Explorer explorer(memory, params, "route", "test");
     for (const io::Frame& f : route_frames()) explorer.add(f);
-    EXPECT_EQ(explorer.run().heading_source, "truth");
+    EXPECT_EQ(explorer.run().heading_source, HeadingSource::kTruth);
     EXPECT_EQ(memory.place(2).heading_source, HeadingSource::kTruth);
     EXPECT_EQ(*memory.place(2).heading_rad, route_frames()[20].truth->heading_rad);
     EXPECT_TRUE(memory.place(2).truth.has_value());
@@ -179,10 +179,10 @@ TEST(Exploration, HeadingsFromTheCompassTruthOrNoneAndSaidSo) {
   {
     VisualMemory memory;
     ExplorationParams params = only(0.0, 10, 0.0);
-    params.heading_source = "none";
+    params.heading_source = HeadingPolicy::kNone;
     Explorer explorer(memory, params, "route", "test");
     for (const io::Frame& f : route_frames()) explorer.add(f);
-    EXPECT_EQ(explorer.run().heading_source, "none");
+    EXPECT_EQ(explorer.run().heading_source, HeadingSource::kNone);
     EXPECT_EQ(memory.place(2).heading_source, HeadingSource::kNone);
     EXPECT_FALSE(memory.place(2).heading_rad.has_value());
     EXPECT_TRUE(memory.place(2).truth.has_value()) << "truth is kept apart, for evaluation";
@@ -190,7 +190,7 @@ TEST(Exploration, HeadingsFromTheCompassTruthOrNoneAndSaidSo) {
   {
     VisualMemory memory;
     ExplorationParams params = only(0.0, 1, 0.0);
-    params.heading_source = "truth";
+    params.heading_source = HeadingPolicy::kTruth;
     Explorer explorer(memory, params, "no poses", "test");
     io::Frame frame = route_frames()[0];
     frame.truth.reset();
@@ -224,7 +224,7 @@ TEST(Exploration, ASecondRunTakesItsCompassGaugeFromTheMap) {
   VisualMemory memory;
   {
     ExplorationParams params = only(0.0, 5, 0.0);
-    params.heading_source = "truth";
+    params.heading_source = HeadingPolicy::kTruth;
     Explorer first(memory, params, "route", "first");
     for (const io::Frame& f : route_frames()) first.add(f);
   }
@@ -249,13 +249,13 @@ TEST(Exploration, ASecondRunTakesItsCompassGaugeFromTheMap) {
 }
 
 // Heading errors against the truth, degrees, of every place explored from the rendered grid.
-std::vector<double> grid_heading_errors_deg(const std::string& heading_source, FrameOrder order) {
+std::vector<double> grid_heading_errors_deg(HeadingPolicy heading_source, FrameOrder order) {
   VisualMemory memory;
   ExplorationParams params;
   params.heading_source = heading_source;
   Explorer explorer(memory, params, "grid", "test", order);
   for (const io::Frame& frame : testing::grid_frames()) explorer.add_place(frame);
-  EXPECT_EQ(explorer.run().heading_source, "compass");
+  EXPECT_EQ(explorer.run().heading_source, HeadingSource::kCompass);
   std::vector<double> errors;
   for (PlaceIndex i = 0; i < memory.place_count(); ++i) {
     const Place& place = memory.place(i);
@@ -269,8 +269,10 @@ TEST(Exploration, GridImagesTakeTheirCompassHeadingFromTheMostSimilarEarlierPlac
   // The grid at the room's corner, in raster order (rows of 2.7 m all run one way): Algorithm 1
   // along that order errs by a median 21 degrees; each image against its most similar earlier
   // place, the step brought to the front, by 11 (exploration.hpp's table).
-  const std::vector<double> stream = grid_heading_errors_deg("compass", FrameOrder::kStream);
-  const std::vector<double> unordered = grid_heading_errors_deg("compass", FrameOrder::kUnordered);
+  const std::vector<double> stream =
+      grid_heading_errors_deg(HeadingPolicy::kCompass, FrameOrder::kStream);
+  const std::vector<double> unordered =
+      grid_heading_errors_deg(HeadingPolicy::kCompass, FrameOrder::kUnordered);
   std::cout << "median heading error, deg: Algorithm 1 in raster order " << median(stream)
             << ", most similar earlier place " << median(unordered) << "\n";
   EXPECT_LT(median(unordered), 0.75 * median(stream));
@@ -283,7 +285,7 @@ TEST(Exploration, AutoHeadingsAreAGridDatabasesOwnOrTheCompass) {
     Explorer explorer(memory, {}, "grid", "test", FrameOrder::kUnordered);
     explorer.add_place(testing::grid_frames()[0]);
     explorer.add_place(testing::grid_frames()[1]);
-    EXPECT_EQ(explorer.run().heading_source, "truth");
+    EXPECT_EQ(explorer.run().heading_source, HeadingSource::kTruth);
     EXPECT_EQ(memory.place(1).heading_source, HeadingSource::kTruth);
   }
   {
@@ -294,7 +296,7 @@ TEST(Exploration, AutoHeadingsAreAGridDatabasesOwnOrTheCompass) {
       frame.truth.reset();
       explorer.add_place(frame);
     }
-    EXPECT_EQ(explorer.run().heading_source, "compass");
+    EXPECT_EQ(explorer.run().heading_source, HeadingSource::kCompass);
     EXPECT_EQ(memory.place(1).heading_source, HeadingSource::kCompass);
   }
 }

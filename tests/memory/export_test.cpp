@@ -15,7 +15,7 @@ namespace {
 
 VisualMemory small_memory() {
   VisualMemory memory;
-  memory.runs().push_back(Run{0, "input", "2024-01-01T00:00:00Z", 3, 3, "truth", "test"});
+  memory.add_run(Run{0, "input", "2024-01-01T00:00:00Z", 3, 3, HeadingSource::kTruth, "test"});
   for (int i = 0; i < 3; ++i) {
     Place p;
     p.signature = {45, 1, 15, 360, std::vector<float>(675, 1.f), std::vector<float>(675, 0.f)};

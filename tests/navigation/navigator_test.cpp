@@ -29,8 +29,7 @@ memory::Localisation recognised(std::size_t place, double relative_heading_rad,
   if (lattice_position) {
     memory::PositionEstimate estimate;
     estimate.frame = memory::PositionFrame::kLattice;
-    estimate.interpolated_x = lattice_position->x();
-    estimate.interpolated_y = lattice_position->y();
+    estimate.interpolated_position = *lattice_position;
     localisation.position = estimate;
   }
   return localisation;

@@ -38,7 +38,7 @@ inline memory::VisualMemory rendered_grid_map(const sim::World& world,
                                               const std::string& description) {
   memory::VisualMemory map{memory::MapParameters{}};
   memory::ExplorationParams exploration;
-  exploration.heading_source = "truth";
+  exploration.heading_source = memory::HeadingPolicy::kTruth;
   memory::Explorer explorer(map, exploration, "grid", description, memory::FrameOrder::kUnordered);
   for (const io::Frame& frame : rendered_frames(world, render, grid_spec, "grid")) {
     explorer.add_place(frame);
@@ -52,7 +52,7 @@ inline memory::VisualMemory rendered_run_map(const sim::World& world,
                                              const std::string& description) {
   memory::VisualMemory map{memory::MapParameters{}};
   memory::ExplorationParams exploration;
-  exploration.heading_source = "truth";
+  exploration.heading_source = memory::HeadingPolicy::kTruth;
   exploration.new_place_dissimilarity = 0.0;
   exploration.every_m = every_m;
   memory::Explorer explorer(map, exploration, "run", description, memory::FrameOrder::kStream);

@@ -55,7 +55,7 @@ inline RoomMap* build_room_map() {
   map->renderer = std::make_unique<sim::Renderer>(map->world, map->render);
   // Headings from the truth: these tests isolate navigation from the visual compass too.
   memory::ExplorationParams exploration;
-  exploration.heading_source = "truth";
+  exploration.heading_source = memory::HeadingPolicy::kTruth;
   memory::Explorer explorer(map->memory, exploration, "rendered grid", "test");
   int index = 0;
   for (int iy = 0; iy < 8; ++iy) {
@@ -73,12 +73,13 @@ inline RoomMap* build_room_map() {
   }
   // Lattice from the truth, in the lattice frame: origin at the first place, its heading +x.
   const CameraPose first = *map->memory.place(0).truth;
+  std::vector<Eigen::Vector2d> lattice_positions;
   for (std::size_t i = 0; i < map->memory.place_count(); ++i) {
     const CameraPose& truth = *map->memory.place(i).truth;
-    const Eigen::Vector2d offset = Eigen::Rotation2Dd(-first.heading_rad) *
-                                   Eigen::Vector2d(truth.x_m - first.x_m, truth.y_m - first.y_m);
-    map->memory.place(i).lattice = memory::LatticePosition{offset.x(), offset.y()};
+    lattice_positions.push_back(Eigen::Rotation2Dd(-first.heading_rad) *
+                                (truth.floor_position() - first.floor_position()));
   }
+  map->memory.set_lattice_positions(lattice_positions);
   map->places = navigation::places_from_memory(map->memory);
   map->localiser = std::make_unique<memory::Localiser>(map->memory, memory::LocalisationParams{});
   map->extractor =

@@ -42,7 +42,10 @@ memory::MemoryConfig load_memory_config(const std::filesystem::path& config_dir)
 
 void use_compass_config(const std::filesystem::path& config_dir,
                         memory::ExplorationParams& exploration) {
-  if (exploration.heading_source != "compass" && exploration.heading_source != "auto") return;
+  if (exploration.heading_source != memory::HeadingPolicy::kCompass &&
+      exploration.heading_source != memory::HeadingPolicy::kAuto) {
+    return;
+  }
   const compass::CompassConfig compass = load_compass_config(config_dir);
   exploration.compass = compass.compass;
   exploration.compass_width_px = compass.width_px;

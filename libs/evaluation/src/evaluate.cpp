@@ -18,16 +18,18 @@
 #include "omninav/core/log.hpp"
 #include "omninav/eval/png.hpp"
 #include "omninav/evaluation/compass_evaluation.hpp"
+#include "omninav/evaluation/localisation_score.hpp"
 #include "omninav/evaluation/navigation_trials.hpp"
+#include "omninav/evaluation/organised_map.hpp"
 #include "omninav/evaluation/render_database.hpp"
 #include "omninav/io/bob_database.hpp"
 #include "omninav/io/sequence.hpp"
-#include "omninav/lattice/lattice_report.hpp"
 #include "omninav/memory/exploration.hpp"
 #include "omninav/memory/localisation.hpp"
-#include "omninav/memory/map_file.hpp"
+#include "omninav/memory/map_store.hpp"
 #include "omninav/navigation/memory_places.hpp"
 #include "omninav/report/compass_figures.hpp"
+#include "omninav/report/lattice_figures.hpp"
 #include "omninav/sim/trajectory.hpp"
 
 namespace omninav::evaluation {
@@ -284,10 +286,10 @@ class WorldRun {
     const memory::Run run =
         memory::explore_frames(memory, params, input.string(), is_grid, false, reader->size(),
                                [&reader] { return reader->next(); });
-    memory::save_map(memory, map_file, {.overwrite = true, .after_place = {}});
+    memory::MapStore(map_file).save(memory, {.overwrite = true, .after_place = {}});
     command(args);
     log_stage("explored " + name + ": " + std::to_string(run.places) + " places, headings " +
-              run.heading_source);
+              memory::to_string(run.heading_source));
     return map_file;
   }
 
@@ -299,11 +301,14 @@ class WorldRun {
       params.step_m = step_m;
       args.insert(args.end(), {"--step-m", num(step_m)});
     }
-    const lattice::OrganisedMap result = lattice::organise_map_file(map_file, params);
-    const std::optional<lattice::LatticeEvaluation>& evaluation = result.evaluation;
+    memory::MapStore store(map_file);
+    const OrganisedMap result = organise_stored_map(store, params);
+    const std::optional<LatticeScore>& evaluation = result.score;
     const fs::path picture = dir_ / (key + ".lattice.png");
-    eval::save_png(lattice::lattice_picture(result.memory, result.organised, evaluation), picture);
-    memory::save_lattice_positions(map_file, result.positions);
+    eval::save_png(report::lattice_picture(result.memory, result.organised,
+                                           evaluation ? &*evaluation : nullptr),
+                   picture);
+    store.save(result.memory);
     args.insert(args.end(), {"--picture", picture.string()});
     command(args);
     if (!evaluation) throw InputError(map_file.string() + ": no ground truth to score against");
@@ -366,13 +371,13 @@ class WorldRun {
     const memory::VisualMemory map = memory::load_map(map_file);
     const memory::Localiser localiser(map, config_.memory.localisation);
     signature::SignatureExtractor extractor(map.parameters().signature);
-    memory::LocalisationScore score(map);
+    LocalisationScore score(map);
     std::vector<std::pair<cv::Point2d, cv::Point2d>> localised;
     std::unique_ptr<io::SequenceReader> reader = io::open_sequence(queries);
     while (std::optional<io::Frame> frame = reader->next()) {
       const signature::Signature signature = extractor.compute(frame->image, frame->source);
       const memory::Localisation result = localiser.localise(signature);
-      const memory::LocalisationScore::Query q = score.add(result, *frame->truth);
+      const LocalisationScore::Query q = score.add(result, *frame->truth);
       if (q.outside || result.best.empty()) continue;
       const CameraPose& best = *map.place(result.best.front().place).truth;
       localised.push_back({{frame->truth->x_m, frame->truth->y_m}, {best.x_m, best.y_m}});

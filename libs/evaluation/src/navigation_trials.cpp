@@ -112,13 +112,11 @@ MapTrials run_map_trials(const memory::VisualMemory& memory,
     throw UsageError("trials score against ground truth, and the map's places have none");
   }
   std::vector<Eigen::Vector2d> mapped;
-  std::vector<cv::Point2d> points;
   for (std::size_t i = 0; i < memory.place_count(); ++i) {
     mapped.emplace_back(memory.place(i).truth->x_m, memory.place(i).truth->y_m);
-    points.emplace_back(mapped.back().x(), mapped.back().y());
   }
   MapTrials result;
-  result.spacing_m = memory::typical_spacing(points);
+  result.spacing_m = memory::typical_spacing(mapped);
   result.goal_radius_m = params.goal_radius_spacings * result.spacing_m;
   const std::vector<Trial> trials =
       random_trials(scene.world, mapped, result.spacing_m, scene.robot.radius_m,

@@ -29,7 +29,7 @@ GridDatabaseWorld::GridDatabaseWorld(std::vector<GridImage> images, const Pose2&
     throw UsageError("a grid world needs at least two images, got " +
                      std::to_string(images_.size()));
   }
-  std::vector<cv::Point2d> points;
+  std::vector<Eigen::Vector2d> points;
   for (std::size_t i = 0; i < images_.size(); ++i) {
     const std::string what = "grid image " + std::to_string(i);
     require_panorama(images_[i].panorama, what);

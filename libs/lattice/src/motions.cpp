@@ -90,6 +90,138 @@ class StepCheck {
   double step_stddev_m_;  // of one step's displacement
 };
 
+// measure_motions, as its steps: the candidates (steps, listed pairs, neighbours), the
+// screening of look-alikes, and the joins of what is left apart. Each pair is fitted once.
+class MotionMeasurer {
+ public:
+  MotionMeasurer(const memory::VisualMemory& memory, const PlaceDissimilarities& dissimilarity,
+                 const std::vector<std::vector<SimilarPlace>>& ranking,
+                 const DistanceCalibration& calibration, const OrganiseParams& params)
+      : memory_(memory),
+        dissimilarity_(dissimilarity),
+        ranking_(ranking),
+        calibration_(calibration),
+        params_(params),
+        headings_(lattice_headings(memory)),
+        direction_stddev_(deg_to_rad(params.motion_direction_stddev_deg)),
+        joined_(static_cast<int>(ranking.size())) {}
+
+  MeasuredMotions measure() {
+    const std::vector<Candidate> candidates = candidate_motions();
+    if (candidates.empty()) return result_;
+    const std::vector<Candidate> dropped = keep_all_but_look_alikes(candidates);
+    result_.look_alikes_dropped = static_cast<int>(dropped.size());
+    if (joined_.count() > 1) join_what_is_apart(dropped);
+    return result_;
+  }
+
+ private:
+  // Fits the motion from a to b unless the pair was tried before.
+  std::optional<Candidate> fit(int a, int b, double length_m, double length_stddev, bool step) {
+    if (!tried_.insert({std::min(a, b), std::max(a, b)}).second) return std::nullopt;
+    const auto direction = fit_direction(memory_, headings_, a, b);
+    if (!direction) return std::nullopt;
+    return Candidate{{a, b, direction->direction_rad, length_m, direction_stddev_,
+                      length_stddev * length_m, step},
+                     direction->residual};
+  }
+
+  // A motion to a most similar place: its length the calibrated distance, held loosely.
+  std::optional<Candidate> neighbour(int a, int b, double pair_dissimilarity) {
+    return fit(a, b, calibration_.distance_m(a, b, pair_dissimilarity),
+               params_.neighbour_motion_length_stddev, false);
+  }
+
+  // A stream's steps, an unordered input's listed pairs that look one step apart, and each
+  // place's most similar places, in that order.
+  std::vector<Candidate> candidate_motions() {
+    std::vector<Candidate> candidates;
+    for (const memory::VisualMemory::EdgeRef& edge : memory_.edges()) {
+      const int a = static_cast<int>(edge.from), b = static_cast<int>(edge.to);
+      const bool step = edge.edge->kind == memory::EdgeKind::kSequence;
+      if (!step && calibration_.distance_m(a, b, dissimilarity_(a, b)) >
+                       params_.step_likeness * calibration_.step_m) {
+        continue;
+      }
+      if (auto candidate = fit(a, b, calibration_.step_m, params_.motion_length_stddev, step)) {
+        candidates.push_back(*candidate);
+      }
+    }
+    for (int a = 0; a < static_cast<int>(ranking_.size()); ++a) {
+      for (const SimilarPlace& similar :
+           most_similar_first(ranking_[a], params_.motion_neighbours)) {
+        if (auto candidate = neighbour(a, similar.place, similar.dissimilarity)) {
+          candidates.push_back(*candidate);
+        }
+      }
+    }
+    return candidates;
+  }
+
+  // Keeps the steps and the neighbour motions that are no look-alike's (by their residual, or
+  // against the steps); returns those dropped.
+  std::vector<Candidate> keep_all_but_look_alikes(const std::vector<Candidate>& candidates) {
+    std::vector<double> residuals;
+    for (const Candidate& candidate : candidates) residuals.push_back(candidate.residual);
+    const double limit = params_.look_alike_residual * median(std::move(residuals));
+    const StepCheck steps(
+        candidates, static_cast<int>(ranking_.size()), params_.step_check_steps,
+        calibration_.step_m * std::hypot(direction_stddev_, params_.motion_length_stddev));
+    std::vector<Candidate> dropped;
+    for (const Candidate& candidate : candidates) {
+      if (!candidate.motion.step &&
+          (candidate.residual > limit || steps.contradicts(candidate.motion))) {
+        dropped.push_back(candidate);
+      } else {
+        result_.motions.push_back(candidate.motion);
+        joined_.join(candidate.motion.from, candidate.motion.to);
+      }
+    }
+    return dropped;
+  }
+
+  // Joining: the most similar pairs first, among the dropped motions and each place's ranked
+  // places (those not tried yet are fitted now).
+  void join_what_is_apart(const std::vector<Candidate>& dropped) {
+    std::vector<std::tuple<double, int, int, std::optional<Candidate>>> joins;
+    for (const Candidate& candidate : dropped) {
+      joins.emplace_back(dissimilarity_(candidate.motion.from, candidate.motion.to),
+                         candidate.motion.from, candidate.motion.to, candidate);
+    }
+    for (int a = 0; a < static_cast<int>(ranking_.size()); ++a) {
+      for (const SimilarPlace& similar : ranking_[a]) {
+        joins.emplace_back(similar.dissimilarity, a, similar.place, std::nullopt);
+      }
+    }
+    std::sort(joins.begin(), joins.end(), [](const auto& x, const auto& y) {
+      return std::tie(std::get<0>(x), std::get<1>(x), std::get<2>(x)) <
+             std::tie(std::get<0>(y), std::get<1>(y), std::get<2>(y));
+    });
+    for (auto& [pair_dissimilarity, a, b, candidate] : joins) {
+      if (joined_.joined(a, b)) continue;
+      const bool was_dropped = candidate.has_value();
+      if (!candidate) candidate = neighbour(a, b, pair_dissimilarity);
+      if (!candidate) continue;
+      result_.motions.push_back(candidate->motion);
+      joined_.join(a, b);
+      ++result_.joins;
+      result_.look_alikes_dropped -= was_dropped;
+      if (joined_.count() == 1) break;
+    }
+  }
+
+  const memory::VisualMemory& memory_;
+  const PlaceDissimilarities& dissimilarity_;
+  const std::vector<std::vector<SimilarPlace>>& ranking_;
+  const DistanceCalibration& calibration_;
+  const OrganiseParams& params_;
+  const std::vector<std::optional<double>> headings_;
+  const double direction_stddev_;
+  std::set<std::pair<int, int>> tried_;
+  PlaceSets joined_;
+  MeasuredMotions result_;
+};
+
 }  // namespace
 
 MeasuredMotions measure_motions(const memory::VisualMemory& memory,
@@ -97,94 +229,7 @@ MeasuredMotions measure_motions(const memory::VisualMemory& memory,
                                 const std::vector<std::vector<SimilarPlace>>& ranking,
                                 const DistanceCalibration& calibration,
                                 const OrganiseParams& params) {
-  const std::vector<std::optional<double>> headings = lattice_headings(memory);
-  const double direction_stddev = deg_to_rad(params.motion_direction_stddev_deg);
-  std::set<std::pair<int, int>> tried;
-  // Fits the motion from a to b unless the pair was tried before.
-  const auto measure = [&](int a, int b, double length_m, double length_stddev,
-                           bool step) -> std::optional<Candidate> {
-    if (!tried.insert({std::min(a, b), std::max(a, b)}).second) return std::nullopt;
-    const auto fit = fit_direction(memory, headings, a, b);
-    if (!fit) return std::nullopt;
-    return Candidate{
-        {a, b, fit->direction_rad, length_m, direction_stddev, length_stddev * length_m, step},
-        fit->residual};
-  };
-  const auto neighbour = [&](int a, int b, double pair_dissimilarity) {
-    return measure(a, b, calibration.distance_m(a, b, pair_dissimilarity),
-                   params.neighbour_motion_length_stddev, false);
-  };
-
-  std::vector<Candidate> candidates;
-  for (const memory::VisualMemory::EdgeRef& edge : memory.edges()) {
-    const int a = static_cast<int>(edge.from), b = static_cast<int>(edge.to);
-    const bool step = edge.edge->kind == memory::EdgeKind::kSequence;
-    if (!step && calibration.distance_m(a, b, dissimilarity(a, b)) >
-                     params.step_likeness * calibration.step_m) {
-      continue;
-    }
-    if (auto candidate = measure(a, b, calibration.step_m, params.motion_length_stddev, step)) {
-      candidates.push_back(*candidate);
-    }
-  }
-  for (int a = 0; a < static_cast<int>(ranking.size()); ++a) {
-    for (const SimilarPlace& similar : most_similar_first(ranking[a], params.motion_neighbours)) {
-      if (auto candidate = neighbour(a, similar.place, similar.dissimilarity)) {
-        candidates.push_back(*candidate);
-      }
-    }
-  }
-
-  MeasuredMotions result;
-  if (candidates.empty()) return result;
-  std::vector<double> residuals;
-  for (const Candidate& candidate : candidates) residuals.push_back(candidate.residual);
-  const double limit = params.look_alike_residual * median(std::move(residuals));
-  const StepCheck steps(
-      candidates, static_cast<int>(ranking.size()), params.step_check_steps,
-      calibration.step_m * std::hypot(direction_stddev, params.motion_length_stddev));
-  std::vector<Candidate> dropped;
-  PlaceSets joined(static_cast<int>(ranking.size()));
-  for (const Candidate& candidate : candidates) {
-    if (!candidate.motion.step &&
-        (candidate.residual > limit || steps.contradicts(candidate.motion))) {
-      dropped.push_back(candidate);
-    } else {
-      result.motions.push_back(candidate.motion);
-      joined.join(candidate.motion.from, candidate.motion.to);
-    }
-  }
-  result.look_alikes_dropped = static_cast<int>(dropped.size());
-  if (joined.count() == 1) return result;
-
-  // Joining: the most similar pairs first, among the dropped motions and each place's ranked
-  // places (those not tried yet are fitted now).
-  std::vector<std::tuple<double, int, int, std::optional<Candidate>>> joins;
-  for (const Candidate& candidate : dropped) {
-    joins.emplace_back(dissimilarity(candidate.motion.from, candidate.motion.to),
-                       candidate.motion.from, candidate.motion.to, candidate);
-  }
-  for (int a = 0; a < static_cast<int>(ranking.size()); ++a) {
-    for (const SimilarPlace& similar : ranking[a]) {
-      joins.emplace_back(similar.dissimilarity, a, similar.place, std::nullopt);
-    }
-  }
-  std::sort(joins.begin(), joins.end(), [](const auto& x, const auto& y) {
-    return std::tie(std::get<0>(x), std::get<1>(x), std::get<2>(x)) <
-           std::tie(std::get<0>(y), std::get<1>(y), std::get<2>(y));
-  });
-  for (auto& [pair_dissimilarity, a, b, candidate] : joins) {
-    if (joined.joined(a, b)) continue;
-    const bool was_dropped = candidate.has_value();
-    if (!candidate) candidate = neighbour(a, b, pair_dissimilarity);
-    if (!candidate) continue;
-    result.motions.push_back(candidate->motion);
-    joined.join(a, b);
-    ++result.joins;
-    result.look_alikes_dropped -= was_dropped;
-    if (joined.count() == 1) break;
-  }
-  return result;
+  return MotionMeasurer(memory, dissimilarity, ranking, calibration, params).measure();
 }
 
 }  // namespace omninav::lattice::detail

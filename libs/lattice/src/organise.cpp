@@ -10,7 +10,6 @@
 #include "omninav/core/config.hpp"
 #include "omninav/core/errors.hpp"
 #include "omninav/core/log.hpp"
-#include "omninav/core/parse.hpp"
 #include "omninav/core/statistics.hpp"
 #include "omninav/lattice/similar_places.hpp"
 
@@ -18,20 +17,20 @@ namespace omninav::lattice {
 namespace {
 
 // The step between consecutive places: the user's, else the map's spacing policy.
-std::pair<double, std::string> scale_of(const memory::VisualMemory& memory,
+std::pair<double, ScaleSource> scale_of(const memory::VisualMemory& memory,
                                         const OrganiseParams& params) {
-  if (params.step_m > 0.0) return {params.step_m, "user"};
-  const auto note = memory.notes().find("exploration.every_m");
-  if (note != memory.notes().end()) {
-    const double every_m = parse_double(note->second, "map note exploration.every_m");
-    if (every_m > 0.0) return {every_m, "map: exploration.every_m"};
-  }
+  if (params.step_m > 0.0) return {params.step_m, ScaleSource::kUser};
+  if (memory.exploration_spacing_m()) return {*memory.exploration_spacing_m(), ScaleSource::kMap};
   throw UsageError(
       "organise: the map does not say how far apart consecutive places are (explore with a "
       "spacing in metres, or give the step, e.g. --step-m 0.3)");
 }
 
 }  // namespace
+
+std::string to_string(ScaleSource source) {
+  return source == ScaleSource::kMap ? "map: exploration.every_m" : "user";
+}
 
 std::vector<std::optional<double>> lattice_headings(const memory::VisualMemory& memory) {
   std::vector<std::optional<double>> headings(memory.place_count());
@@ -149,10 +148,7 @@ OrganiseResult organise(memory::VisualMemory& memory, const OrganiseParams& para
   LatticeParams lattice = params.lattice;
   lattice.correlation_range_m = calibration.correlation_range_m;
   result.lattice = solve_lattice(count, result.springs, result.motions, lattice);
-  for (int i = 0; i < count; ++i) {
-    memory.place(i).lattice =
-        memory::LatticePosition{result.lattice.positions[i].x(), result.lattice.positions[i].y()};
-  }
+  memory.set_lattice_positions(result.lattice.positions);
   log_info("organise: " + std::to_string(result.lattice.springs_kept) + " of " +
            std::to_string(result.lattice.springs_given) + " springs kept (of " +
            std::to_string(result.lattice.place_pairs) + " pairs of places), " +

@@ -17,11 +17,9 @@ void require_place(int place, int place_count, const std::string& what) {
   }
 }
 
-}  // namespace
-
-LatticeResult solve_lattice(int place_count, const std::vector<SpringMeasurement>& springs,
-                            const std::vector<MotionMeasurement>& motions,
-                            const LatticeParams& params) {
+// Throws UsageError for a spring or motion that names no place, or a motion without length.
+void check_measurements(int place_count, const std::vector<SpringMeasurement>& springs,
+                        const std::vector<MotionMeasurement>& motions) {
   if (place_count < 1) throw UsageError("lattice: no places to arrange");
   for (const SpringMeasurement& spring : springs) {
     require_place(spring.a, place_count, "a spring");
@@ -35,7 +33,68 @@ LatticeResult solve_lattice(int place_count, const std::vector<SpringMeasurement
                        std::to_string(motion.to) + " needs two places and a length > 0");
     }
   }
+}
 
+// The springs (Eq. 4) at least min_stiffness stiff (Eq. 5) as residual blocks; returns how many.
+std::size_t add_springs(ceres::Problem& problem, const std::vector<SpringMeasurement>& springs,
+                        const LatticeParams& params, ceres::LossFunction* loss,
+                        std::vector<Eigen::Vector2d>& positions) {
+  std::size_t kept = 0;
+  const double negligible = negligible_length_m(params.correlation_range_m, params.min_stiffness);
+  for (const SpringMeasurement& spring : springs) {
+    if (spring.a == spring.b || spring.length_m > negligible) continue;  // Eq. 5: K < min_stiffness
+    const double stiffness = spring_stiffness(spring.length_m, params.correlation_range_m);
+    problem.AddResidualBlock(SpringResidual::Create(spring.length_m, stiffness, spring.at_least),
+                             loss, positions[spring.a].data(), positions[spring.b].data());
+    ++kept;
+  }
+  return kept;
+}
+
+// The gauge, fixed explicitly. Translation: place 0 stays at the origin. Rotation (and
+// reflection): the motion constraints fix them when there are any; otherwise the second place
+// keeps the direction it starts in (its y = 0 after rotating the start so), and reflection is
+// whatever the start had: distances alone cannot tell a lattice from its mirror image.
+void fix_gauge(ceres::Problem& problem, bool has_motions, std::vector<Eigen::Vector2d>& positions) {
+  problem.SetParameterBlockConstant(positions[0].data());
+  if (has_motions) return;
+  const Eigen::Vector2d second = positions[1];
+  const double angle = std::atan2(second.y(), second.x());
+  const Eigen::Rotation2Dd unrotate(-angle);
+  for (Eigen::Vector2d& position : positions) position = unrotate * position;
+  positions[1].y() = 0.0;
+  problem.SetManifold(positions[1].data(), new ceres::SubsetManifold(2, {1}));
+}
+
+ceres::Solver::Options solver_options(const LatticeParams& params) {
+  ceres::Solver::Options solver;
+  // Conjugate gradients on the normal equations, not a sparse Cholesky: a place springs to its
+  // most similar places, and the look-alikes among them lie anywhere on the map, so the factor
+  // fills in. Measured on rendered grids (docs/lattice.md): the same lattice to the digit on the
+  // 57-80-place grids, 1.5× faster at 787 places, and at 10,000 places CGNR solves in about a
+  // minute where the Cholesky had not finished in 12.
+  solver.linear_solver_type = ceres::CGNR;
+  solver.preconditioner_type = ceres::JACOBI;
+  // Each step's normal equations solved by CG to 30 % of their residual (an inexact Newton
+  // step; Ceres' default forcing term is 10 %): the same lattices within 0.01 spacings on the 16
+  // rendered maps of docs/lattice.md, and the 10,000-place solve 3.5× faster (52 s → 15 s).
+  solver.eta = 0.3;
+  // Unbending a dead-reckoned start takes many small steps; non-monotonic steps let the trust
+  // region grow faster, and a 1e-4 relative cost change is far below what moves a place visibly.
+  solver.use_nonmonotonic_steps = true;
+  solver.function_tolerance = 1e-4;
+  solver.max_num_iterations = params.max_iterations;
+  solver.num_threads = params.threads;
+  solver.logging_type = ceres::SILENT;
+  return solver;
+}
+
+}  // namespace
+
+LatticeResult solve_lattice(int place_count, const std::vector<SpringMeasurement>& springs,
+                            const std::vector<MotionMeasurement>& motions,
+                            const LatticeParams& params) {
+  check_measurements(place_count, springs, motions);
   LatticeResult result;
   result.place_pairs = static_cast<std::size_t>(place_count) * (place_count - 1) / 2;
   result.springs_given = springs.size();
@@ -56,15 +115,7 @@ LatticeResult solve_lattice(int place_count, const std::vector<SpringMeasurement
   ceres::Problem::Options problem_options;
   problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   ceres::Problem problem(problem_options);
-  const double negligible = negligible_length_m(params.correlation_range_m, params.min_stiffness);
-  for (const SpringMeasurement& spring : springs) {
-    if (spring.a == spring.b || spring.length_m > negligible) continue;  // Eq. 5: K < min_stiffness
-    const double stiffness = spring_stiffness(spring.length_m, params.correlation_range_m);
-    problem.AddResidualBlock(SpringResidual::Create(spring.length_m, stiffness, spring.at_least),
-                             &spring_loss, result.positions[spring.a].data(),
-                             result.positions[spring.b].data());
-    ++result.springs_kept;
-  }
+  result.springs_kept = add_springs(problem, springs, params, &spring_loss, result.positions);
   detail::add_motion_blocks(problem, motions, result.positions, &motion_loss);
   for (int place = 0; place < place_count; ++place) {
     if (!problem.HasParameterBlock(result.positions[place].data())) {
@@ -72,42 +123,10 @@ LatticeResult solve_lattice(int place_count, const std::vector<SpringMeasurement
                        " has no spring short enough to hold it and no motion constraint");
     }
   }
+  fix_gauge(problem, !motions.empty(), result.positions);
 
-  // The gauge, fixed explicitly. Translation: place 0 stays at the origin. Rotation (and
-  // reflection): the motion constraints fix them when there are any; otherwise the second place
-  // keeps the direction it starts in (its y = 0 after rotating the start so), and reflection is
-  // whatever the start had: distances alone cannot tell a lattice from its mirror image.
-  problem.SetParameterBlockConstant(result.positions[0].data());
-  if (motions.empty()) {
-    const Eigen::Vector2d second = result.positions[1];
-    const double angle = std::atan2(second.y(), second.x());
-    const Eigen::Rotation2Dd unrotate(-angle);
-    for (Eigen::Vector2d& position : result.positions) position = unrotate * position;
-    result.positions[1].y() = 0.0;
-    problem.SetManifold(result.positions[1].data(), new ceres::SubsetManifold(2, {1}));
-  }
-
-  ceres::Solver::Options solver;
-  // Conjugate gradients on the normal equations, not a sparse Cholesky: a place springs to its
-  // most similar places, and the look-alikes among them lie anywhere on the map, so the factor
-  // fills in. Measured on rendered grids (docs/lattice.md): the same lattice to the digit on the
-  // 57-80-place grids, 1.5× faster at 787 places, and at 10,000 places CGNR solves in about a
-  // minute where the Cholesky had not finished in 12.
-  solver.linear_solver_type = ceres::CGNR;
-  solver.preconditioner_type = ceres::JACOBI;
-  // Each step's normal equations solved by CG to 30 % of their residual (an inexact Newton
-  // step; Ceres' default forcing term is 10 %): the same lattices within 0.01 spacings on the 16
-  // rendered maps of docs/lattice.md, and the 10,000-place solve 3.5× faster (52 s → 15 s).
-  solver.eta = 0.3;
-  // Unbending a dead-reckoned start takes many small steps; non-monotonic steps let the trust
-  // region grow faster, and a 1e-4 relative cost change is far below what moves a place visibly.
-  solver.use_nonmonotonic_steps = true;
-  solver.function_tolerance = 1e-4;
-  solver.max_num_iterations = params.max_iterations;
-  solver.num_threads = params.threads;
-  solver.logging_type = ceres::SILENT;
   ceres::Solver::Summary summary;
-  ceres::Solve(solver, &problem, &summary);
+  ceres::Solve(solver_options(params), &problem, &summary);
   result.converged = summary.termination_type == ceres::CONVERGENCE;
   result.initial_cost = summary.initial_cost;
   result.final_cost = summary.final_cost;

@@ -19,12 +19,36 @@
 
 namespace omninav::memory {
 
+std::string to_string(HeadingPolicy policy) {
+  switch (policy) {
+    case HeadingPolicy::kCompass:
+      return "compass";
+    case HeadingPolicy::kTruth:
+      return "truth";
+    case HeadingPolicy::kNone:
+      return "none";
+    case HeadingPolicy::kAuto:
+      break;
+  }
+  return "auto";
+}
+
+HeadingPolicy heading_policy_from_string(const std::string& text) {
+  if (text == "auto") return HeadingPolicy::kAuto;
+  if (text == "compass") return HeadingPolicy::kCompass;
+  if (text == "truth") return HeadingPolicy::kTruth;
+  if (text == "none") return HeadingPolicy::kNone;
+  throw UsageError("heading source '" + text + "' is not one of: auto, compass, truth, none");
+}
+
 void load_exploration_params(const ConfigReader& section, ExplorationParams& params) {
   section.read("new_place_dissimilarity", params.new_place_dissimilarity, 0.0, 1000.0);
   section.read("every_n_frames", params.every_n_frames, 0, 1000000);
   section.read("every_m", params.every_m, 0.0, 1000.0);
   section.read("thumbnail_width_px", params.thumbnail_width_px, 8, 4096);
-  section.read("heading_source", params.heading_source, {"auto", "compass", "truth", "none"});
+  std::string heading_source = to_string(params.heading_source);
+  section.read("heading_source", heading_source, {"auto", "compass", "truth", "none"});
+  params.heading_source = heading_policy_from_string(heading_source);
   section.read("motion_components", params.motion_components, 0, 4096);
 }
 
@@ -63,12 +87,23 @@ Explorer::Explorer(VisualMemory& memory, ExplorationParams params, std::string i
   run.input = std::move(input);
   run.description = std::move(description);
   run.started_utc = utc_now();
-  // "auto" is settled by the first frame (track_heading); until then a stream's choice.
-  heading_source_ = params_.heading_source;
-  run.heading_source = heading_source_ == "auto" ? "compass" : heading_source_;
+  // Auto is settled by the first frame (track_heading); until then a stream's choice.
+  switch (params_.heading_source) {
+    case HeadingPolicy::kCompass:
+      heading_source_ = HeadingSource::kCompass;
+      break;
+    case HeadingPolicy::kTruth:
+      heading_source_ = HeadingSource::kTruth;
+      break;
+    case HeadingPolicy::kNone:
+      heading_source_ = HeadingSource::kNone;
+      break;
+    case HeadingPolicy::kAuto:
+      break;
+  }
+  run.heading_source = heading_source_.value_or(HeadingSource::kCompass);
   places_before_run_ = memory_.place_count();
-  memory_.runs().push_back(run);
-  run_index_ = memory_.runs().size() - 1;
+  run_index_ = memory_.add_run(std::move(run));
 }
 
 const Run& Explorer::run() const {
@@ -79,7 +114,7 @@ std::optional<PlaceIndex> Explorer::add(const io::Frame& frame) {
   const signature::Signature signature = extractor_.compute(frame.image, frame.source);
   track_heading(frame, signature);
   ++frames_;
-  memory_.runs()[run_index_].frames = frames_;
+  memory_.record_run_progress(run_index_, frames_, places_);
   ++frames_since_place_;
   if (frame.truth && previous_pose_) {
     metres_since_place_ +=
@@ -96,9 +131,7 @@ std::optional<PlaceIndex> Explorer::add(const io::Frame& frame) {
       metres_since_place_ >= params_.every_m * (1.0 - 1e-9)) {
     new_place = true;
     // The map's scale, for the lattice (lattice/organise.hpp): consecutive places every_m apart.
-    std::ostringstream every_m;
-    every_m << params_.every_m;
-    memory_.set_note("exploration.every_m", every_m.str());
+    memory_.set_exploration_spacing_m(params_.every_m);
   }
   if (!new_place && params_.new_place_dissimilarity > 0.0) {
     const signature::Signature& last = memory_.place(*last_place_).signature;
@@ -115,17 +148,18 @@ PlaceIndex Explorer::add_place(const io::Frame& frame) {
   const signature::Signature signature = extractor_.compute(frame.image, frame.source);
   track_heading(frame, signature);
   ++frames_;
-  memory_.runs()[run_index_].frames = frames_;
+  memory_.record_run_progress(run_index_, frames_, places_);
   previous_pose_ = frame.truth;
   return make_place(frame, signature);
 }
 
 void Explorer::track_heading(const io::Frame& frame, const signature::Signature& signature) {
-  if (heading_source_ == "auto") {
-    heading_source_ = order_ == FrameOrder::kUnordered && frame.truth ? "truth" : "compass";
-    memory_.runs()[run_index_].heading_source = heading_source_;
+  if (!heading_source_) {
+    heading_source_ = order_ == FrameOrder::kUnordered && frame.truth ? HeadingSource::kTruth
+                                                                      : HeadingSource::kCompass;
+    memory_.set_run_heading_source(run_index_, *heading_source_);
   }
-  if (heading_source_ != "compass") return;
+  if (heading_source_ != HeadingSource::kCompass) return;
   cv::Mat panorama = frame.image;
   if (params_.compass_width_px && *params_.compass_width_px != panorama.cols) {
     panorama = compass::resample_columns(panorama, *params_.compass_width_px);
@@ -207,17 +241,17 @@ PlaceIndex Explorer::make_place(const io::Frame& frame, const signature::Signatu
   place.signature = signature;
   place.source = frame.source;
   place.frame_index = frame.index;
-  place.run = memory_.runs()[run_index_].id;
+  place.run = run().id;
   place.time_s = frame.time_s;
   place.truth = frame.truth;
-  if (heading_source_ == "truth" && !frame.truth) {
+  if (heading_source_ == HeadingSource::kTruth && !frame.truth) {
     throw UsageError(frame.source + ": headings come from the input's poses (heading_source " +
-                     params_.heading_source + ") but this frame has none");
+                     to_string(params_.heading_source) + ") but this frame has none");
   }
-  if (heading_source_ == "truth") {
+  if (heading_source_ == HeadingSource::kTruth) {
     place.heading_rad = frame.truth->heading_rad;
     place.heading_source = HeadingSource::kTruth;
-  } else if (heading_source_ == "compass") {
+  } else if (heading_source_ == HeadingSource::kCompass) {
     place.heading_rad = wrap_angle(compass_heading_rad_);
     place.heading_source = HeadingSource::kCompass;
   }
@@ -249,7 +283,7 @@ PlaceIndex Explorer::make_place(const io::Frame& frame, const signature::Signatu
   last_place_ = index;
   frames_since_place_ = 0;
   metres_since_place_ = 0.0;
-  memory_.runs()[run_index_].places += 1;
+  memory_.record_run_progress(run_index_, frames_, ++places_);
   return index;
 }
 
@@ -265,7 +299,7 @@ Run explore_frames(VisualMemory& memory, const ExplorationParams& params, const 
     description << "new_place_dissimilarity " << params.new_place_dissimilarity
                 << ", every_n_frames " << params.every_n_frames << ", every_m " << params.every_m;
   }
-  description << ", heading_source " << params.heading_source;
+  description << ", heading_source " << to_string(params.heading_source);
   Explorer explorer(memory, params, input, description.str(),
                     is_grid ? FrameOrder::kUnordered : FrameOrder::kStream);
   Progress progress("explore", frame_count);

@@ -52,8 +52,8 @@ void write_places_csv(const VisualMemory& memory, std::ostream& out) {
     } else {
       out << ",,,,";
     }
-    if (p.lattice) {
-      out << number(p.lattice->x) << ',' << number(p.lattice->y);
+    if (p.lattice_position) {
+      out << number(p.lattice_position->x()) << ',' << number(p.lattice_position->y());
     } else {
       out << ',';
     }
@@ -107,8 +107,12 @@ void write_graphml(const VisualMemory& memory, std::ostream& out) {
   vertex_number("truth_heading_deg", [](const Place& p) {
     return p.truth ? Opt(rad_to_deg(p.truth->heading_rad)) : Opt();
   });
-  vertex_number("lattice_x", [](const Place& p) { return p.lattice ? Opt(p.lattice->x) : Opt(); });
-  vertex_number("lattice_y", [](const Place& p) { return p.lattice ? Opt(p.lattice->y) : Opt(); });
+  vertex_number("lattice_x", [](const Place& p) {
+    return p.lattice_position ? Opt(p.lattice_position->x()) : Opt();
+  });
+  vertex_number("lattice_y", [](const Place& p) {
+    return p.lattice_position ? Opt(p.lattice_position->y()) : Opt();
+  });
   properties.property("kind", boost::make_function_property_map<EdgeDescriptor, std::string>(
                                   [&graph](EdgeDescriptor e) { return to_string(graph[e].kind); }));
   edge_number("dissimilarity", [](const Edge& e) { return Opt(e.dissimilarity); });

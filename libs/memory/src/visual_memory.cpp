@@ -1,5 +1,7 @@
 #include "omninav/memory/visual_memory.hpp"
 
+#include <cmath>
+
 #include "omninav/core/errors.hpp"
 
 namespace omninav::memory {
@@ -43,12 +45,47 @@ const Place& VisualMemory::place(PlaceIndex index) const {
   return graph_[index];
 }
 
-Place& VisualMemory::place(PlaceIndex index) {
-  if (index >= place_count()) {
-    throw UsageError("no place " + std::to_string(index) + " in a map of " +
-                     std::to_string(place_count()));
+void VisualMemory::set_exploration_spacing_m(double metres) {
+  if (!std::isfinite(metres) || metres <= 0.0) {
+    throw UsageError("an exploration spacing of " + std::to_string(metres) +
+                     " m: it must be a positive distance");
   }
-  return graph_[index];
+  exploration_spacing_m_ = metres;
+}
+
+void VisualMemory::set_lattice_positions(const std::vector<Eigen::Vector2d>& lattice_positions) {
+  if (lattice_positions.size() != place_count()) {
+    throw UsageError(std::to_string(lattice_positions.size()) + " lattice positions for a map of " +
+                     std::to_string(place_count()) + " places");
+  }
+  for (PlaceIndex i = 0; i < place_count(); ++i) graph_[i].lattice_position = lattice_positions[i];
+}
+
+void VisualMemory::clear_lattice_positions() {
+  for (PlaceIndex i = 0; i < place_count(); ++i) graph_[i].lattice_position.reset();
+}
+
+std::size_t VisualMemory::add_run(Run run) {
+  runs_.push_back(std::move(run));
+  return runs_.size() - 1;
+}
+
+Run& VisualMemory::run(std::size_t run_index) {
+  if (run_index >= runs_.size()) {
+    throw UsageError("no run " + std::to_string(run_index) + " in a map of " +
+                     std::to_string(runs_.size()));
+  }
+  return runs_[run_index];
+}
+
+void VisualMemory::record_run_progress(std::size_t run_index, int frames, int places) {
+  Run& r = run(run_index);
+  r.frames = frames;
+  r.places = places;
+}
+
+void VisualMemory::set_run_heading_source(std::size_t run_index, HeadingSource source) {
+  run(run_index).heading_source = source;
 }
 
 PlaceIndex VisualMemory::add_place(Place place) {
@@ -105,7 +142,7 @@ bool VisualMemory::all_have_truth() const {
 bool VisualMemory::all_have_lattice() const {
   if (place_count() == 0) return false;
   for (PlaceIndex i = 0; i < place_count(); ++i) {
-    if (!graph_[i].lattice) return false;
+    if (!graph_[i].lattice_position) return false;
   }
   return true;
 }

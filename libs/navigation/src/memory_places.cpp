@@ -26,8 +26,7 @@ std::vector<PlaceNode> places_from_memory(const memory::VisualMemory& memory) {
                        " has no heading, stored or measured along the exploration: the navigator "
                        "cannot tell the robot which way to turn there");
     }
-    const memory::LatticePosition& position = *memory.place(i).lattice;
-    places.push_back({Eigen::Vector2d(position.x, position.y), *headings[i]});
+    places.push_back({*memory.place(i).lattice_position, *headings[i]});
   }
   return places;
 }

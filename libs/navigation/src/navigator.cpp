@@ -51,8 +51,7 @@ int place_of(const NavigationStep& step) {
 std::optional<Eigen::Vector2d> lattice_position(const memory::Localisation& localisation) {
   if (!localisation.position || localisation.position->frame != memory::PositionFrame::kLattice)
     return std::nullopt;
-  return Eigen::Vector2d(localisation.position->interpolated_x,
-                         localisation.position->interpolated_y);
+  return localisation.position->interpolated_position;
 }
 
 }  // namespace

@@ -42,9 +42,8 @@ void load_route_params(const ConfigReader& section, RouteParams& params) {
 }
 
 double lattice_spacing(const std::vector<PlaceNode>& places) {
-  std::vector<cv::Point2d> points;
-  for (const PlaceNode& place : places)
-    points.emplace_back(place.position_m.x(), place.position_m.y());
+  std::vector<Eigen::Vector2d> points;
+  for (const PlaceNode& place : places) points.push_back(place.position_m);
   return memory::typical_spacing(points);
 }
 

@@ -17,8 +17,8 @@ namespace omninav::lattice {
 
 struct OrganiseParams {
   // The scale: the distance between consecutive places of the exploration, metres. 0: take it
-  // from the map (the exploration's spacing policy, note "exploration.every_m"); a value given
-  // here (by the user) wins over the map's.
+  // from the map (the exploration's spacing, VisualMemory::exploration_spacing_m); a value
+  // given here (by the user) wins over the map's.
   double step_m = 0.0;
   int neighbours = 8;           // springs per place: its most similar places
   double range_fraction = 0.4;  // x₁ where dissimilarity reaches this share of its plateau
@@ -60,9 +60,15 @@ void load_organise_params(const ConfigReader& section, OrganiseParams& params);
 // Beyond a short range D saturates (the plateau: the 90th percentile of all pairs) and says
 // little; x₁ of Eq. 5, where stiffness falls to 0.1, is where the median step's line reaches
 // range_fraction of the plateau.
+// Where the scale came from: the user (OrganiseParams::step_m) or the map
+// (VisualMemory::exploration_spacing_m).
+enum class ScaleSource { kUser, kMap };
+// "user" or "map: exploration.every_m".
+std::string to_string(ScaleSource source);
+
 struct DistanceCalibration {
-  double step_m = 0.0;                 // the scale used
-  std::string step_source;             // "user" or "map: exploration.every_m"
+  double step_m = 0.0;  // the scale used
+  ScaleSource step_source = ScaleSource::kUser;
   double step_dissimilarity = 0.0;     // the median of the places' local step dissimilarity
   double plateau_dissimilarity = 0.0;  // the 90th percentile of all pairs' dissimilarity
   double correlation_range_m = 0.0;    // x₁

@@ -6,7 +6,7 @@
 //     new_place_dissimilarity (the view has changed enough), or
 //   - every_n_frames frames have passed since the last place, or
 //   - every_m metres were travelled since the last place (only when the input has poses; the
-//     map then notes exploration.every_m, the scale the lattice takes by default);
+//     map then records it, VisualMemory::exploration_spacing_m, the lattice's default scale);
 // (each rule off when its value is 0). Each new place gets an edge from the previous place of
 // the run with their relative heading (phases, Eq. 1) and direction of motion (§3.4): of kind
 // sequence along a stream, listed for an unordered input (visual_memory.hpp).
@@ -28,25 +28,17 @@
 //
 // An unordered input (a grid database: its order says nothing about where the images were
 // taken, and a raster's row ends jump metres) is no stream for Algorithm 1, whose reference is
-// the previous frame, and its errors grow where a raster jumps (table below). So each image
-// is matched instead with the most similar place seen before it (by the signature dissimilarity)
-// and takes that place's heading plus the rotation the compass's pair matcher measures between
-// them, started at the phases' estimate. Beyond the paper, which explores along a route: a step
-// sideways moves the front and back bands of the field of view (§3.4.3) in opposite directions
-// by amounts that differ with the depth in front and behind, and biases the match (second row
-// of the table). So both images are first rolled so that the
-// direction of the step (§3.4, from the phases) lies at the second image's front: the bands then
-// sit where the step moves nothing, as they do for a robot driving forwards, and rolling both by
-// the same amount leaves their relative rotation unchanged. Measured against the truth on two
-// rendered 10 x 8 grids at 30 cm in the default room (median / max error, degrees; the corner
-// grid is tests/memory/grid_fixture.hpp's, measured by exploration_test.cpp):
-//                                     x0 = 1.2, y0 = 1.0     at the room's corner (near walls)
-//   Algorithm 1 in the raster's order      2.2 / 9.7               18
-//   most similar place                     9.0 / 28                28 / 51
-//   most similar place, step at front      3.0 / 12                11 / 36
-// The last is what unordered inputs get with heading_source compass (and auto, when the database
-// records no headings); the lattice organised from the first grid has an RMSE of 0.44 spacings
-// with it, 0.38 with Algorithm 1's raster order and 0.39 with the true headings.
+// the previous frame, whose errors grow where a raster jumps. So each image is matched instead
+// with the most similar place seen before it (by the signature dissimilarity) and takes that
+// place's heading plus the rotation the compass's pair matcher measures between them, started
+// at the phases' estimate. Beyond the paper, which explores along a route: a step sideways
+// moves the front and back bands of the field of view (§3.4.3) in opposite directions by
+// amounts that differ with the depth in front and behind, and biases the match. So both images
+// are first rolled so that the direction of the step (§3.4, from the phases) lies at the second
+// image's front: the bands then sit where the step moves nothing, as they do for a robot
+// driving forwards, and rolling both by the same amount leaves their relative rotation
+// unchanged. docs/memory.md (Place headings) compares the three ways on rendered grids and
+// says how to measure them; tests/memory/exploration_test.cpp guards the errors.
 
 #include <functional>
 #include <memory>
@@ -64,6 +56,13 @@ class ConfigReader;
 
 namespace omninav::memory {
 
+// Where a run's headings come from (see the headings above): kAuto settles on compass or truth
+// by the input at its first frame; each of the others is the HeadingSource of its places.
+enum class HeadingPolicy { kAuto, kCompass, kTruth, kNone };
+std::string to_string(HeadingPolicy policy);
+// "auto", "compass", "truth" or "none"; throws UsageError otherwise.
+HeadingPolicy heading_policy_from_string(const std::string& text);
+
 struct ExplorationParams {
   // Mean |Δ magnitude| per compared value (Dis of Eq. 6 divided by lines × components), grey
   // levels, that makes a new place; 0: off. On the rendered 30 cm grid of the built-in room,
@@ -73,9 +72,9 @@ struct ExplorationParams {
   int every_n_frames = 0;        // a place at least every n frames; 0: off
   double every_m = 0.0;          // a place every d metres travelled (poses needed); 0: off
   int thumbnail_width_px = 180;  // thumbnails keep the panorama's aspect ratio
-  // Where headings come from: "auto" (above), "compass" (the visual compass, above), "truth"
-  // (the input's poses, required) or "none".
-  std::string heading_source = "auto";
+  // Where headings come from: auto (above), compass (the visual compass, above), truth (the
+  // input's poses, required) or none.
+  HeadingPolicy heading_source = HeadingPolicy::kAuto;
   // The visual compass used by heading_source "compass" (config/compass.yaml), and the width its
   // panoramas are resampled to first (absent: their own width).
   compass::CompassParams compass;
@@ -132,13 +131,14 @@ class Explorer {
   std::size_t run_index_;
   std::optional<PlaceIndex> last_place_;
   int frames_ = 0;
+  int places_ = 0;  // added by this run
   int frames_since_place_ = 0;
   double metres_since_place_ = 0.0;
   std::optional<CameraPose> previous_pose_;
   std::size_t places_before_run_ = 0;  // places of earlier runs (candidates for the gauge)
   FrameOrder order_;
-  std::string heading_source_;                       // params_.heading_source, with "auto" settled
-  std::unique_ptr<compass::VisualCompass> compass_;  // streams
+  std::optional<HeadingSource> heading_source_;  // params_.heading_source; auto: at the first frame
+  std::unique_ptr<compass::VisualCompass> compass_;      // streams
   std::unique_ptr<compass::PairMatcher> place_matcher_;  // unordered inputs
   std::vector<cv::Mat> run_place_panoramas_;  // unordered: this run's places, at compass width
   double compass_heading_rad_ = 0.0;  // the compass's heading of the latest frame (unwrapped)

@@ -4,7 +4,7 @@
 // places the query's heading relative to each (phases, Eq. 1) and, when the places have
 // positions (lattice, else ground truth), a position estimate.
 
-#include <opencv2/core.hpp>
+#include <Eigen/Core>
 #include <optional>
 #include <string>
 #include <vector>
@@ -47,15 +47,14 @@ struct PlaceMatch {
 enum class PositionFrame { kLattice, kTruth };
 std::string to_string(PositionFrame frame);
 
+// Positions in `frame`: the lattice's or the world's (ground truth), metres either way.
 struct PositionEstimate {
   PositionFrame frame = PositionFrame::kTruth;
-  double x = 0.0;  // metres for ground truth, the lattice's unit otherwise
-  double y = 0.0;
-  // The best place's own position (topological localisation, §2.2) is (x, y); this is the
-  // mean of the best places' positions weighted by how far their similarity exceeds the
+  // The best place's own position (topological localisation, §2.2).
+  Eigen::Vector2d position = Eigen::Vector2d::Zero();
+  // The mean of the best places' positions weighted by how far their similarity exceeds the
   // finest threshold, a finer guess between places (§2.3, footnote 1).
-  double interpolated_x = 0.0;
-  double interpolated_y = 0.0;
+  Eigen::Vector2d interpolated_position = Eigen::Vector2d::Zero();
 };
 
 struct Localisation {
@@ -66,12 +65,12 @@ struct Localisation {
 
 // The positions used for estimates and pictures: lattice positions when every place has one,
 // else ground truth when every place has it, else none.
-std::optional<std::pair<PositionFrame, std::vector<cv::Point2d>>> place_positions(
+std::optional<std::pair<PositionFrame, std::vector<Eigen::Vector2d>>> place_positions(
     const VisualMemory& memory);
 
 // The median distance from each point to its nearest other: a grid's spacing ("one grid
 // spacing" of DESIGN.md's evaluation). 1 for fewer than two points.
-double typical_spacing(const std::vector<cv::Point2d>& points);
+double typical_spacing(const std::vector<Eigen::Vector2d>& points);
 
 class Localiser {
  public:
@@ -95,56 +94,7 @@ class Localiser {
   const VisualMemory& memory_;
   LocalisationParams params_;
   signature::SignatureIndex index_;
-  std::optional<std::pair<PositionFrame, std::vector<cv::Point2d>>> positions_;
-};
-
-// Localisation against ground truth (DESIGN.md, Evaluation): the share of queries whose best
-// place lies within one grid spacing of the truth; per level, the share whose candidate set
-// contains the true nearest place and the mean size of the set; and the query heading's error
-// when places have headings. Queries "between the grid points" are scored: those within half a
-// cell's diagonal (spacing·√2/2) of a place. Others lie beyond the grid's edge or in a hole
-// of it (furniture), where the nearest place can be a whole spacing away and its neighbours
-// farther: they are counted apart and not scored.
-class LocalisationScore {
- public:
-  // `memory`'s places must all have ground truth (UsageError otherwise).
-  explicit LocalisationScore(const VisualMemory& memory);
-
-  struct Query {
-    PlaceIndex nearest_place = 0;  // the place nearest the truth
-    double nearest_m = 0.0;
-    double error_m = 0.0;  // from the best place to the truth
-    bool within_spacing = false;
-    std::vector<bool> level_contains_nearest;
-    std::optional<double> heading_error_rad;
-    bool outside = false;  // farther than spacing·√2/2 from every place: not scored
-  };
-  Query add(const Localisation& result, const CameraPose& truth);
-
-  std::size_t queries() const { return queries_; }  // scored ones
-  std::size_t outside() const { return outside_; }
-  double spacing_m() const { return spacing_m_; }
-  double within_spacing_share() const;
-  double nearest_share() const;  // the best place is the place nearest the truth
-  double mean_error_m() const;   // from the best place to the truth
-  std::vector<double> level_contains_share() const;
-  std::vector<double> level_mean_size() const;
-  // Median |heading error|, when any query had one.
-  std::optional<double> median_heading_error_rad() const;
-  // Lines like "localised 120 queries: 99.2% within one spacing (0.30 m) ...".
-  std::string summary(const std::vector<int>& levels) const;
-
- private:
-  std::vector<cv::Point2d> places_;
-  double spacing_m_ = 1.0;
-  std::size_t queries_ = 0;
-  std::size_t outside_ = 0;
-  std::size_t within_ = 0;
-  std::size_t nearest_ = 0;
-  double error_sum_m_ = 0.0;
-  std::vector<std::size_t> contains_;
-  std::vector<double> size_sum_;
-  std::vector<double> heading_errors_;
+  std::optional<std::pair<PositionFrame, std::vector<Eigen::Vector2d>>> positions_;
 };
 
 }  // namespace omninav::memory

@@ -2,12 +2,12 @@
 // The visual memory (001_5bb151a4e28490b4.txt §2-3): places, each a reference image reduced to
 // its Fourier signature, and edges between places met one after the other. In memory it is a
 // Boost.Graph adjacency_list whose vertex i is place i (places are only ever appended, so a
-// place's index, its vertex and its id in the map file are one number). On disk it is one
-// SQLite file (map_file.hpp).
+// place's index, its vertex and its id in the map file are one number). It is data only: the
+// SQLite file that keeps it, and what of it is already on disk, are map_store.hpp's.
 
+#include <Eigen/Core>
 #include <boost/graph/adjacency_list.hpp>
 #include <cstdint>
-#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -26,12 +26,6 @@ std::string to_string(HeadingSource source);
 // "none", "truth" or "compass"; throws InputError otherwise.
 HeadingSource heading_source_from_string(const std::string& text);
 
-// A position on the lattice of issue 5 (spring model, §3.2-3.4), in the lattice's own unit.
-struct LatticePosition {
-  double x = 0.0;
-  double y = 0.0;
-};
-
 struct Place {
   signature::Signature signature;     // magnitudes and phases (§2.1)
   std::optional<double> heading_rad;  // the robot's heading at this place, REP 103
@@ -42,7 +36,9 @@ struct Place {
   int run = 0;                              // the exploration run that added it (Run::id)
   std::optional<double> time_s;             // capture time, when the input knows it
   std::optional<CameraPose> truth;          // ground truth: for evaluation only, never used to map
-  std::optional<LatticePosition> lattice;   // filled by the lattice (issue 5)
+  // Where the lattice (spring model, §3.2-3.4, libs/lattice) put the place: metres, in the
+  // lattice's frame (place 0 at the origin, its heading along +x).
+  std::optional<Eigen::Vector2d> lattice_position;
 };
 
 enum class EdgeKind {
@@ -68,12 +64,12 @@ struct Edge {
 // One `omninav explore` into the map.
 struct Run {
   int id = 0;
-  std::string input;           // what was explored (a folder, database, video)
-  std::string started_utc;     // ISO 8601
-  int frames = 0;              // frames read
-  int places = 0;              // places added
-  std::string heading_source;  // what the run's places used: none, truth or compass
-  std::string description;     // the command line or the caller's note
+  std::string input;        // what was explored (a folder, database, video)
+  std::string started_utc;  // ISO 8601
+  int frames = 0;           // frames read
+  int places = 0;           // places added
+  HeadingSource heading_source = HeadingSource::kNone;  // what the run's places used
+  std::string description;                              // the command line or the caller's note
 };
 
 using Graph = boost::adjacency_list<boost::vecS, boost::vecS, boost::bidirectionalS, Place, Edge>;
@@ -92,14 +88,17 @@ class VisualMemory {
 
   const MapParameters& parameters() const { return parameters_; }
 
-  // Other parameters, recorded for the reader (e.g. "exploration.new_place_dissimilarity").
-  const std::map<std::string, std::string>& notes() const { return notes_; }
-  void set_note(const std::string& key, const std::string& value) { notes_[key] = value; }
+  // The distance travelled between consecutive places when the exploration made a place every
+  // so many metres (explore --every-m): the map's scale, which the lattice takes unless told
+  // another. None when no run placed its places by distance.
+  std::optional<double> exploration_spacing_m() const { return exploration_spacing_m_; }
+  // Throws UsageError unless `metres` is finite and positive.
+  void set_exploration_spacing_m(double metres);
 
   std::size_t place_count() const { return boost::num_vertices(graph_); }
   std::size_t edge_count() const { return boost::num_edges(graph_); }
+  // Throws UsageError for an index beyond the places.
   const Place& place(PlaceIndex index) const;
-  Place& place(PlaceIndex index);
 
   // Appends a place; returns its index. Throws UsageError when its signature does not match
   // the map's (rows, colour, components).
@@ -115,16 +114,19 @@ class VisualMemory {
     const Edge* edge;
   };
   std::vector<EdgeRef> edges() const;
-  std::vector<Run>& runs() { return runs_; }
-  const std::vector<Run>& runs() const { return runs_; }
 
-  // How much of this memory the map file already holds (set by load_map and save_map), so
-  // that saving again only appends the rest.
-  struct Persisted {
-    std::size_t places = 0, edges = 0, runs = 0;
-  };
-  const Persisted& persisted() const { return persisted_; }
-  void mark_persisted() { persisted_ = {place_count(), edge_count(), runs_.size()}; }
+  // The lattice: one position per place (UsageError on another count), or none at all.
+  void set_lattice_positions(const std::vector<Eigen::Vector2d>& lattice_positions);
+  void clear_lattice_positions();
+
+  // The explorations that made the map, in the order they ran.
+  const std::vector<Run>& runs() const { return runs_; }
+  // Appends a run; returns its index in runs().
+  std::size_t add_run(Run run);
+  // What a run has read and added so far, and where its places' headings came from. Throw
+  // UsageError for an index beyond the runs.
+  void record_run_progress(std::size_t run_index, int frames, int places);
+  void set_run_heading_source(std::size_t run_index, HeadingSource source);
 
   // Whether every place has a ground-truth pose / a lattice position.
   bool all_have_truth() const;
@@ -134,8 +136,10 @@ class VisualMemory {
   std::size_t bytes() const;
 
  private:
+  Run& run(std::size_t run_index);
+
   MapParameters parameters_;
-  std::map<std::string, std::string> notes_;
+  std::optional<double> exploration_spacing_m_;
   Graph graph_;
   // Edges in the order added, by position: the `out_position`-th out-edge of `from` (vecS
   // out-edge lists only grow at the end). Positions, unlike edge descriptors, survive copies.
@@ -145,7 +149,6 @@ class VisualMemory {
   };
   std::vector<EdgeSlot> edge_order_;
   std::vector<Run> runs_;
-  Persisted persisted_;
 };
 
 }  // namespace omninav::memory

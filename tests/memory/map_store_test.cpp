@@ -1,4 +1,4 @@
-#include "omninav/memory/map_file.hpp"
+#include "omninav/memory/map_store.hpp"
 
 #include <fcntl.h>
 #include <gtest/gtest.h>
@@ -21,12 +21,12 @@ namespace {
 namespace fs = std::filesystem;
 
 // A scratch folder per test, removed afterwards.
-class MapFileTest : public ::testing::Test {
+class MapStoreTest : public ::testing::Test {
  protected:
   void SetUp() override {
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
     dir_ = fs::temp_directory_path() /
-           ("omninav_map_test_" + std::to_string(::getpid()) + "_" + info->name());
+           ("omninav_map_store_test_" + std::to_string(::getpid()) + "_" + info->name());
     fs::remove_all(dir_);
     fs::create_directories(dir_);
   }
@@ -45,9 +45,11 @@ VisualMemory synthetic_memory(std::size_t places, std::size_t thumbnail_bytes = 
   run.id = static_cast<int>(memory.runs().size());
   run.input = "synthetic " + std::to_string(seed);
   run.started_utc = "2024-01-01T00:00:00Z";
-  run.heading_source = "truth";
-  run.description = "map_file_test";
-  memory.runs().push_back(run);
+  run.heading_source = HeadingSource::kTruth;
+  run.description = "map_store_test";
+  run.places = static_cast<int>(places);
+  run.frames = static_cast<int>(places);
+  memory.add_run(run);
   const std::size_t first = memory.place_count();
   for (std::size_t i = 0; i < places; ++i) {
     Place p;
@@ -82,8 +84,6 @@ VisualMemory synthetic_memory(std::size_t places, std::size_t thumbnail_bytes = 
       memory.add_edge(index - 1, index, e);
     }
   }
-  memory.runs().back().places = static_cast<int>(places);
-  memory.runs().back().frames = static_cast<int>(places);
   return memory;
 }
 
@@ -95,7 +95,7 @@ void expect_same(const VisualMemory& a, const VisualMemory& b) {
   EXPECT_EQ(a.parameters().signature.colour, b.parameters().signature.colour);
   EXPECT_EQ(a.parameters().weights.alpha, b.parameters().weights.alpha);
   EXPECT_EQ(a.parameters().panorama_rows, b.parameters().panorama_rows);
-  EXPECT_EQ(a.notes(), b.notes());
+  EXPECT_EQ(a.exploration_spacing_m(), b.exploration_spacing_m());
   for (PlaceIndex i = 0; i < a.place_count(); ++i) {
     const Place& p = a.place(i);
     const Place& q = b.place(i);
@@ -117,7 +117,7 @@ void expect_same(const VisualMemory& a, const VisualMemory& b) {
       EXPECT_EQ(p.truth->heading_rad, q.truth->heading_rad);
       EXPECT_EQ(p.truth->roll_rad, q.truth->roll_rad);
     }
-    EXPECT_EQ(p.lattice.has_value(), q.lattice.has_value());
+    EXPECT_EQ(p.lattice_position, q.lattice_position);
   }
   const auto ea = a.edges();
   const auto eb = b.edges();
@@ -134,6 +134,7 @@ void expect_same(const VisualMemory& a, const VisualMemory& b) {
     EXPECT_EQ(a.runs()[i].id, b.runs()[i].id);
     EXPECT_EQ(a.runs()[i].input, b.runs()[i].input);
     EXPECT_EQ(a.runs()[i].places, b.runs()[i].places);
+    EXPECT_EQ(a.runs()[i].heading_source, b.runs()[i].heading_source);
   }
 }
 
@@ -179,26 +180,60 @@ TEST(LittleEndianFloats, ExplicitByteOrder) {
   EXPECT_EQ(floats_from_le_bytes(bytes.data(), bytes.size()), values);
 }
 
-TEST_F(MapFileTest, RoundTripKeepsSignaturesAndGraphIdentical) {
+// The lattice positions (i, -i / 3) of `memory`'s places.
+std::vector<Eigen::Vector2d> diagonal_lattice(const VisualMemory& memory) {
+  std::vector<Eigen::Vector2d> positions;
+  for (std::size_t i = 0; i < memory.place_count(); ++i) positions.emplace_back(i, -1.0 * i / 3);
+  return positions;
+}
+
+TEST_F(MapStoreTest, RoundTripKeepsSignaturesAndGraphIdentical) {
   VisualMemory memory = synthetic_memory(30);
-  memory.set_note("exploration.every_m", "0.3");
-  memory.place(4).lattice = LatticePosition{1.5, -2.0};
+  memory.set_exploration_spacing_m(0.3);
+  memory.set_lattice_positions(diagonal_lattice(memory));
   const fs::path file = dir_ / "round.vmem";
-  save_map(memory, file);
+  MapStore(file).save(memory);
   EXPECT_EQ(folder_entries(dir_), std::vector<std::string>{"round.vmem"});
   const VisualMemory loaded = load_map(file);
   expect_same(memory, loaded);
-  EXPECT_EQ(loaded.place(4).lattice->x, 1.5);
-  EXPECT_EQ(loaded.persisted().places, 30u);
+  EXPECT_EQ(*loaded.place(4).lattice_position, Eigen::Vector2d(4.0, -4.0 / 3));
+  EXPECT_EQ(loaded.exploration_spacing_m(), 0.3);
 }
 
-TEST_F(MapFileTest, ExploringAgainAppendsToTheMap) {
+// The spacing was a free-form note once; readers of the schema's parameters table (older
+// omninav, sqlite3) still find it under the note's name, and a map that has it as the note
+// reads it as the spacing.
+TEST_F(MapStoreTest, TheExplorationSpacingIsTheParameterOlderReadersKnow) {
+  const fs::path file = dir_ / "spacing.vmem";
+  VisualMemory memory = synthetic_memory(3);
+  memory.set_exploration_spacing_m(0.25);
+  MapStore(file).save(memory);
+  sqlite3* db = nullptr;
+  ASSERT_EQ(sqlite3_open(file.c_str(), &db), SQLITE_OK);
+  sqlite3_stmt* row = nullptr;
+  ASSERT_EQ(sqlite3_prepare_v2(db, "SELECT value FROM parameters WHERE key = 'exploration.every_m'",
+                               -1, &row, nullptr),
+            SQLITE_OK);
+  ASSERT_EQ(sqlite3_step(row), SQLITE_ROW);
+  EXPECT_EQ(std::string(reinterpret_cast<const char*>(sqlite3_column_text(row, 0))), "0.25");
+  sqlite3_finalize(row);
+  sqlite3_close(db);
+
+  sql(file, "UPDATE parameters SET value = '0.5' WHERE key = 'exploration.every_m'");
+  EXPECT_EQ(load_map(file).exploration_spacing_m(), 0.5);
+  sql(file, "DELETE FROM parameters WHERE key = 'exploration.every_m'");
+  EXPECT_FALSE(load_map(file).exploration_spacing_m());
+  sql(file, "INSERT INTO parameters VALUES ('exploration.every_m', 'far')");
+  EXPECT_NE(load_error(file).find("corrupt map"), std::string::npos) << load_error(file);
+}
+
+TEST_F(MapStoreTest, ExploringAgainAppendsToTheMap) {
   const fs::path file = dir_ / "grow.vmem";
   VisualMemory memory = synthetic_memory(10);
-  save_map(memory, file);
-  VisualMemory loaded = load_map(file);
-  VisualMemory grown = synthetic_memory(7, 50, 2, std::move(loaded));
-  save_map(grown, file);
+  MapStore(file).save(memory);
+  MapStore store(file);
+  VisualMemory grown = synthetic_memory(7, 50, 2, store.load());
+  store.save(grown);
   const VisualMemory again = load_map(file);
   EXPECT_EQ(again.place_count(), 17u);
   EXPECT_EQ(again.runs().size(), 2u);
@@ -206,13 +241,13 @@ TEST_F(MapFileTest, ExploringAgainAppendsToTheMap) {
   expect_same(grown, again);
 }
 
-TEST_F(MapFileTest, EdgeKindsRoundTripAndVersionOneMapsStillRead) {
+TEST_F(MapStoreTest, EdgeKindsRoundTripAndVersionOneMapsStillRead) {
   const fs::path file = dir_ / "kinds.vmem";
   VisualMemory memory = synthetic_memory(4);
   Edge listed;
   listed.kind = EdgeKind::kListed;
   memory.add_edge(3, 0, listed);
-  save_map(memory, file);
+  MapStore(file).save(memory);
   const VisualMemory loaded = load_map(file);
   const auto edges = loaded.edges();
   ASSERT_EQ(edges.size(), 4u);
@@ -224,13 +259,14 @@ TEST_F(MapFileTest, EdgeKindsRoundTripAndVersionOneMapsStillRead) {
   // would not know.
   const fs::path old = dir_ / "old.vmem";
   VisualMemory version_one = synthetic_memory(5);
-  save_map(version_one, old);
+  MapStore(old).save(version_one);
   sql(old, "UPDATE schema_version SET version = 1, written_by = 'omninav 0.1.0'");
-  VisualMemory read_old = load_map(old);
+  MapStore old_store(old);
+  VisualMemory read_old = old_store.load();
   for (const VisualMemory::EdgeRef& edge : read_old.edges())
     EXPECT_EQ(edge.edge->kind, EdgeKind::kListed);
   VisualMemory grown = synthetic_memory(3, 50, 2, std::move(read_old));
-  save_map(grown, old);
+  old_store.save(grown);
   const VisualMemory grown_read = load_map(old);
   EXPECT_EQ(grown_read.edges().front().edge->kind, EdgeKind::kListed);   // from version 1
   EXPECT_EQ(grown_read.edges().back().edge->kind, EdgeKind::kSequence);  // new, version 2
@@ -245,54 +281,75 @@ TEST_F(MapFileTest, EdgeKindsRoundTripAndVersionOneMapsStillRead) {
   sqlite3_close(db);
 }
 
-TEST_F(MapFileTest, AppendingRefusesAMapChangedOnDiskOrMadeDifferently) {
+TEST_F(MapStoreTest, AppendingRefusesAMapChangedOnDiskOrMadeDifferently) {
   const fs::path file = dir_ / "changed.vmem";
   VisualMemory memory = synthetic_memory(5);
-  save_map(memory, file);
-  VisualMemory stale = load_map(file);
-  VisualMemory other = synthetic_memory(3, 10, 3, load_map(file));
-  save_map(other, file);
+  MapStore(file).save(memory);
+  MapStore stale_store(file);
+  VisualMemory stale = stale_store.load();
+  MapStore other_store(file);
+  VisualMemory other = synthetic_memory(3, 10, 3, other_store.load());
+  other_store.save(other);
   VisualMemory more = synthetic_memory(2, 10, 4, std::move(stale));
-  EXPECT_THROW(save_map(more, file), UsageError);
+  EXPECT_THROW(stale_store.save(more), UsageError);
   EXPECT_EQ(load_map(file).place_count(), 8u);
+  // Nor does a lattice organised from the stale map go into the changed one.
+  MapStore organising_store(file);
+  VisualMemory organised = organising_store.load();
+  organised.set_lattice_positions(diagonal_lattice(organised));
+  other_store.save(synthetic_memory(1, 10, 5, other_store.load()));
+  EXPECT_THROW(organising_store.save(organised), UsageError);
+  EXPECT_FALSE(load_map(file).all_have_lattice());
+  // A memory that lost rows the map has is not written either.
+  EXPECT_THROW(other_store.save(synthetic_memory(2)), UsageError);
 
   MapParameters colour;
   colour.signature.colour = signature::ColourMode::kPerChannel;
   colour.signature.components = 15;
   VisualMemory different(colour);
-  different.mark_persisted();  // pretend: as if it had been read from an empty map
   const fs::path empty_map = dir_ / "empty.vmem";
-  VisualMemory empty;
-  save_map(empty, empty_map);
-  EXPECT_THROW(save_map(different, empty_map), UsageError);
+  MapStore empty_store(empty_map);
+  empty_store.save(VisualMemory{});
+  EXPECT_THROW(empty_store.save(different), UsageError);
 }
 
-TEST_F(MapFileTest, OverwriteReplacesTheMap) {
+TEST_F(MapStoreTest, OverwriteReplacesTheMap) {
   const fs::path file = dir_ / "over.vmem";
   VisualMemory first = synthetic_memory(5);
-  save_map(first, file);
+  MapStore(file).save(first);
   VisualMemory second = synthetic_memory(3, 10, 9);
-  save_map(second, file, {.overwrite = true, .after_place = {}});
+  MapStore(file).save(second, {.overwrite = true, .after_place = {}});
   expect_same(second, load_map(file));
 }
 
-TEST_F(MapFileTest, LatticePositionsAreReplacedInOneTransaction) {
+TEST_F(MapStoreTest, SavingAnOrganisedMapReplacesItsLattice) {
   const fs::path file = dir_ / "lattice.vmem";
-  VisualMemory memory = synthetic_memory(4);
-  save_map(memory, file);
-  save_lattice_positions(file, {{0, 0}, {1, 0}, {1, 1}, {0, 1}});
+  MapStore(file).save(synthetic_memory(4));
+  MapStore store(file);
+  VisualMemory memory = store.load();
+  memory.set_lattice_positions({{0, 0}, {1, 0}, {1, 1}, {0, 1}});
+  store.save(memory);
   VisualMemory loaded = load_map(file);
   EXPECT_TRUE(loaded.all_have_lattice());
-  EXPECT_EQ(loaded.place(2).lattice->y, 1.0);
-  EXPECT_THROW(save_lattice_positions(file, {{0, 0}}), UsageError);
-  EXPECT_TRUE(load_map(file).all_have_lattice());  // the failed write changed nothing
-  save_lattice_positions(file, {});
-  EXPECT_FALSE(load_map(file).place(0).lattice.has_value());
+  EXPECT_EQ(loaded.place(2).lattice_position->y(), 1.0);
+  EXPECT_THROW(memory.set_lattice_positions({{0, 0}}), UsageError);
+  EXPECT_TRUE(memory.all_have_lattice());  // the refused change changed nothing
+  // Organised again, and explored further: the new lattice and the new places in one save.
+  memory.set_lattice_positions({{0, 0}, {2, 0}, {2, 2}, {0, 2}});
+  memory = synthetic_memory(2, 10, 3, std::move(memory));
+  store.save(memory);
+  loaded = load_map(file);
+  expect_same(memory, loaded);
+  EXPECT_EQ(loaded.place(2).lattice_position->y(), 2.0);
+  EXPECT_FALSE(loaded.place(4).lattice_position);
+  memory.clear_lattice_positions();
+  store.save(memory);
+  EXPECT_FALSE(load_map(file).place(0).lattice_position.has_value());
 }
 
 // Forks a child that writes `memory` to `file` and blocks after `places_before_kill` places,
 // then kills it with SIGKILL: a writer killed in the middle of its transaction.
-void kill_writer_midway(VisualMemory memory, const fs::path& file, std::size_t places_before_kill,
+void kill_writer_midway(MapStore store, VisualMemory memory, std::size_t places_before_kill,
                         bool overwrite) {
   int pipe_fds[2];
   ASSERT_EQ(::pipe(pipe_fds), 0);
@@ -310,7 +367,7 @@ void kill_writer_midway(VisualMemory memory, const fs::path& file, std::size_t p
       }
     };
     try {
-      save_map(memory, file, options);
+      store.save(memory, options);
     } catch (...) {
     }
     ::_exit(3);  // never reached when the kill lands
@@ -326,14 +383,15 @@ void kill_writer_midway(VisualMemory memory, const fs::path& file, std::size_t p
   EXPECT_EQ(WTERMSIG(status), SIGKILL);
 }
 
-TEST_F(MapFileTest, AWriterKilledWhileAppendingLeavesThePreviousMap) {
+TEST_F(MapStoreTest, AWriterKilledWhileAppendingLeavesThePreviousMap) {
   const fs::path file = dir_ / "killed.vmem";
   VisualMemory before = synthetic_memory(20, 100);
-  save_map(before, file);
+  MapStore(file).save(before);
   // 1500 places with 8 KB thumbnails: ~20 MB, far more than SQLite's page cache, so pages of
   // the unfinished transaction reach the file and only the journal can undo them.
-  VisualMemory bigger = synthetic_memory(1500, 8000, 2, load_map(file));
-  kill_writer_midway(std::move(bigger), file, 1000, false);
+  MapStore store(file);
+  VisualMemory bigger = synthetic_memory(1500, 8000, 2, store.load());
+  kill_writer_midway(store, std::move(bigger), 1000, false);
   fs::path journal = file;
   journal += "-journal";
   EXPECT_TRUE(fs::exists(journal)) << "the kill should leave a hot journal";
@@ -342,41 +400,42 @@ TEST_F(MapFileTest, AWriterKilledWhileAppendingLeavesThePreviousMap) {
   EXPECT_FALSE(fs::exists(journal)) << "opening rolls the journal back";
 }
 
-TEST_F(MapFileTest, AWriterKilledWhileCreatingLeavesNoMapOrTheOldOne) {
+TEST_F(MapStoreTest, AWriterKilledWhileCreatingLeavesNoMapOrTheOldOne) {
   const fs::path file = dir_ / "new.vmem";
-  kill_writer_midway(synthetic_memory(600, 8000), file, 300, false);
+  kill_writer_midway(MapStore(file), synthetic_memory(600, 8000), 300, false);
   EXPECT_FALSE(fs::exists(file));
   EXPECT_NE(load_error(file).find("no such map file"), std::string::npos);
 
   VisualMemory old = synthetic_memory(5);
-  save_map(old, file);
-  kill_writer_midway(synthetic_memory(600, 8000, 4), file, 300, true);
+  MapStore(file).save(old);
+  kill_writer_midway(MapStore(file), synthetic_memory(600, 8000, 4), 300, true);
   expect_same(old, load_map(file));
   // The next write cleans up the killed writer's leftovers.
   VisualMemory next = synthetic_memory(2, 10, 5);
-  save_map(next, file, {.overwrite = true, .after_place = {}});
+  MapStore(file).save(next, {.overwrite = true, .after_place = {}});
   EXPECT_EQ(folder_entries(dir_), std::vector<std::string>{"new.vmem"});
   expect_same(next, load_map(file));
 }
 
-TEST_F(MapFileTest, ANewMapIsNeverRolledBackByTheOldMapsJournal) {
+TEST_F(MapStoreTest, ANewMapIsNeverRolledBackByTheOldMapsJournal) {
   const fs::path file = dir_ / "stale.vmem";
   fs::path journal = file;
   journal += "-journal";
   for (const bool deleted_first : {false, true}) {
     VisualMemory before = synthetic_memory(20, 100);
-    save_map(before, file, {.overwrite = true, .after_place = {}});
-    kill_writer_midway(synthetic_memory(1500, 8000, 2, load_map(file)), file, 1000, false);
+    MapStore(file).save(before, {.overwrite = true, .after_place = {}});
+    MapStore store(file);
+    kill_writer_midway(store, synthetic_memory(1500, 8000, 2, store.load()), 1000, false);
     ASSERT_TRUE(fs::exists(journal)) << "the kill should leave a hot journal";
     if (deleted_first) fs::remove(file);  // the user deletes the map, not its journal
     VisualMemory fresh = synthetic_memory(7, 10, 11);
-    save_map(fresh, file, {.overwrite = !deleted_first, .after_place = {}});
+    MapStore(file).save(fresh, {.overwrite = !deleted_first, .after_place = {}});
     EXPECT_FALSE(fs::exists(journal));
     expect_same(fresh, load_map(file));
   }
 }
 
-TEST_F(MapFileTest, ASecondWriterOfTheSameNewMapFailsAtOnce) {
+TEST_F(MapStoreTest, ASecondWriterOfTheSameNewMapFailsAtOnce) {
   const fs::path file = dir_ / "shared.vmem";
   // Another process writing the map holds the lock beside it.
   const int held = ::open((file.string() + ".lock").c_str(), O_RDWR | O_CREAT, 0644);
@@ -384,7 +443,7 @@ TEST_F(MapFileTest, ASecondWriterOfTheSameNewMapFailsAtOnce) {
   ASSERT_EQ(::flock(held, LOCK_EX), 0);
   VisualMemory memory = synthetic_memory(4);
   try {
-    save_map(memory, file);
+    MapStore(file).save(memory);
     ADD_FAILURE() << "the second writer wrote";
   } catch (const InputError& error) {
     EXPECT_NE(std::string(error.what()).find("shared.vmem: another process is writing this map"),
@@ -394,68 +453,68 @@ TEST_F(MapFileTest, ASecondWriterOfTheSameNewMapFailsAtOnce) {
   EXPECT_FALSE(fs::exists(file));
   ::close(held);
   fs::remove(file.string() + ".lock");
-  save_map(memory, file);
+  MapStore(file).save(memory);
   expect_same(memory, load_map(file));
   EXPECT_EQ(folder_entries(dir_), std::vector<std::string>{"shared.vmem"});
 
   // A map that appeared while this memory was made is not replaced by a new one.
   VisualMemory other = synthetic_memory(3, 10, 7);
   try {
-    save_map(other, file, {.overwrite = false, .after_place = {}});
+    MapStore(file).save(other, {.overwrite = false, .after_place = {}});
     ADD_FAILURE() << "the map made meanwhile was replaced";
   } catch (const Error&) {
   }
   expect_same(memory, load_map(file));
 }
 
-TEST_F(MapFileTest, OverwriteReplacesOnlyAnOmninavMapItKnows) {
+TEST_F(MapStoreTest, OverwriteReplacesOnlyAnOmninavMapItKnows) {
   const fs::path picture = dir_ / "picture.png";
   std::ofstream(picture, std::ios::binary) << "\x89PNG\r\n\x1a\n" << std::string(200, 'p');
   const auto before = fs::file_size(picture);
   VisualMemory memory = synthetic_memory(3);
-  EXPECT_THROW(save_map(memory, picture, {.overwrite = true, .after_place = {}}), UsageError);
+  EXPECT_THROW(MapStore(picture).save(memory, {.overwrite = true, .after_place = {}}), UsageError);
   EXPECT_EQ(fs::file_size(picture), before);
 
   const fs::path newer = dir_ / "newer.vmem";
   VisualMemory old = synthetic_memory(5);
-  save_map(old, newer);
+  MapStore(newer).save(old);
   sql(newer, "UPDATE schema_version SET version = 7");
   try {
-    check_map_replaceable(newer);
+    MapStore(newer).check_replaceable();
     ADD_FAILURE() << "a newer map would be replaced";
   } catch (const UsageError& error) {
     EXPECT_NE(std::string(error.what()).find("newer omninav (schema version 7)"), std::string::npos)
         << error.what();
   }
-  EXPECT_THROW(save_map(memory, newer, {.overwrite = true, .after_place = {}}), UsageError);
+  EXPECT_THROW(MapStore(newer).save(memory, {.overwrite = true, .after_place = {}}), UsageError);
 
   // A damaged map of ours is what --overwrite is for.
   const fs::path damaged = dir_ / "damaged.vmem";
   VisualMemory big = synthetic_memory(300, 2000);
-  save_map(big, damaged);
+  MapStore(damaged).save(big);
   fs::resize_file(damaged, fs::file_size(damaged) / 2);
-  save_map(memory, damaged, {.overwrite = true, .after_place = {}});
+  MapStore(damaged).save(memory, {.overwrite = true, .after_place = {}});
   expect_same(memory, load_map(damaged));
 }
 
-TEST_F(MapFileTest, AFailedNewMapLeavesNothingBehind) {
+TEST_F(MapStoreTest, AFailedNewMapLeavesNothingBehind) {
   const fs::path file = dir_ / "failed.vmem";
   VisualMemory memory = synthetic_memory(10);
   SaveOptions failing;
   failing.after_place = [](std::size_t written) {
     if (written == 5) throw std::runtime_error("the disk is full");
   };
-  EXPECT_THROW(save_map(memory, file, failing), std::runtime_error);
+  EXPECT_THROW(MapStore(file).save(memory, failing), std::runtime_error);
   EXPECT_TRUE(folder_entries(dir_).empty()) << "no map, no temporary, no lock file";
 }
 
-TEST_F(MapFileTest, AMapCannotBeWrittenOntoADevice) {
+TEST_F(MapStoreTest, AMapCannotBeWrittenOntoADevice) {
   VisualMemory memory = synthetic_memory(3);
-  EXPECT_THROW(save_map(memory, "/dev/full", {.overwrite = true, .after_place = {}}), Error);
+  EXPECT_THROW(MapStore("/dev/full").save(memory, {.overwrite = true, .after_place = {}}), Error);
   EXPECT_TRUE(fs::is_character_file("/dev/full"));
 }
 
-TEST_F(MapFileTest, EachBadFileGivesItsError) {
+TEST_F(MapStoreTest, EachBadFileGivesItsError) {
   EXPECT_NE(load_error(dir_ / "missing.vmem").find("no such map file"), std::string::npos);
 
   const fs::path text = dir_ / "text.vmem";
@@ -473,7 +532,7 @@ TEST_F(MapFileTest, EachBadFileGivesItsError) {
 
   const fs::path newer = dir_ / "newer.vmem";
   VisualMemory memory = synthetic_memory(5);
-  save_map(memory, newer);
+  MapStore(newer).save(memory);
   sql(newer, "UPDATE schema_version SET version = 7, written_by = 'omninav 9.0'");
   const std::string newer_error = load_error(newer);
   EXPECT_NE(newer_error.find("schema version 7"), std::string::npos) << newer_error;
@@ -483,26 +542,26 @@ TEST_F(MapFileTest, EachBadFileGivesItsError) {
 
   const fs::path short_blob = dir_ / "blob.vmem";
   VisualMemory memory2 = synthetic_memory(5);
-  save_map(memory2, short_blob);
+  MapStore(short_blob).save(memory2);
   sql(short_blob, "UPDATE places SET magnitude = x'0000803F' WHERE id = 3");
   EXPECT_NE(load_error(short_blob).find("corrupt map: place 3: signature blobs"), std::string::npos)
       << load_error(short_blob);
 
   const fs::path dangling = dir_ / "dangling.vmem";
   VisualMemory memory3 = synthetic_memory(5);
-  save_map(memory3, dangling);
+  MapStore(dangling).save(memory3);
   sql(dangling, "INSERT INTO edges VALUES (99, 1, 42, 'sequence', 1.0, 0.0, 1.0, NULL, 0.0, 0.0)");
   EXPECT_NE(load_error(dangling).find("names place 42"), std::string::npos) << load_error(dangling);
 
   const fs::path truncated = dir_ / "truncated.vmem";
   VisualMemory big = synthetic_memory(300, 2000);
-  save_map(big, truncated);
+  MapStore(truncated).save(big);
   fs::resize_file(truncated, fs::file_size(truncated) / 2);
   const std::string truncated_error = load_error(truncated);
   EXPECT_NE(truncated_error.find("corrupt"), std::string::npos) << truncated_error;
 
   const fs::path scribbled = dir_ / "scribbled.vmem";
-  save_map(big, scribbled);
+  MapStore(scribbled).save(big);
   {
     std::fstream file(scribbled, std::ios::binary | std::ios::in | std::ios::out);
     file.seekp(4096 * 3);
@@ -513,7 +572,7 @@ TEST_F(MapFileTest, EachBadFileGivesItsError) {
 
   const fs::path wordy = dir_ / "wordy.vmem";
   VisualMemory memory4 = synthetic_memory(5);
-  save_map(memory4, wordy);
+  MapStore(wordy).save(memory4);
   sql(wordy, "UPDATE schema_version SET version = 'two'");
   EXPECT_NE(load_error(wordy).find("schema version 'two'"), std::string::npos) << load_error(wordy);
   sql(wordy, "UPDATE schema_version SET version = 2");
@@ -529,7 +588,7 @@ TEST_F(MapFileTest, EachBadFileGivesItsError) {
 
 // A map whose numbers are not finite (NaN, infinite) or absurd (a truth 1e160 mm away) is
 // damaged: such values overflow the arithmetic of figures and lattices later.
-TEST_F(MapFileTest, NonFiniteAndAbsurdValuesAreCorrupt) {
+TEST_F(MapStoreTest, NonFiniteAndAbsurdValuesAreCorrupt) {
   const std::vector<std::pair<std::string, std::string>> cases = {
       {"UPDATE places SET magnitude = x'0000C07F' || substr(magnitude, 5) WHERE id = 2",
        "place 2: its signature holds a value that is not finite"},
@@ -549,7 +608,7 @@ TEST_F(MapFileTest, NonFiniteAndAbsurdValuesAreCorrupt) {
     VisualMemory memory = synthetic_memory(5);
     SaveOptions replace;
     replace.overwrite = true;
-    save_map(memory, map, replace);
+    MapStore(map).save(memory, replace);
     sql(map, statement);
     const std::string error = load_error(map);
     EXPECT_NE(error.find("corrupt map: " + expected), std::string::npos)

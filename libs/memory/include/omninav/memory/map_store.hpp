@@ -1,7 +1,8 @@
 #pragma once
-// The map file (DESIGN.md, Data formats: Maps; maps/README.md describes the schema): one
-// SQLite database holding the places, edges, lattice positions, runs, the parameters used and
-// a schema version.
+// The map store (DESIGN.md, Data formats: Maps; maps/README.md describes the schema): a visual
+// memory kept in one SQLite file holding the places, edges, lattice positions, runs, the
+// parameters used and a schema version. The memory (visual_memory.hpp) is the data; the store
+// reads and writes it, and remembers what of it the file already holds.
 //
 // Writes never leave a half-written map:
 //   - a new map is written whole into a temporary of a unique name next to it (a hidden
@@ -14,9 +15,9 @@
 //     "<file>.lock", removed after);
 //   - replacing (overwrite) takes only an omninav map of a schema this build knows: anything
 //     else at <file> is a UsageError;
-//   - adding to an existing map (exploring again) appends the new rows in one SQLite
-//     transaction: killed midway, SQLite's rollback journal restores the previous map the next
-//     time the file is opened.
+//   - changing an existing map (exploring again, organising) writes what changed (the new rows,
+//     the lattice, the parameters) in one SQLite transaction: killed midway, SQLite's rollback
+//     journal restores the previous map the next time the file is opened.
 // Reading refuses, each with a one-line InputError naming the file: a file that is missing,
 // not an SQLite database or damaged ("corrupt"), an SQLite database that is not an omninav map,
 // a map from a newer schema, and rows that break the schema (a signature blob of the wrong
@@ -39,32 +40,49 @@ inline constexpr int kMapSchemaVersion = 2;
 inline constexpr int kMapApplicationId = 0x4F4D4E56;
 
 struct SaveOptions {
-  // Replace an existing file with this memory instead of appending to it.
+  // Replace an existing file with this memory instead of changing it.
   bool overwrite = false;
   // Called after each place row is written (for progress, and for the test that kills a
   // writer midway).
   std::function<void(std::size_t places_written)> after_place;
 };
 
-// UsageError unless `file` is absent or an omninav map this build may replace (see above).
-// Explore calls it before the work when asked to overwrite.
-void check_map_replaceable(const std::filesystem::path& file);
+class MapStore {
+ public:
+  explicit MapStore(std::filesystem::path file);
 
-// Reads a whole map. Throws InputError as described above.
+  const std::filesystem::path& file() const { return file_; }
+
+  // UsageError unless the file is absent or an omninav map this build may replace (see
+  // above). Explore calls it before the work when asked to overwrite.
+  void check_replaceable() const;
+
+  // Reads the whole map, and remembers what the file holds. Throws InputError as described
+  // above.
+  VisualMemory load();
+
+  // Writes `memory` in one transaction, and remembers what the file then holds:
+  //   - the whole memory, as a new file, when there is none or options.overwrite;
+  //   - else what `memory` changed since this store's last load or save (nothing of it yet: an
+  //     empty map): its new runs, places and edges are appended, the lattice positions replaced
+  //     when they changed, the parameters written. UsageError when the file no longer holds
+  //     what the store remembers (another program changed it), when `memory` lacks places,
+  //     edges or runs the file has, or when its signature parameters differ from the file's.
+  void save(const VisualMemory& memory, const SaveOptions& options = {});
+
+ private:
+  // What the file holds, as of the last load or save.
+  struct OnDisk {
+    std::size_t places = 0, edges = 0, runs = 0;
+    std::vector<std::optional<Eigen::Vector2d>> lattice_positions;  // one per place
+  };
+
+  std::filesystem::path file_;
+  OnDisk on_disk_;
+};
+
+// MapStore(file).load(), for the readers of a map.
 VisualMemory load_map(const std::filesystem::path& file);
-
-// Writes `memory` to `file`: a new file when there is none (or options.overwrite), else the
-// places, edges and runs `memory` holds beyond memory.persisted() are appended in one
-// transaction, after checking that the file still holds exactly what was loaded (UsageError
-// otherwise: another program changed it) and that its parameters match. Marks `memory` as
-// persisted on success.
-void save_map(VisualMemory& memory, const std::filesystem::path& file,
-              const SaveOptions& options = {});
-
-// Replaces the lattice positions of the map in one transaction (issue 5 writes them): one per
-// place, in place order, or an empty vector to clear them. Throws UsageError on a wrong count.
-void save_lattice_positions(const std::filesystem::path& file,
-                            const std::vector<LatticePosition>& positions);
 
 // Serialises floats as little-endian IEEE 754 float32, whatever the host's byte order: the
 // layout of the signature blobs.

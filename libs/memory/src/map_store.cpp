@@ -1,4 +1,4 @@
-#include "omninav/memory/map_file.hpp"
+#include "omninav/memory/map_store.hpp"
 
 #include <fcntl.h>
 #include <sys/file.h>
@@ -7,12 +7,11 @@
 
 #include <algorithm>
 #include <bit>
-#include <cerrno>
+#include <charconv>
 #include <cmath>
 #include <cstring>
 #include <fstream>
-#include <set>
-#include <sstream>
+#include <map>
 
 #include "omninav/core/errors.hpp"
 #include "omninav/core/output_file.hpp"
@@ -147,14 +146,28 @@ double position(double value, const std::filesystem::path& file, const std::stri
   }
 }
 
+// The parameters table's key for the exploration spacing (a "note" to the readers of maps
+// written before it was typed, who read it under this name too).
+constexpr const char* kExplorationSpacingKey = "exploration.every_m";
+
+// The shortest text that reads back as the same number.
+std::string exact_text(double value) {
+  char text[32];
+  const auto end = std::to_chars(text, text + sizeof text, value).ptr;
+  return std::string(text, end);
+}
+
 std::map<std::string, std::string> parameter_rows(const VisualMemory& memory) {
   const MapParameters& p = memory.parameters();
-  std::map<std::string, std::string> rows = memory.notes();
+  std::map<std::string, std::string> rows;
   rows["signature.components"] = std::to_string(p.signature.components);
   rows["signature.colour"] = signature::to_string(p.signature.colour);
   rows["signature.normalise_brightness"] = p.signature.normalise_brightness ? "true" : "false";
   rows["signature.weights"] = signature::to_string(p.weights);
   rows["signature.panorama_rows"] = std::to_string(p.panorama_rows);
+  if (memory.exploration_spacing_m()) {
+    rows[kExplorationSpacingKey] = exact_text(*memory.exploration_spacing_m());
+  }
   return rows;
 }
 
@@ -208,7 +221,7 @@ void insert_runs(Database& db, const VisualMemory& memory, std::size_t first) {
         .bind(3, run.started_utc)
         .bind(4, run.frames)
         .bind(5, run.places)
-        .bind(6, run.heading_source)
+        .bind(6, to_string(run.heading_source))
         .bind(7, run.description)
         .run();
   }
@@ -223,7 +236,6 @@ void insert_places(Database& db, const VisualMemory& memory, std::size_t first,
   Statement truth = db.prepare(
       "INSERT INTO place_truth (place_id, x_m, y_m, z_m, heading_rad, pitch_rad, roll_rad) "
       "VALUES (?, ?, ?, ?, ?, ?, ?)");
-  Statement lattice = db.prepare("INSERT INTO lattice_positions (place_id, x, y) VALUES (?, ?, ?)");
   for (std::size_t i = first; i < memory.place_count(); ++i) {
     const Place& p = memory.place(i);
     const auto magnitude = floats_to_le_bytes(p.signature.magnitude);
@@ -258,8 +270,20 @@ void insert_places(Database& db, const VisualMemory& memory, std::size_t first,
           .bind(7, p.truth->roll_rad)
           .run();
     }
-    if (p.lattice) lattice.bind(1, id).bind(2, p.lattice->x).bind(3, p.lattice->y).run();
     if (options.after_place) options.after_place(i + 1 - first);
+  }
+}
+
+void insert_lattice_positions(Database& db, const VisualMemory& memory, std::size_t first) {
+  Statement insert = db.prepare("INSERT INTO lattice_positions (place_id, x, y) VALUES (?, ?, ?)");
+  for (std::size_t i = first; i < memory.place_count(); ++i) {
+    const std::optional<Eigen::Vector2d>& position = memory.place(i).lattice_position;
+    if (position) {
+      insert.bind(1, static_cast<std::int64_t>(i))
+          .bind(2, position->x())
+          .bind(3, position->y())
+          .run();
+    }
   }
 }
 
@@ -291,6 +315,41 @@ void write_parameters(Database& db, const VisualMemory& memory) {
       "INSERT INTO parameters (key, value) VALUES (?, ?) "
       "ON CONFLICT(key) DO UPDATE SET value = excluded.value");
   for (const auto& [key, value] : parameter_rows(memory)) upsert.bind(1, key).bind(2, value).run();
+}
+
+void check_replaceable(const std::filesystem::path& file) {
+  std::error_code error;
+  if (!std::filesystem::exists(file, error)) return;
+  const auto refuse = [&](const std::string& what) {
+    throw UsageError(file.string() + ": " + what + "; not replacing it (only an omninav map is)");
+  };
+  if (!std::filesystem::is_regular_file(file, error)) refuse("is not a regular file");
+  // SQLite's header: its magic, then the application id, big-endian, at byte 68.
+  char header[72] = {};
+  {
+    std::ifstream stream(file, std::ios::binary);
+    stream.read(header, sizeof header);
+    if (stream.gcount() != sizeof header) refuse("is not an omninav map");
+  }
+  const auto byte = [&](int i) {
+    return static_cast<std::uint32_t>(static_cast<unsigned char>(header[i]));
+  };
+  const std::uint32_t id = byte(68) << 24 | byte(69) << 16 | byte(70) << 8 | byte(71);
+  if (std::memcmp(header, "SQLite format 3", 16) != 0 ||
+      id != static_cast<std::uint32_t>(kMapApplicationId)) {
+    refuse("is not an omninav map");
+  }
+  std::int64_t version = 0;
+  try {
+    Database db(file, Database::Mode::kReadOnly);
+    Statement row = db.prepare("SELECT version FROM schema_version");
+    if (row.step()) version = row.integer(0);
+  } catch (const InputError&) {
+    return;  // a damaged map of ours: replacing it is what the user asked for
+  }
+  if (version > kMapSchemaVersion) {
+    refuse("was written by a newer omninav (schema version " + std::to_string(version) + ")");
+  }
 }
 
 // Held while a new map is written, on "<map>.lock" beside it: a second writer of the same map
@@ -330,7 +389,7 @@ class WriteLock {
   int fd_ = -1;
 };
 
-void write_new(VisualMemory& memory, const std::filesystem::path& file,
+void write_new(const VisualMemory& memory, const std::filesystem::path& file,
                const SaveOptions& options) {
   std::error_code ignored;
   if (file.has_parent_path()) std::filesystem::create_directories(file.parent_path(), ignored);
@@ -338,7 +397,7 @@ void write_new(VisualMemory& memory, const std::filesystem::path& file,
   if (!options.overwrite && std::filesystem::exists(file, ignored)) {
     throw InputError(file.string() + ": another process made this map meanwhile; not replacing it");
   }
-  check_map_replaceable(file);
+  check_replaceable(file);
   remove_stale_temporaries(file);  // a killed writer's, under the lock no one else's
   OutputFile output(file);
   if (output.in_place()) throw InputError(file.string() + ": is not a regular file");
@@ -358,6 +417,7 @@ void write_new(VisualMemory& memory, const std::filesystem::path& file,
     write_parameters(db, memory);
     insert_runs(db, memory, 0);
     insert_places(db, memory, 0, options);
+    insert_lattice_positions(db, memory, 0);
     insert_edges(db, memory, 0);
     db.exec("COMMIT");
   }
@@ -371,7 +431,14 @@ void write_new(VisualMemory& memory, const std::filesystem::path& file,
   output.commit();
 }
 
-void append(VisualMemory& memory, const std::filesystem::path& file, const SaveOptions& options) {
+// What `memory` changes of the map on disk, in step with what the store remembers of it.
+struct Change {
+  std::size_t places = 0, edges = 0, runs = 0;  // rows the file holds already
+  bool lattice_changed = false;                 // a place it holds has moved on the lattice
+};
+
+void append(const VisualMemory& memory, const std::filesystem::path& file,
+            const SaveOptions& options, const Change& change) {
   Database db(file, Database::Mode::kReadWrite);
   const std::int64_t version = check_map(db);
   db.exec("PRAGMA journal_mode = DELETE");
@@ -379,10 +446,9 @@ void append(VisualMemory& memory, const std::filesystem::path& file, const SaveO
   db.exec("PRAGMA foreign_keys = ON");
   db.exec("BEGIN IMMEDIATE");
   try {
-    const VisualMemory::Persisted& persisted = memory.persisted();
-    if (count_rows(db, "places") != static_cast<std::int64_t>(persisted.places) ||
-        count_rows(db, "edges") != static_cast<std::int64_t>(persisted.edges) ||
-        count_rows(db, "runs") != static_cast<std::int64_t>(persisted.runs)) {
+    if (count_rows(db, "places") != static_cast<std::int64_t>(change.places) ||
+        count_rows(db, "edges") != static_cast<std::int64_t>(change.edges) ||
+        count_rows(db, "runs") != static_cast<std::int64_t>(change.runs)) {
       throw UsageError(file.string() +
                        ": the map on disk is not the one this memory was read from (another "
                        "program changed it?); not writing");
@@ -409,9 +475,11 @@ void append(VisualMemory& memory, const std::filesystem::path& file, const SaveO
           .bind(2, std::string(OMNINAV_VERSION_STRING))
           .run();
     }
-    insert_runs(db, memory, persisted.runs);
-    insert_places(db, memory, persisted.places, options);
-    insert_edges(db, memory, persisted.edges);
+    insert_runs(db, memory, change.runs);
+    insert_places(db, memory, change.places, options);
+    if (change.lattice_changed) db.exec("DELETE FROM lattice_positions");
+    insert_lattice_positions(db, memory, change.lattice_changed ? 0 : change.places);
+    insert_edges(db, memory, change.edges);
     db.exec("COMMIT");
   } catch (...) {
     sqlite3_exec(db.handle(), "ROLLBACK", nullptr, nullptr, nullptr);
@@ -468,44 +536,10 @@ Place read_place(const Statement& row, const std::filesystem::path& file, std::s
   return p;
 }
 
-}  // namespace
-
-void check_map_replaceable(const std::filesystem::path& file) {
-  std::error_code error;
-  if (!std::filesystem::exists(file, error)) return;
-  const auto refuse = [&](const std::string& what) {
-    throw UsageError(file.string() + ": " + what + "; not replacing it (only an omninav map is)");
-  };
-  if (!std::filesystem::is_regular_file(file, error)) refuse("is not a regular file");
-  // SQLite's header: its magic, then the application id, big-endian, at byte 68.
-  char header[72] = {};
-  {
-    std::ifstream stream(file, std::ios::binary);
-    stream.read(header, sizeof header);
-    if (stream.gcount() != sizeof header) refuse("is not an omninav map");
-  }
-  const auto byte = [&](int i) {
-    return static_cast<std::uint32_t>(static_cast<unsigned char>(header[i]));
-  };
-  const std::uint32_t id = byte(68) << 24 | byte(69) << 16 | byte(70) << 8 | byte(71);
-  if (std::memcmp(header, "SQLite format 3", 16) != 0 ||
-      id != static_cast<std::uint32_t>(kMapApplicationId)) {
-    refuse("is not an omninav map");
-  }
-  std::int64_t version = 0;
-  try {
-    Database db(file, Database::Mode::kReadOnly);
-    Statement row = db.prepare("SELECT version FROM schema_version");
-    if (row.step()) version = row.integer(0);
-  } catch (const InputError&) {
-    return;  // a damaged map of ours: replacing it is what the user asked for
-  }
-  if (version > kMapSchemaVersion) {
-    refuse("was written by a newer omninav (schema version " + std::to_string(version) + ")");
-  }
-}
-
-VisualMemory load_map(const std::filesystem::path& file) {
+// Opens a map for reading. Read-write when possible: a map left with a hot journal by a killed
+// writer is rolled back to its previous state when opened, which a read-only connection cannot
+// do.
+Database open_for_reading(const std::filesystem::path& file) {
   std::error_code error;
   if (!std::filesystem::exists(file, error)) {
     throw InputError(file.string() + ": no such map file");
@@ -513,176 +547,214 @@ VisualMemory load_map(const std::filesystem::path& file) {
   if (!std::filesystem::is_regular_file(file, error)) {
     throw InputError(file.string() + ": is not a map file (not a regular file)");
   }
-  // Read-write when possible: a map left with a hot journal by a killed writer is rolled back
-  // to its previous state when opened, which a read-only connection cannot do.
   const bool writable = ::access(file.c_str(), W_OK) == 0;
-  Database db(file, writable ? Database::Mode::kReadWrite : Database::Mode::kReadOnly);
-  const std::int64_t version = check_map(db);
-  db.exec("BEGIN");  // one consistent snapshot
+  return Database(file, writable ? Database::Mode::kReadWrite : Database::Mode::kReadOnly);
+}
 
-  std::map<std::string, std::string> parameters;
+// The parameters table: what every place shares, and the exploration spacing. Keys this build
+// does not know are left in the file and not read.
+VisualMemory read_parameters(Database& db) {
+  std::map<std::string, std::string> rows;
   {
-    Statement rows = db.prepare("SELECT key, value FROM parameters");
-    while (rows.step()) parameters[rows.text(0)] = rows.text(1);
+    Statement read = db.prepare("SELECT key, value FROM parameters");
+    while (read.step()) rows[read.text(0)] = read.text(1);
   }
-  MapParameters map_parameters;
+  const auto get = [&](const std::string& key) {
+    const auto found = rows.find(key);
+    if (found == rows.end()) throw InputError("the parameter " + key + " is missing");
+    return found->second;
+  };
   try {
-    const auto get = [&](const std::string& key) {
-      const auto found = parameters.find(key);
-      if (found == parameters.end()) throw InputError("the parameter " + key + " is missing");
-      return found->second;
-    };
-    map_parameters.signature.components =
+    MapParameters parameters;
+    parameters.signature.components =
         parse_int(get("signature.components"), "signature.components");
-    map_parameters.signature.colour = signature::colour_mode_from_string(get("signature.colour"));
+    parameters.signature.colour = signature::colour_mode_from_string(get("signature.colour"));
     const std::string normalise = get("signature.normalise_brightness");
     if (normalise != "true" && normalise != "false") {
       throw InputError("signature.normalise_brightness is '" + normalise + "'");
     }
-    map_parameters.signature.normalise_brightness = normalise == "true";
-    map_parameters.weights =
+    parameters.signature.normalise_brightness = normalise == "true";
+    parameters.weights =
         signature::parse_component_weights(get("signature.weights"), "signature.weights");
-    map_parameters.panorama_rows =
-        parse_int(get("signature.panorama_rows"), "signature.panorama_rows");
+    parameters.panorama_rows = parse_int(get("signature.panorama_rows"), "signature.panorama_rows");
+    VisualMemory memory(parameters);
+    const auto spacing = rows.find(kExplorationSpacingKey);
+    if (spacing != rows.end()) {
+      const double every_m = parse_double(spacing->second, kExplorationSpacingKey);
+      if (!std::isfinite(every_m)) {
+        throw InputError(std::string(kExplorationSpacingKey) + " is " + spacing->second);
+      }
+      // A spacing of 0 (none) was once possible to store: it says nothing.
+      if (every_m > 0.0) memory.set_exploration_spacing_m(every_m);
+    }
+    return memory;
   } catch (const std::exception& e) {
-    throw InputError(corrupt(file, e.what()));
+    throw InputError(corrupt(db.file(), e.what()));
   }
-  VisualMemory memory(map_parameters);
-  for (const auto& [key, value] : parameters) {
-    if (key.rfind("signature.", 0) != 0) memory.set_note(key, value);
-  }
+}
 
-  {
-    Statement rows = db.prepare(
-        "SELECT id, input, started_utc, frames, places, heading_source, description FROM runs "
-        "ORDER BY id");
-    while (rows.step()) {
-      Run run;
-      run.id = static_cast<int>(rows.integer(0));
-      run.input = rows.text(1);
-      run.started_utc = rows.text(2);
-      run.frames = static_cast<int>(rows.integer(3));
-      run.places = static_cast<int>(rows.integer(4));
-      run.heading_source = rows.text(5);
-      run.description = rows.text(6);
-      memory.runs().push_back(run);
+std::vector<Run> read_runs(Database& db) {
+  Statement rows = db.prepare(
+      "SELECT id, input, started_utc, frames, places, heading_source, description FROM runs "
+      "ORDER BY id");
+  std::vector<Run> runs;
+  while (rows.step()) {
+    Run run;
+    run.id = static_cast<int>(rows.integer(0));
+    run.input = rows.text(1);
+    run.started_utc = rows.text(2);
+    run.frames = static_cast<int>(rows.integer(3));
+    run.places = static_cast<int>(rows.integer(4));
+    try {
+      run.heading_source = heading_source_from_string(rows.text(5));
+    } catch (const InputError& error) {
+      throw InputError(corrupt(db.file(), "run " + std::to_string(run.id) + ": " + error.what()));
     }
+    run.description = rows.text(6);
+    runs.push_back(run);
   }
-  {
-    Statement rows = db.prepare(
-        "SELECT id, run_id, source, frame_index, time_s, heading_rad, heading_source, "
-        "signature_rows, signature_channels, signature_components, panorama_width_px, magnitude, "
-        "phase_rad, thumbnail_png FROM places ORDER BY id");
-    while (rows.step()) {
-      Place place = read_place(rows, file, memory.place_count());
-      try {
-        memory.add_place(std::move(place));
-      } catch (const UsageError& e) {
-        throw InputError(
-            corrupt(file, "place " + std::to_string(memory.place_count()) + ": " + e.what()));
-      }
+  return runs;
+}
+
+std::vector<Place> read_places(Database& db) {
+  Statement rows = db.prepare(
+      "SELECT id, run_id, source, frame_index, time_s, heading_rad, heading_source, "
+      "signature_rows, signature_channels, signature_components, panorama_width_px, magnitude, "
+      "phase_rad, thumbnail_png FROM places ORDER BY id");
+  std::vector<Place> places;
+  while (rows.step()) places.push_back(read_place(rows, db.file(), places.size()));
+  return places;
+}
+
+// The place a row of `table` names, which must be one of `places`.
+PlaceIndex place_of(std::int64_t id, std::size_t places, const std::filesystem::path& file,
+                    const std::string& table) {
+  if (id < 0 || id >= static_cast<std::int64_t>(places)) {
+    throw InputError(
+        corrupt(file, table + " names place " + std::to_string(id) + ", which does not exist"));
+  }
+  return static_cast<PlaceIndex>(id);
+}
+
+void read_truth(Database& db, std::vector<Place>& places) {
+  const std::filesystem::path& file = db.file();
+  Statement rows = db.prepare(
+      "SELECT place_id, x_m, y_m, z_m, heading_rad, pitch_rad, roll_rad FROM place_truth");
+  while (rows.step()) {
+    const PlaceIndex place = place_of(rows.integer(0), places.size(), file, "place_truth");
+    const std::string what = "place_truth of place " + std::to_string(place);
+    places[place].truth = CameraPose{position(rows.real(1), file, what + ": x_m"),
+                                     position(rows.real(2), file, what + ": y_m"),
+                                     position(rows.real(3), file, what + ": z_m"),
+                                     finite(rows.real(4), file, what + ": heading_rad"),
+                                     finite(rows.real(5), file, what + ": pitch_rad"),
+                                     finite(rows.real(6), file, what + ": roll_rad")};
+  }
+}
+
+void read_lattice_positions(Database& db, std::vector<Place>& places) {
+  const std::filesystem::path& file = db.file();
+  Statement rows = db.prepare("SELECT place_id, x, y FROM lattice_positions");
+  while (rows.step()) {
+    const PlaceIndex place = place_of(rows.integer(0), places.size(), file, "lattice_positions");
+    const std::string what = "lattice position of place " + std::to_string(place);
+    places[place].lattice_position = Eigen::Vector2d(position(rows.real(1), file, what + ": x"),
+                                                     position(rows.real(2), file, what + ": y"));
+  }
+}
+
+void read_edges(Database& db, std::int64_t version, VisualMemory& memory) {
+  const std::filesystem::path& file = db.file();
+  Statement rows = db.prepare(
+      "SELECT from_place, to_place, kind, dissimilarity, relative_heading_rad, "
+      "heading_confidence, motion_bearing_rad, motion_bearing_stddev_rad, parallax_rad "
+      "FROM edges ORDER BY id");
+  for (std::size_t index = 0; rows.step(); ++index) {
+    Edge edge;
+    try {
+      edge.kind = edge_kind_from_string(rows.text(2));
+      // Version 1 called every edge a sequence, also between a grid database's images; read
+      // as listed, such an edge is one step only where the two images look it.
+      if (version < 2) edge.kind = EdgeKind::kListed;
+    } catch (const InputError& e) {
+      throw InputError(corrupt(file, e.what()));
     }
+    const std::string what = "edge " + std::to_string(index);
+    edge.dissimilarity = finite(rows.real(3), file, what + " dissimilarity");
+    edge.relative_heading_rad = finite(rows.real(4), file, what + " relative_heading_rad");
+    edge.heading_confidence = finite(rows.real(5), file, what + " heading_confidence");
+    edge.motion_bearing_rad = finite(rows.optional_real(6), file, what + " motion_bearing_rad");
+    edge.motion_bearing_stddev_rad =
+        finite(rows.real(7), file, what + " motion_bearing_stddev_rad");
+    edge.parallax_rad = finite(rows.real(8), file, what + " parallax_rad");
+    const std::size_t places = memory.place_count();
+    memory.add_edge(place_of(rows.integer(0), places, file, "edges"),
+                    place_of(rows.integer(1), places, file, "edges"), edge);
   }
-  const auto require_place = [&](std::int64_t id, const std::string& table) {
-    if (id < 0 || id >= static_cast<std::int64_t>(memory.place_count())) {
+}
+
+std::vector<std::optional<Eigen::Vector2d>> lattice_positions_of(const VisualMemory& memory) {
+  std::vector<std::optional<Eigen::Vector2d>> positions;
+  for (PlaceIndex i = 0; i < memory.place_count(); ++i) {
+    positions.push_back(memory.place(i).lattice_position);
+  }
+  return positions;
+}
+
+}  // namespace
+
+MapStore::MapStore(std::filesystem::path file) : file_(std::move(file)) {}
+
+void MapStore::check_replaceable() const {
+  memory::check_replaceable(file_);
+}
+
+VisualMemory MapStore::load() {
+  Database db = open_for_reading(file_);
+  const std::int64_t version = check_map(db);
+  db.exec("BEGIN");  // one consistent snapshot
+  VisualMemory memory = read_parameters(db);
+  for (Run& run : read_runs(db)) memory.add_run(std::move(run));
+  std::vector<Place> places = read_places(db);
+  read_truth(db, places);
+  read_lattice_positions(db, places);
+  for (Place& place : places) {
+    try {
+      memory.add_place(std::move(place));
+    } catch (const UsageError& e) {
       throw InputError(
-          corrupt(file, table + " names place " + std::to_string(id) + ", which does not exist"));
-    }
-    return static_cast<PlaceIndex>(id);
-  };
-  {
-    Statement rows = db.prepare(
-        "SELECT place_id, x_m, y_m, z_m, heading_rad, pitch_rad, roll_rad FROM place_truth");
-    while (rows.step()) {
-      const PlaceIndex place = require_place(rows.integer(0), "place_truth");
-      const std::string what = "place_truth of place " + std::to_string(place);
-      CameraPose pose{position(rows.real(1), file, what + ": x_m"),
-                      position(rows.real(2), file, what + ": y_m"),
-                      position(rows.real(3), file, what + ": z_m"),
-                      finite(rows.real(4), file, what + ": heading_rad"),
-                      finite(rows.real(5), file, what + ": pitch_rad"),
-                      finite(rows.real(6), file, what + ": roll_rad")};
-      memory.place(place).truth = pose;
+          corrupt(file_, "place " + std::to_string(memory.place_count()) + ": " + e.what()));
     }
   }
-  {
-    Statement rows = db.prepare("SELECT place_id, x, y FROM lattice_positions");
-    while (rows.step()) {
-      const PlaceIndex place = require_place(rows.integer(0), "lattice_positions");
-      const std::string what = "lattice position of place " + std::to_string(place);
-      memory.place(place).lattice = LatticePosition{position(rows.real(1), file, what + ": x"),
-                                                    position(rows.real(2), file, what + ": y")};
-    }
-  }
-  {
-    Statement rows = db.prepare(
-        "SELECT from_place, to_place, kind, dissimilarity, relative_heading_rad, "
-        "heading_confidence, motion_bearing_rad, motion_bearing_stddev_rad, parallax_rad "
-        "FROM edges ORDER BY id");
-    for (std::size_t index = 0; rows.step(); ++index) {
-      Edge edge;
-      try {
-        edge.kind = edge_kind_from_string(rows.text(2));
-        // Version 1 called every edge a sequence, also between a grid database's images; read
-        // as listed, such an edge is one step only where the two images look it.
-        if (version < 2) edge.kind = EdgeKind::kListed;
-      } catch (const InputError& e) {
-        throw InputError(corrupt(file, e.what()));
-      }
-      const std::string what = "edge " + std::to_string(index);
-      edge.dissimilarity = finite(rows.real(3), file, what + " dissimilarity");
-      edge.relative_heading_rad = finite(rows.real(4), file, what + " relative_heading_rad");
-      edge.heading_confidence = finite(rows.real(5), file, what + " heading_confidence");
-      edge.motion_bearing_rad = finite(rows.optional_real(6), file, what + " motion_bearing_rad");
-      edge.motion_bearing_stddev_rad =
-          finite(rows.real(7), file, what + " motion_bearing_stddev_rad");
-      edge.parallax_rad = finite(rows.real(8), file, what + " parallax_rad");
-      memory.add_edge(require_place(rows.integer(0), "edges"),
-                      require_place(rows.integer(1), "edges"), edge);
-    }
-  }
+  read_edges(db, version, memory);
   db.exec("COMMIT");
-  memory.mark_persisted();
+  on_disk_ = {memory.place_count(), memory.edge_count(), memory.runs().size(),
+              lattice_positions_of(memory)};
   return memory;
 }
 
-void save_map(VisualMemory& memory, const std::filesystem::path& file, const SaveOptions& options) {
+void MapStore::save(const VisualMemory& memory, const SaveOptions& options) {
   std::error_code error;
-  if (options.overwrite || !std::filesystem::exists(file, error)) {
-    write_new(memory, file, options);
+  if (options.overwrite || !std::filesystem::exists(file_, error)) {
+    write_new(memory, file_, options);
   } else {
-    append(memory, file, options);
+    if (memory.place_count() < on_disk_.places || memory.edge_count() < on_disk_.edges ||
+        memory.runs().size() < on_disk_.runs) {
+      throw UsageError(file_.string() +
+                       ": this memory holds less than the map it was read from; not writing");
+    }
+    const std::vector<std::optional<Eigen::Vector2d>> lattice = lattice_positions_of(memory);
+    const bool lattice_changed = !std::equal(on_disk_.lattice_positions.begin(),
+                                             on_disk_.lattice_positions.end(), lattice.begin());
+    append(memory, file_, options,
+           {on_disk_.places, on_disk_.edges, on_disk_.runs, lattice_changed});
   }
-  memory.mark_persisted();
+  on_disk_ = {memory.place_count(), memory.edge_count(), memory.runs().size(),
+              lattice_positions_of(memory)};
 }
 
-void save_lattice_positions(const std::filesystem::path& file,
-                            const std::vector<LatticePosition>& positions) {
-  Database db(file, Database::Mode::kReadWrite);
-  check_map(db);
-  db.exec("PRAGMA journal_mode = DELETE");
-  db.exec("PRAGMA synchronous = FULL");
-  db.exec("BEGIN IMMEDIATE");
-  try {
-    const std::int64_t places = count_rows(db, "places");
-    if (!positions.empty() && static_cast<std::int64_t>(positions.size()) != places) {
-      throw UsageError(file.string() + ": " + std::to_string(positions.size()) +
-                       " lattice positions for a map of " + std::to_string(places) + " places");
-    }
-    db.exec("DELETE FROM lattice_positions");
-    Statement insert =
-        db.prepare("INSERT INTO lattice_positions (place_id, x, y) VALUES (?, ?, ?)");
-    for (std::size_t i = 0; i < positions.size(); ++i) {
-      insert.bind(1, static_cast<std::int64_t>(i))
-          .bind(2, positions[i].x)
-          .bind(3, positions[i].y)
-          .run();
-    }
-    db.exec("COMMIT");
-  } catch (...) {
-    sqlite3_exec(db.handle(), "ROLLBACK", nullptr, nullptr, nullptr);
-    throw;
-  }
+VisualMemory load_map(const std::filesystem::path& file) {
+  return MapStore(file).load();
 }
 
 }  // namespace omninav::memory

@@ -1,4 +1,4 @@
-#include "omninav/memory/figures.hpp"
+#include "omninav/report/memory_figures.hpp"
 
 #include <gtest/gtest.h>
 
@@ -6,15 +6,15 @@
 
 #include "omninav/core/errors.hpp"
 
-namespace omninav::memory {
+namespace omninav::report {
 namespace {
 
-// A map built in memory is not read through load_map, which refuses absurd positions: the
+// A map built in memory is not read through memory::load_map, which refuses absurd positions: the
 // figures check them themselves, before any distance overflows or a loop over distances spins.
 TEST(SignatureFigures, RefuseAnAbsurdTruthBeforeWritingAnything) {
-  VisualMemory memory;
+  memory::VisualMemory memory;
   for (int i = 0; i < 8; ++i) {
-    Place place;
+    memory::Place place;
     place.signature = {45, 1, 15, 360, std::vector<float>(675, 1.f), std::vector<float>(675, 0.f)};
     place.source = "image_" + std::to_string(i) + ".png";
     place.frame_index = i;
@@ -37,4 +37,4 @@ TEST(SignatureFigures, RefuseAnAbsurdTruthBeforeWritingAnything) {
 }
 
 }  // namespace
-}  // namespace omninav::memory
+}  // namespace omninav::report

@@ -7,6 +7,7 @@
 //     (Fig. 6) with the leave-one-out localisation rate against it, and dissimilarity against
 //     distance (Fig. 7). docs/memory.md shows them with the commands that make them.
 
+#include <Eigen/Core>
 #include <filesystem>
 #include <opencv2/core.hpp>
 #include <optional>
@@ -16,15 +17,17 @@
 #include "omninav/memory/localisation.hpp"
 #include "omninav/memory/visual_memory.hpp"
 
-namespace omninav::memory {
+namespace omninav::report {
 
 // One panel per level, side by side: places as discs coloured by Eq. 3's similarity at that
 // level over all places (dark blue 0 .. yellow 1000, OpenCV's viridis), the candidate set of
 // `result` shaded grey under them, the best place ringed, the position estimate as a black
-// diamond and `truth` (the query's true position, when known) as a red cross. Throws
-// UsageError when the map has no positions (no lattice, no ground truth).
-cv::Mat localisation_figure(const Localiser& localiser, const signature::Signature& query,
-                            const Localisation& result, std::optional<cv::Point2d> truth,
+// diamond and `query_position` (the query's true position, when known, in the frame of the
+// places' positions) as a red cross. Throws UsageError when the map has no positions (no
+// lattice, no ground truth).
+cv::Mat localisation_figure(const memory::Localiser& localiser, const signature::Signature& query,
+                            const memory::Localisation& result,
+                            std::optional<Eigen::Vector2d> query_position,
                             const std::string& title);
 
 struct SignatureFigures {
@@ -36,7 +39,7 @@ struct SignatureFigures {
 // (.png, with their data as .csv) into `folder`. The map's places must have ground truth and
 // source images that can still be read (the explore command stores absolute paths). Throws
 // UsageError otherwise.
-SignatureFigures write_signature_figures(const VisualMemory& memory,
+SignatureFigures write_signature_figures(const memory::VisualMemory& memory,
                                          const std::filesystem::path& folder);
 
-}  // namespace omninav::memory
+}  // namespace omninav::report
