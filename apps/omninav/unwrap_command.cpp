@@ -1,5 +1,7 @@
 // omninav unwrap: raw omnidirectional images in, panoramas (DESIGN.md's column convention) out.
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
@@ -94,8 +96,7 @@ omni::UnwrapParams apply_overrides(omni::UnwrapParams params, const UnwrapOption
 // `<stem of the source>.png`, or `frame_00012.png` for a video; a stem seen before (a.jpg and
 // a.png in one folder) gets the frame index appended rather than overwriting the first.
 std::string output_name(const io::Frame& frame, bool video, std::set<std::string>& used) {
-  char numbered[32];
-  std::snprintf(numbered, sizeof numbered, "frame_%05d", frame.index);
+  const std::string numbered = fmt::format("frame_{:05}", frame.index);
   std::string stem = video ? numbered : fs::path(frame.source).stem().string();
   if (stem.empty()) stem = numbered;
   if (!used.insert(stem).second) {

@@ -276,8 +276,7 @@ class WorldRun {
     args.insert(args.end(), {"--out", map_file.string(), "--overwrite"});
     memory::VisualMemory memory(memory_config.map);
     std::unique_ptr<io::SequenceReader> reader = io::open_sequence(input);
-    const auto* database = dynamic_cast<const io::BobDatabaseReader*>(reader.get());
-    const bool is_grid = database && database->info().is_grid;
+    const bool is_grid = reader->is_grid();
     const memory::Run run =
         memory::explore_frames(memory, params, input.string(), is_grid, false, reader->size(),
                                [&reader] { return reader->next(); });
