@@ -30,6 +30,20 @@ CLI::Validator NumberRange(double min, double max) {
       range);
 }
 
+void add_format_option(CLI::App* command, OutputFormat& format) {
+  command
+      ->add_option_function<std::string>(
+          "--format",
+          [&format](const std::string& text) {
+            format = text == "csv"    ? OutputFormat::kCsv
+                     : text == "json" ? OutputFormat::kJson
+                                      : OutputFormat::kText;
+          },
+          "text, csv or json")
+      ->check(CLI::IsMember({"text", "csv", "json"}))
+      ->default_str("text");
+}
+
 // The output folder must not be a file, nor the folder the input images live in (the PNGs
 // could overwrite them), nor hold anything unless --force.
 void check_output_folder(const std::filesystem::path& out, bool force,

@@ -28,7 +28,7 @@ struct LocaliseOptions {
   std::vector<std::filesystem::path> queries;
   std::optional<std::string> levels;  // none: memory.yaml
   int top_k = 0;                      // 0: memory.yaml
-  std::string format = "text";
+  OutputFormat format = OutputFormat::kText;
   std::filesystem::path plot;
   bool exhaustive = false;
   bool unwrap = false;
@@ -311,16 +311,17 @@ void run_localise(const GlobalOptions& global, const LocaliseOptions& options) {
   }
 
   const std::vector<int>& levels = params.hierarchy.levels;
-  if (options.format == "csv") {
+  if (options.format == OutputFormat::kCsv) {
     print_csv_header(levels);
     for (const QueryResult& q : results) print_csv(q);
-  } else if (options.format == "json") {
+  } else if (options.format == OutputFormat::kJson) {
     std::cout << json_text(localisation_json(options.map, levels, results, score)) << "\n";
   } else {
     for (const QueryResult& q : results) print_text(q, map);
     if (score && score->queries() > 1) std::cout << score->summary(levels);
   }
-  if (score && score->queries() > 0 && options.format != "text") log_info(score->summary(levels));
+  if (score && score->queries() > 0 && options.format != OutputFormat::kText)
+    log_info(score->summary(levels));
   if (!options.plot.empty()) {
     log_info("wrote " + std::to_string(results.size()) + " figure" +
              (results.size() == 1 ? "" : "s") + " like Figs. 8-10 to " +
@@ -350,9 +351,7 @@ void add_localise_command(CLI::App& app, const GlobalOptions& global) {
                       "Components compared at each level, e.g. 2,5,15 (default: memory.yaml)");
   command->add_option("--top", options->top_k, "Best places to report (default: memory.yaml)")
       ->check(NumberRange(1, 100000));
-  command->add_option("--format", options->format, "text, csv or json")
-      ->check(CLI::IsMember({"text", "csv", "json"}))
-      ->capture_default_str();
+  add_format_option(command, options->format);
   command->add_option("--plot", options->plot,
                       "Write a PNG like Figs. 8-10 per query (several queries: FILE_0000.png, "
                       "...); needs place positions");

@@ -24,7 +24,7 @@ struct RouteOptions {
   std::filesystem::path map;
   std::filesystem::path from;
   std::filesystem::path to;
-  std::string format = "text";
+  OutputFormat format = OutputFormat::kText;
   std::filesystem::path plot;  // empty: <map>.route.png
 };
 
@@ -183,9 +183,9 @@ void run_route(const GlobalOptions& global, const RouteOptions& options) {
                      fixed(navigation.route.neighbour_spacings, 1) + " spacings)");
   }
   const Route route = make_route(memory, places, plan, from, to);
-  if (options.format == "csv") {
+  if (options.format == OutputFormat::kCsv) {
     print_csv(route);
-  } else if (options.format == "json") {
+  } else if (options.format == OutputFormat::kJson) {
     print_json(route, options);
   } else {
     print_text(route, options);
@@ -218,9 +218,7 @@ void add_route_command(CLI::App& app, const GlobalOptions& global) {
   command->add_option("map", options->map, "An organised map (.vmem)")->required();
   command->add_option("--from", options->from, "The current image (a panorama)")->required();
   command->add_option("--to", options->to, "The goal image (a panorama)")->required();
-  command->add_option("--format", options->format, "text, csv or json")
-      ->check(CLI::IsMember({"text", "csv", "json"}))
-      ->capture_default_str();
+  add_format_option(command, options->format);
   command->add_option("--plot", options->plot, "The route picture (default: <map>.route.png)");
   command->callback([&global, options] { run_route(global, *options); });
 }

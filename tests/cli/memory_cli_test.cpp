@@ -131,6 +131,7 @@ TEST_F(ExploreLocaliseExport, LocaliseErrorsNameTheFile) {
   EXPECT_NE(errors_.find("missing.vmem"), std::string::npos) << errors_;
 
   EXPECT_EQ(run_omninav({"localise", map_.string(), queries_.string(), "--format", "yaml"}), 2);
+  EXPECT_NE(errors_.find("--format: yaml not in {text,csv,json}"), std::string::npos) << errors_;
   EXPECT_EQ(run_omninav({"localise", map_.string(), queries_.string(), "--levels", "15,5"}), 2)
       << "levels must increase";
   EXPECT_NE(errors_.find("levels"), std::string::npos) << errors_;

@@ -16,6 +16,7 @@
 #include "omninav/compass/evaluation.hpp"
 #include "omninav/core/angles.hpp"
 #include "omninav/core/errors.hpp"
+#include "omninav/core/format.hpp"
 #include "omninav/core/log.hpp"
 #include "omninav/eval/png.hpp"
 #include "omninav/evaluation/render_database.hpp"
@@ -36,16 +37,9 @@ namespace {
 // The length scale of a world measured at its own spacing: the suite's lengths are for 0.3 m.
 constexpr double kReferenceSpacingM = 0.3;
 
+// Specs read naturally: "1.2", not "1.200".
 std::string num(double value, int decimals = 3) {
-  std::ostringstream text;
-  text << std::fixed << std::setprecision(decimals) << value;
-  std::string s = text.str();
-  // Trim trailing zeros so that specs read naturally ("1.2", not "1.200").
-  if (s.find('.') != std::string::npos) {
-    while (!s.empty() && s.back() == '0') s.pop_back();
-    if (!s.empty() && s.back() == '.') s.pop_back();
-  }
-  return s == "-0" ? "0" : s;
+  return trimmed(value, decimals);
 }
 
 // A command-line argument quoted for a POSIX shell when it needs it.
