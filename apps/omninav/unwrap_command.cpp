@@ -3,7 +3,6 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <cctype>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -55,15 +54,6 @@ struct UnwrapOptions {
   CLI::Option* height_option = nullptr;
   CLI::Option* front_offset_option = nullptr;
 };
-
-bool is_video_file(const fs::path& input) {
-  std::error_code error;
-  if (!fs::is_regular_file(input, error)) return false;
-  std::string extension = input.extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return extension != ".csv";
-}
 
 // Command-line values override the file's. Lengths are converted to pixels first, because the
 // command line's unit (--units) need not be the file's.
@@ -134,7 +124,7 @@ void run_unwrap(const UnwrapOptions& options, const GlobalOptions& global) {
   if (error) {
     throw UsageError(options.out.string() + ": cannot create the folder: " + error.message());
   }
-  const bool video = is_video_file(options.input);
+  const bool video = reader->is_video();
   std::set<std::string> used_names;
   std::size_t written = 0;
   {

@@ -32,6 +32,8 @@ class SequenceReader {
   // needsUnwrapping), and whether they lie on a grid (a BoB grid database).
   virtual bool needs_unwrapping() const { return false; }
   virtual bool is_grid() const { return false; }
+  // Whether the frames come from a video file (they have no file names of their own).
+  virtual bool is_video() const { return false; }
 };
 
 // Opens `path` as whichever kind it is:
