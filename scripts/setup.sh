@@ -26,7 +26,7 @@ packages=(
   build-essential cmake ninja-build pkg-config git
   libopencv-dev libfftw3-dev libeigen3-dev libceres-dev libboost-graph-dev
   libsqlite3-dev libyaml-cpp-dev libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev
-  libembree-dev libtinyobjloader-dev
+  libembree-dev libtinyobjloader-dev libfmt-dev nlohmann-json3-dev
 )
 
 # clang and libFuzzer only for the fuzz action (and CI's test, which runs it).

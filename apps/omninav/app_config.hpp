@@ -2,7 +2,10 @@
 // The configuration folder's loaders live in libs/evaluation (config_folder.hpp), because
 // `omninav evaluate` loads the same files as the commands; the commands name them unqualified.
 
+#include <filesystem>
+
 #include "omninav/evaluation/config_folder.hpp"
+#include "omninav/io/panorama_input.hpp"
 
 namespace omninav::cli {
 
@@ -15,6 +18,15 @@ using evaluation::load_navigation_config;
 using evaluation::load_worlds_config;
 using evaluation::NavigationConfig;
 using evaluation::use_compass_config;
+
+// The frames of `input` as panoramas; raw omnidirectional images are unwrapped with the
+// `unwrap:` section of camera.yaml in `config_dir`, read at the first frame that needs it.
+inline io::PanoramaInput open_panoramas(const std::filesystem::path& input,
+                                        const std::filesystem::path& config_dir,
+                                        io::PanoramaInputOptions options = {}) {
+  return io::PanoramaInput(
+      input, [config_dir] { return load_camera_config(config_dir).unwrap; }, options);
+}
 
 // The help of a --world option, the same in every command that renders.
 inline constexpr const char* kWorldOptionHelp =

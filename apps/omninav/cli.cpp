@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "omninav/core/errors.hpp"
+#include "omninav/core/format.hpp"
 #include "omninav/core/log.hpp"
 #include "omninav/core/output_file.hpp"
 #include "omninav/core/parse.hpp"
@@ -12,14 +13,11 @@
 namespace omninav::cli {
 
 CLI::Validator NumberRange(double min, double max) {
-  std::ostringstream range;
-  if (max == std::numeric_limits<double>::max()) {
-    range << ">= " << min;
-  } else {
-    range << "in [" << min << ", " << max << "]";
-  }
+  const std::string range = max == std::numeric_limits<double>::max()
+                                ? ">= " + general(min)
+                                : "in [" + general(min) + ", " + general(max) + "]";
   return CLI::Validator(
-      [min, max, range = range.str()](std::string& text) -> std::string {
+      [min, max, range](std::string& text) -> std::string {
         double value = 0.0;
         try {
           value = parse_double(text, "value");  // finite, or InputError
@@ -29,7 +27,21 @@ CLI::Validator NumberRange(double min, double max) {
         if (value < min || value > max) return "'" + text + "' is not " + range;
         return "";
       },
-      range.str());
+      range);
+}
+
+void add_format_option(CLI::App* command, OutputFormat& format) {
+  command
+      ->add_option_function<std::string>(
+          "--format",
+          [&format](const std::string& text) {
+            format = text == "csv"    ? OutputFormat::kCsv
+                     : text == "json" ? OutputFormat::kJson
+                                      : OutputFormat::kText;
+          },
+          "text, csv or json")
+      ->check(CLI::IsMember({"text", "csv", "json"}))
+      ->default_str("text");
 }
 
 // The output folder must not be a file, nor the folder the input images live in (the PNGs

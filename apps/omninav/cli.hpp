@@ -21,6 +21,12 @@ struct GlobalOptions {
 // compares false with both bounds), this refuses anything but a finite number in [min, max].
 CLI::Validator NumberRange(double min, double max);
 
+// How a command prints its results (--format): text for people, CSV or JSON for programs.
+enum class OutputFormat { kText, kCsv, kJson };
+
+// The --format option of `command`, "text, csv or json", default text.
+void add_format_option(CLI::App* command, OutputFormat& format);
+
 // The output folder of a command that writes many files (render, unwrap), checked before the
 // work: not a file, not the folder the input images live in (when `input` is given), and
 // empty unless --force. UsageError otherwise.

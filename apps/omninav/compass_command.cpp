@@ -3,11 +3,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
-#include <memory>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -17,16 +15,16 @@
 #include "cli.hpp"
 #include "omninav/compass/compass_run.hpp"
 #include "omninav/core/angles.hpp"
+#include "omninav/core/csv.hpp"
 #include "omninav/core/errors.hpp"
+#include "omninav/core/format.hpp"
 #include "omninav/core/log.hpp"
 #include "omninav/core/output_file.hpp"
 #include "omninav/core/parse.hpp"
 #include "omninav/core/progress.hpp"
 #include "omninav/eval/png.hpp"
 #include "omninav/evaluation/compass_evaluation.hpp"
-#include "omninav/io/bob_database.hpp"
-#include "omninav/io/sequence.hpp"
-#include "omninav/omni/unwrap.hpp"
+#include "omninav/io/panorama_input.hpp"
 #include "omninav/report/compass_figures.hpp"
 
 namespace omninav::cli {
@@ -67,22 +65,6 @@ void apply_method(const std::string& method, compass::CompassParams& params) {
   }
 }
 
-std::string csv_quoted(const std::string& text) {
-  if (text.find_first_of(",\"\n") == std::string::npos) return text;
-  std::string quoted = "\"";
-  for (const char c : text) {
-    if (c == '"') quoted += '"';
-    quoted += c;
-  }
-  return quoted + '"';
-}
-
-std::string fixed(double value, int decimals) {
-  char text[64];
-  std::snprintf(text, sizeof text, "%.*f", decimals, value);
-  return text;
-}
-
 struct Row {
   compass::CompassEstimate estimate;
   std::string source;
@@ -91,21 +73,29 @@ struct Row {
 };
 
 void write_csv(std::ostream& out, const std::vector<Row>& rows, bool with_truth) {
-  out << "frame,source,time_s,heading_deg,heading_unwrapped_deg,rotation_deg,amplitude_norm,"
-         "reference_frame,confidence,shift_px,evaluations,pitch_deg,roll_deg";
-  if (with_truth) out << ",truth_heading_deg,error_deg,distance_m";
-  out << '\n';
+  std::vector<std::string> columns{
+      "frame",        "source",         "time_s",          "heading_deg", "heading_unwrapped_deg",
+      "rotation_deg", "amplitude_norm", "reference_frame", "confidence",  "shift_px",
+      "evaluations",  "pitch_deg",      "roll_deg"};
+  if (with_truth) columns.insert(columns.end(), {"truth_heading_deg", "error_deg", "distance_m"});
+  write_csv_line(out, columns);
   double travelled = 0.0;
   std::optional<CameraPose> last_truth;
   for (const Row& row : rows) {
     const compass::CompassEstimate& e = row.estimate;
-    out << e.frame_index << ',' << csv_quoted(row.source) << ','
-        << (row.time_s ? fixed(*row.time_s, 4) : "") << ','
-        << fixed(rad_to_deg(wrap_angle(e.heading_rad)), 4) << ','
-        << fixed(rad_to_deg(e.heading_rad), 4) << ',' << fixed(rad_to_deg(e.rotation_rad), 4) << ','
-        << fixed(e.amplitude_norm, 4) << ',' << e.reference_index << ',' << e.flags.describe()
-        << ',' << fixed(e.shift_px, 4) << ',' << e.evaluations << ','
-        << fixed(rad_to_deg(e.pitch_rad), 4) << ',' << fixed(rad_to_deg(e.roll_rad), 4);
+    std::vector<std::string> fields{std::to_string(e.frame_index),
+                                    row.source,
+                                    fixed_or_empty(row.time_s, 4),
+                                    fixed(rad_to_deg(wrap_angle(e.heading_rad)), 4),
+                                    fixed(rad_to_deg(e.heading_rad), 4),
+                                    fixed(rad_to_deg(e.rotation_rad), 4),
+                                    fixed(e.amplitude_norm, 4),
+                                    std::to_string(e.reference_index),
+                                    e.flags.describe(),
+                                    fixed(e.shift_px, 4),
+                                    std::to_string(e.evaluations),
+                                    fixed(rad_to_deg(e.pitch_rad), 4),
+                                    fixed(rad_to_deg(e.roll_rad), 4)};
     if (with_truth) {
       if (row.truth) {
         if (last_truth) {
@@ -113,14 +103,16 @@ void write_csv(std::ostream& out, const std::vector<Row>& rows, bool with_truth)
               std::hypot(row.truth->x_m - last_truth->x_m, row.truth->y_m - last_truth->y_m);
         }
         last_truth = row.truth;
-        out << ',' << fixed(rad_to_deg(wrap_angle(row.truth->heading_rad)), 4) << ','
-            << fixed(rad_to_deg(signed_difference(e.heading_rad, row.truth->heading_rad)), 4) << ','
-            << fixed(travelled, 4);
+        fields.insert(
+            fields.end(),
+            {fixed(rad_to_deg(wrap_angle(row.truth->heading_rad)), 4),
+             fixed(rad_to_deg(signed_difference(e.heading_rad, row.truth->heading_rad)), 4),
+             fixed(travelled, 4)});
       } else {
-        out << ",,,";
+        fields.resize(fields.size() + 3);
       }
     }
-    out << '\n';
+    write_csv_line(out, fields);
   }
 }
 
@@ -172,29 +164,19 @@ struct CompassRows {
 // The compass over every frame of --input, raw images unwrapped first when asked or marked.
 CompassRows run_over_input(const GlobalOptions& global, const CompassOptions& options,
                            const CompassSetup& setup) {
-  std::unique_ptr<io::SequenceReader> reader = io::open_sequence(options.input);
-  log_info("reading " + reader->describe());
-  bool unwrap = options.unwrap;
-  if (const auto* database = dynamic_cast<const io::BobDatabaseReader*>(reader.get())) {
-    if (database->info().needs_unwrapping.value_or(false)) unwrap = true;
-  }
-  std::optional<omni::Unwrapper> unwrapper;
+  // Sources as the input names them: the CSV's source column.
+  io::PanoramaInput reader =
+      open_panoramas(options.input, global.config_dir,
+                     {.force_unwrap = options.unwrap, .absolute_sources = false});
+  log_info("reading " + reader.describe());
 
   CompassRows result;
   compass::CompassRun compass(setup.params, setup.width);
   const auto start = std::chrono::steady_clock::now();
   {
-    Progress progress("compass", reader->size());
-    while (std::optional<io::Frame> frame = reader->next()) {
-      cv::Mat panorama = frame->image;
-      if (unwrap) {
-        if (!unwrapper) {
-          unwrapper.emplace(
-              omni::make_unwrapper(load_camera_config(global.config_dir).unwrap, panorama));
-          log_info("unwrapping raw images with camera.yaml");
-        }
-        panorama = unwrapper->unwrap(panorama);
-      }
+    Progress progress("compass", reader.size());
+    while (std::optional<io::Frame> frame = reader.next()) {
+      const cv::Mat& panorama = frame->image;
       if (!compass.started()) {
         result.input_width = panorama.cols;
         if (options.truth && !frame->truth) {
@@ -268,15 +250,16 @@ void print_summary(const CompassRows& run, const std::string& method) {
 void write_stats(const fs::path& path, const std::string& label, const std::string& method,
                  int width_px, const evaluation::CompassEvaluation& evaluation) {
   std::ostringstream csv;
-  csv << "dataset,method,width_px,reference_frames,total_frames,max_abs_error_deg,"
-         "mean_error_deg,std_error_deg,slope_deg_per_s,slope_deg_per_m,final_error_deg\n";
-  csv << csv_quoted(label) << ',' << csv_quoted(method) << ',' << width_px << ','
-      << evaluation.reference_frames << ',' << evaluation.total_frames << ','
-      << fixed(evaluation.error_deg.max_abs, 4) << ',' << fixed(evaluation.error_deg.mean, 4) << ','
-      << (std::isfinite(evaluation.error_deg.stddev) ? fixed(evaluation.error_deg.stddev, 4) : "")
-      << ',' << (evaluation.slope_deg_per_s ? fixed(*evaluation.slope_deg_per_s, 5) : "") << ','
-      << (evaluation.slope_deg_per_m ? fixed(*evaluation.slope_deg_per_m, 4) : "") << ','
-      << fixed(evaluation.final_error_deg, 4) << '\n';
+  write_csv_line(csv, {"dataset", "method", "width_px", "reference_frames", "total_frames",
+                       "max_abs_error_deg", "mean_error_deg", "std_error_deg", "slope_deg_per_s",
+                       "slope_deg_per_m", "final_error_deg"});
+  const double stddev = evaluation.error_deg.stddev;
+  write_csv_line(
+      csv, {label, method, std::to_string(width_px), std::to_string(evaluation.reference_frames),
+            std::to_string(evaluation.total_frames), fixed(evaluation.error_deg.max_abs, 4),
+            fixed(evaluation.error_deg.mean, 4), std::isfinite(stddev) ? fixed(stddev, 4) : "",
+            fixed_or_empty(evaluation.slope_deg_per_s, 5),
+            fixed_or_empty(evaluation.slope_deg_per_m, 4), fixed(evaluation.final_error_deg, 4)});
   write_output_file(path, csv.str());
 }
 

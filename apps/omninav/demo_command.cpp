@@ -3,6 +3,8 @@
 // the demo is also the tutorial: render an exploration of the room (a 30 cm grid, the
 // reference images of 001 §3.3), explore it into a map, organise the map into a lattice,
 // localise query images rendered at random poses, plan a route and drive to a goal image.
+#include <fmt/format.h>
+
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -11,6 +13,7 @@
 #include "cli.hpp"
 #include "omninav/core/angles.hpp"
 #include "omninav/core/errors.hpp"
+#include "omninav/core/format.hpp"
 #include "omninav/core/output_file.hpp"
 #include "omninav/memory/map_store.hpp"
 
@@ -80,11 +83,11 @@ class Demo {
 
     // Queries: a random walk with long steps and sharp turns over the same floor.
     const std::string queries = (report / "queries").string();
-    std::ostringstream walk;
-    walk << "walk:x=2.55,y=2.05,steps=" << options_.queries
-         << ",step_m=0.23,turn_deg=150,seed=" << options_.seed;
+    const std::string walk =
+        fmt::format("walk:x=2.55,y=2.05,steps={},step_m=0.23,turn_deg=150,seed={}",
+                    options_.queries, options_.seed);
     step("4. render query images at random poses and headings",
-         {"render", "--trajectory", walk.str(), "--out", queries, "--force"});
+         {"render", "--trajectory", walk, "--out", queries, "--force"});
     step("5. localise them, coarse to fine (scored against the truth; one picture per query)",
          {"localise", map, queries, "--format", "csv", "--plot",
           (report / "localisation.png").string()},
@@ -94,13 +97,13 @@ class Demo {
     const memory::VisualMemory memory = memory::load_map(options_.map);
     const memory::Place& goal = memory.place(memory.place_count() - 1);
     const memory::Place& start = memory.place(0);
-    std::ostringstream start_pose;
-    start_pose << start.truth->x_m << ',' << start.truth->y_m << ",90";
+    const std::string start_pose =
+        general(start.truth->x_m) + ',' + general(start.truth->y_m) + ",90";
     step("6. plan a route from the first place's image to the last's",
          {"route", map, "--from", start.source, "--to", goal.source, "--plot",
           (report / "route.png").string()});
     step("7. drive there: grab a panorama, localise, turn by the compass, step, repeat",
-         {"navigate", map, "--start", start_pose.str(), "--goal", goal.source, "--out",
+         {"navigate", map, "--start", start_pose, "--goal", goal.source, "--out",
           (report / "navigation").string()});
     step("8. and over seeded random start and goal poses",
          {"navigate", map, "--trials", std::to_string(options_.trials), "--seed",

@@ -1,4 +1,6 @@
 // omninav evaluate: every capability measured on every world of a suite (libs/evaluation).
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <chrono>
 #include <fstream>
@@ -56,10 +58,8 @@ void run_evaluate(const GlobalOptions& global, const EvaluateOptions& options) {
         write_output_file(csv, evaluation::table_csv(done, columns));
         const double minutes =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / 60;
-        std::ostringstream text;
-        text << std::fixed << std::setprecision(1) << "evaluate: " << row.world << " done ("
-             << index + 1 << " of " << suite.worlds.size() << ", " << minutes << " min)";
-        log_info(text.str());
+        log_info(fmt::format("evaluate: {} done ({} of {}, {:.1f} min)", row.world, index + 1,
+                             suite.worlds.size(), minutes));
       });
   const std::filesystem::path picture = out / "evaluation.png";
   const std::filesystem::path commands = out / "commands.sh";

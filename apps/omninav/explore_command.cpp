@@ -7,7 +7,6 @@
 #include "omninav/core/log.hpp"
 #include "omninav/memory/exploration.hpp"
 #include "omninav/memory/map_store.hpp"
-#include "panorama_input.hpp"
 
 namespace omninav::cli {
 namespace {
@@ -67,7 +66,8 @@ void run_explore(const GlobalOptions& global, const ExploreOptions& options) {
   }
   const std::size_t places_before = memory.place_count();
 
-  PanoramaInput input(options.input, global.config_dir, options.unwrap);
+  io::PanoramaInput input =
+      open_panoramas(options.input, global.config_dir, {.force_unwrap = options.unwrap});
   const bool every_frame = options.all_frames || input.is_grid();
   log_info("exploring " + input.describe() + (extending ? " into " : " into a new map ") +
            options.out.string() +

@@ -1,13 +1,16 @@
 // omninav localise: hierarchical localisation of query images in a visual memory.
+#include <fmt/format.h>
+
 #include <algorithm>
-#include <iomanip>
 #include <iostream>
-#include <sstream>
 
 #include "app_config.hpp"
 #include "cli.hpp"
 #include "omninav/core/angles.hpp"
+#include "omninav/core/csv.hpp"
 #include "omninav/core/errors.hpp"
+#include "omninav/core/format.hpp"
+#include "omninav/core/json.hpp"
 #include "omninav/core/log.hpp"
 #include "omninav/core/output_file.hpp"
 #include "omninav/core/parse.hpp"
@@ -17,7 +20,6 @@
 #include "omninav/memory/map_store.hpp"
 #include "omninav/navigation/memory_places.hpp"
 #include "omninav/report/memory_figures.hpp"
-#include "panorama_input.hpp"
 
 namespace omninav::cli {
 namespace {
@@ -27,62 +29,17 @@ struct LocaliseOptions {
   std::vector<std::filesystem::path> queries;
   std::optional<std::string> levels;  // none: memory.yaml
   int top_k = 0;                      // 0: memory.yaml
-  std::string format = "text";
+  OutputFormat format = OutputFormat::kText;
   std::filesystem::path plot;
   bool exhaustive = false;
   bool unwrap = false;
 };
 
-std::string number(double value, int digits) {
-  std::ostringstream text;
-  text << std::fixed << std::setprecision(digits) << value;
-  return text.str();
-}
-
-std::string signed_number(double value, int digits) {
-  return (value >= 0.0 ? "+" : "") + number(value, digits);
-}
-
-std::string json_string(const std::string& text) {
-  std::string out = "\"";
-  for (const char c : text) {
-    switch (c) {
-      case '"':
-        out += "\\\"";
-        break;
-      case '\\':
-        out += "\\\\";
-        break;
-      case '\n':
-        out += "\\n";
-        break;
-      default:
-        if (static_cast<unsigned char>(c) < 0x20) {
-          char escaped[8];
-          std::snprintf(escaped, sizeof(escaped), "\\u%04x", c);
-          out += escaped;
-        } else {
-          out += c;
-        }
-    }
-  }
-  return out + "\"";
-}
-
-std::string csv_field(const std::string& text) {
-  if (text.find_first_of(",\"\n") == std::string::npos) return text;
-  std::string out = "\"";
-  for (char c : text) out += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return out + "\"";
-}
-
 // The figure of query `index`: <stem>_<index><ext> next to --plot. A single query's figure is
 // the --plot path itself: the first figure waits until a second query shows which it is.
 std::filesystem::path numbered_plot_file(const std::filesystem::path& plot, std::size_t index) {
-  std::ostringstream name;
-  name << plot.stem().string() << '_' << std::setw(4) << std::setfill('0') << index
-       << plot.extension().string();
-  return plot.parent_path() / name.str();
+  return plot.parent_path() /
+         fmt::format("{}_{:04}{}", plot.stem().string(), index, plot.extension().string());
 }
 
 struct QueryResult {
@@ -101,22 +58,22 @@ void print_text(const QueryResult& q, const memory::VisualMemory& map) {
     return;
   }
   const memory::PlaceMatch& best = r.best.front();
-  std::cout << " place " << best.place << " (similarity " << number(best.similarity, 0)
-            << ", dissimilarity " << number(best.dissimilarity, 1) << "), heading "
-            << signed_number(rad_to_deg(best.relative_heading_rad), 1) << " deg from the place's";
+  std::cout << " place " << best.place << " (similarity " << fixed(best.similarity, 0)
+            << ", dissimilarity " << fixed(best.dissimilarity, 1) << "), heading "
+            << signed_fixed(rad_to_deg(best.relative_heading_rad), 1) << " deg from the place's";
   if (best.heading_rad) {
-    std::cout << " = " << number(rad_to_deg(*best.heading_rad), 1) << " deg ("
+    std::cout << " = " << fixed(rad_to_deg(*best.heading_rad), 1) << " deg ("
               << memory::to_string(map.place(best.place).heading_source) << ")";
   }
   std::cout << "\n";
   if (r.position) {
     const std::string unit = r.position->frame == memory::PositionFrame::kTruth ? " m" : "";
-    std::cout << "  position " << number(r.position->position.x(), 2) << ", "
-              << number(r.position->position.y(), 2) << unit << " (the best place; from "
+    std::cout << "  position " << fixed(r.position->position.x(), 2) << ", "
+              << fixed(r.position->position.y(), 2) << unit << " (the best place; from "
               << (r.position->frame == memory::PositionFrame::kTruth ? "the places' ground truth"
                                                                      : "the lattice")
-              << "), between places " << number(r.position->interpolated_position.x(), 2) << ", "
-              << number(r.position->interpolated_position.y(), 2) << unit << "\n";
+              << "), between places " << fixed(r.position->interpolated_position.x(), 2) << ", "
+              << fixed(r.position->interpolated_position.y(), 2) << unit << "\n";
   }
   for (const signature::LevelResult& level : r.search.levels) {
     std::cout << "  m=" << level.components << ": " << level.candidates.size() << " candidate"
@@ -130,17 +87,17 @@ void print_text(const QueryResult& q, const memory::VisualMemory& map) {
   }
   std::cout << "  best:";
   for (const memory::PlaceMatch& m : r.best) {
-    std::cout << ' ' << m.place << " (" << number(m.similarity, 0) << ", "
-              << signed_number(rad_to_deg(m.relative_heading_rad), 1) << " deg)";
+    std::cout << ' ' << m.place << " (" << fixed(m.similarity, 0) << ", "
+              << signed_fixed(rad_to_deg(m.relative_heading_rad), 1) << " deg)";
   }
   std::cout << "\n";
   if (q.truth && q.score) {
-    std::cout << "  truth " << number(q.truth->x_m, 2) << ", " << number(q.truth->y_m, 2)
-              << " m, heading " << number(rad_to_deg(q.truth->heading_rad), 1)
+    std::cout << "  truth " << fixed(q.truth->x_m, 2) << ", " << fixed(q.truth->y_m, 2)
+              << " m, heading " << fixed(rad_to_deg(q.truth->heading_rad), 1)
               << " deg: nearest place " << q.score->nearest_place << ", best place "
-              << number(q.score->error_m, 2) << " m away";
+              << fixed(q.score->error_m, 2) << " m away";
     if (q.score->heading_error_rad) {
-      std::cout << ", heading error " << number(rad_to_deg(*q.score->heading_error_rad), 1)
+      std::cout << ", heading error " << fixed(rad_to_deg(*q.score->heading_error_rad), 1)
                 << " deg";
     }
     std::cout << "\n";
@@ -148,98 +105,128 @@ void print_text(const QueryResult& q, const memory::VisualMemory& map) {
 }
 
 void print_csv_header(const std::vector<int>& levels) {
-  std::cout << "query,best_place,similarity,dissimilarity,relative_heading_deg,heading_deg,"
-               "position_frame,position_x,position_y,interpolated_x,interpolated_y";
-  for (int m : levels) std::cout << ",candidates_m" << m;
-  std::cout << ",truth_x_m,truth_y_m,truth_heading_deg,nearest_place,error_m,heading_error_deg\n";
+  std::vector<std::string> columns{"query",          "best_place",           "similarity",
+                                   "dissimilarity",  "relative_heading_deg", "heading_deg",
+                                   "position_frame", "position_x",           "position_y",
+                                   "interpolated_x", "interpolated_y"};
+  for (int m : levels) columns.push_back("candidates_m" + std::to_string(m));
+  for (const char* column : {"truth_x_m", "truth_y_m", "truth_heading_deg", "nearest_place",
+                             "error_m", "heading_error_deg"}) {
+    columns.emplace_back(column);
+  }
+  write_csv_line(std::cout, columns);
+}
+
+std::optional<double> degrees(const std::optional<double>& radians) {
+  return radians ? std::optional<double>(rad_to_deg(*radians)) : std::nullopt;
 }
 
 void print_csv(const QueryResult& q) {
   const memory::Localisation& r = q.result;
-  std::cout << csv_field(q.source) << ',';
+  std::vector<std::string> row{q.source};
   if (!r.best.empty()) {
     const memory::PlaceMatch& b = r.best.front();
-    std::cout << b.place << ',' << number(b.similarity, 1) << ',' << number(b.dissimilarity, 3)
-              << ',' << number(rad_to_deg(b.relative_heading_rad), 3) << ','
-              << (b.heading_rad ? number(rad_to_deg(*b.heading_rad), 3) : "") << ',';
+    row.insert(row.end(), {std::to_string(b.place), fixed(b.similarity, 1),
+                           fixed(b.dissimilarity, 3), fixed(rad_to_deg(b.relative_heading_rad), 3),
+                           fixed_or_empty(degrees(b.heading_rad), 3)});
   } else {
-    std::cout << ",,,,,";
+    row.resize(row.size() + 5);
   }
   if (r.position) {
-    std::cout << memory::to_string(r.position->frame) << ',' << number(r.position->position.x(), 4)
-              << ',' << number(r.position->position.y(), 4) << ','
-              << number(r.position->interpolated_position.x(), 4) << ','
-              << number(r.position->interpolated_position.y(), 4);
+    row.insert(row.end(),
+               {memory::to_string(r.position->frame), fixed(r.position->position.x(), 4),
+                fixed(r.position->position.y(), 4), fixed(r.position->interpolated_position.x(), 4),
+                fixed(r.position->interpolated_position.y(), 4)});
   } else {
-    std::cout << ",,,,";
+    row.resize(row.size() + 5);
   }
   for (const signature::LevelResult& level : r.search.levels) {
-    std::cout << ',' << level.candidates.size();
+    row.push_back(std::to_string(level.candidates.size()));
   }
   if (q.truth) {
-    std::cout << ',' << number(q.truth->x_m, 4) << ',' << number(q.truth->y_m, 4) << ','
-              << number(rad_to_deg(q.truth->heading_rad), 3) << ',';
+    row.insert(row.end(), {fixed(q.truth->x_m, 4), fixed(q.truth->y_m, 4),
+                           fixed(rad_to_deg(q.truth->heading_rad), 3)});
   } else {
-    std::cout << ",,,,";
+    row.resize(row.size() + 3);
   }
   if (q.score) {
-    std::cout << q.score->nearest_place << ',' << number(q.score->error_m, 4) << ','
-              << (q.score->heading_error_rad ? number(rad_to_deg(*q.score->heading_error_rad), 3)
-                                             : "");
+    row.insert(row.end(), {std::to_string(q.score->nearest_place), fixed(q.score->error_m, 4),
+                           fixed_or_empty(degrees(q.score->heading_error_rad), 3)});
   } else {
-    std::cout << ",,";
+    row.resize(row.size() + 3);
   }
-  std::cout << "\n";
+  write_csv_line(std::cout, row);
 }
 
-std::string to_json(const QueryResult& q) {
+Json to_json(const QueryResult& q) {
   const memory::Localisation& r = q.result;
-  std::ostringstream j;
-  j << "{\"query\": " << json_string(q.source) << ", \"levels\": [";
-  for (std::size_t l = 0; l < r.search.levels.size(); ++l) {
-    const signature::LevelResult& level = r.search.levels[l];
-    j << (l ? ", " : "") << "{\"components\": " << level.components
-      << ", \"compared\": " << level.evaluated << ", \"candidates\": [";
-    for (std::size_t i = 0; i < level.candidates.size(); ++i) {
-      j << (i ? ", " : "") << "{\"place\": " << level.candidates[i].place
-        << ", \"similarity\": " << number(level.candidates[i].similarity, 1) << "}";
+  Json levels = Json::array();
+  for (const signature::LevelResult& level : r.search.levels) {
+    Json candidates = Json::array();
+    for (const auto& candidate : level.candidates) {
+      candidates.push_back(
+          {{"place", candidate.place}, {"similarity", json_number(candidate.similarity, 1)}});
     }
-    j << "]}";
+    levels.push_back({{"components", level.components},
+                      {"compared", level.evaluated},
+                      {"candidates", std::move(candidates)}});
   }
-  j << "], \"best\": [";
-  for (std::size_t i = 0; i < r.best.size(); ++i) {
-    const memory::PlaceMatch& m = r.best[i];
-    j << (i ? ", " : "") << "{\"place\": " << m.place
-      << ", \"similarity\": " << number(m.similarity, 1)
-      << ", \"dissimilarity\": " << number(m.dissimilarity, 3)
-      << ", \"relative_heading_deg\": " << number(rad_to_deg(m.relative_heading_rad), 3)
-      << ", \"heading_confidence\": " << number(m.heading_confidence, 3)
-      << ", \"heading_deg\": " << (m.heading_rad ? number(rad_to_deg(*m.heading_rad), 3) : "null")
-      << "}";
+  Json best = Json::array();
+  for (const memory::PlaceMatch& m : r.best) {
+    best.push_back({{"place", m.place},
+                    {"similarity", json_number(m.similarity, 1)},
+                    {"dissimilarity", json_number(m.dissimilarity, 3)},
+                    {"relative_heading_deg", json_number(rad_to_deg(m.relative_heading_rad), 3)},
+                    {"heading_confidence", json_number(m.heading_confidence, 3)},
+                    {"heading_deg", json_number(degrees(m.heading_rad), 3)}});
   }
-  j << "], \"position\": ";
+  Json position = nullptr;
   if (r.position) {
-    j << "{\"frame\": " << json_string(memory::to_string(r.position->frame))
-      << ", \"x\": " << number(r.position->position.x(), 4)
-      << ", \"y\": " << number(r.position->position.y(), 4)
-      << ", \"interpolated_x\": " << number(r.position->interpolated_position.x(), 4)
-      << ", \"interpolated_y\": " << number(r.position->interpolated_position.y(), 4) << "}";
-  } else {
-    j << "null";
+    position = {{"frame", memory::to_string(r.position->frame)},
+                {"x", json_number(r.position->position.x(), 4)},
+                {"y", json_number(r.position->position.y(), 4)},
+                {"interpolated_x", json_number(r.position->interpolated_position.x(), 4)},
+                {"interpolated_y", json_number(r.position->interpolated_position.y(), 4)}};
   }
-  j << ", \"truth\": ";
+  Json truth = nullptr;
   if (q.truth && q.score) {
-    j << "{\"x_m\": " << number(q.truth->x_m, 4) << ", \"y_m\": " << number(q.truth->y_m, 4)
-      << ", \"heading_deg\": " << number(rad_to_deg(q.truth->heading_rad), 3)
-      << ", \"nearest_place\": " << q.score->nearest_place
-      << ", \"error_m\": " << number(q.score->error_m, 4) << ", \"heading_error_deg\": "
-      << (q.score->heading_error_rad ? number(rad_to_deg(*q.score->heading_error_rad), 3) : "null")
-      << "}";
-  } else {
-    j << "null";
+    truth = {{"x_m", json_number(q.truth->x_m, 4)},
+             {"y_m", json_number(q.truth->y_m, 4)},
+             {"heading_deg", json_number(rad_to_deg(q.truth->heading_rad), 3)},
+             {"nearest_place", q.score->nearest_place},
+             {"error_m", json_number(q.score->error_m, 4)},
+             {"heading_error_deg", json_number(degrees(q.score->heading_error_rad), 3)}};
   }
-  j << "}";
-  return j.str();
+  return {{"query", q.source},
+          {"levels", std::move(levels)},
+          {"best", std::move(best)},
+          {"position", std::move(position)},
+          {"truth", std::move(truth)}};
+}
+
+// The whole --format json document: the map, its levels, one object per query, and the
+// scores when the queries have ground truth.
+Json localisation_json(const std::filesystem::path& map, const std::vector<int>& levels,
+                       const std::vector<QueryResult>& results,
+                       const std::optional<evaluation::LocalisationScore>& score) {
+  Json document{{"map", map.string()}, {"levels", levels}, {"queries", Json::array()}};
+  for (const QueryResult& q : results) document["queries"].push_back(to_json(q));
+  if (score && score->queries() > 0) {
+    Json contains = Json::array(), sizes = Json::array();
+    for (const double share : score->level_contains_share()) {
+      contains.push_back(json_number(share, 4));
+    }
+    for (const double size : score->level_mean_size()) sizes.push_back(json_number(size, 2));
+    document["summary"] = {{"queries", score->queries()},
+                           {"off_grid_not_scored", score->outside()},
+                           {"spacing_m", json_number(score->spacing_m(), 4)},
+                           {"within_one_spacing", json_number(score->within_spacing_share(), 4)},
+                           {"at_nearest_place", json_number(score->nearest_share(), 4)},
+                           {"mean_error_m", json_number(score->mean_error_m(), 4)},
+                           {"level_contains_nearest", std::move(contains)},
+                           {"level_mean_candidates", std::move(sizes)}};
+  }
+  return document;
 }
 
 void run_localise(const GlobalOptions& global, const LocaliseOptions& options) {
@@ -273,7 +260,8 @@ void run_localise(const GlobalOptions& global, const LocaliseOptions& options) {
   std::vector<QueryResult> results;
   cv::Mat first_figure;  // --plot: the first query's, written once the count is known
   for (const std::filesystem::path& query : options.queries) {
-    PanoramaInput input(query, global.config_dir, options.unwrap);
+    io::PanoramaInput input =
+        open_panoramas(query, global.config_dir, {.force_unwrap = options.unwrap});
     while (std::optional<io::Frame> frame = input.next()) {
       const signature::Signature signature = extractor.compute(frame->image, frame->source);
       if (signature.rows != map.parameters().panorama_rows) {
@@ -324,42 +312,17 @@ void run_localise(const GlobalOptions& global, const LocaliseOptions& options) {
   }
 
   const std::vector<int>& levels = params.hierarchy.levels;
-  if (options.format == "csv") {
+  if (options.format == OutputFormat::kCsv) {
     print_csv_header(levels);
     for (const QueryResult& q : results) print_csv(q);
-  } else if (options.format == "json") {
-    std::cout << "{\"map\": " << json_string(options.map.string()) << ", \"levels\": [";
-    for (std::size_t l = 0; l < levels.size(); ++l) std::cout << (l ? ", " : "") << levels[l];
-    std::cout << "], \"queries\": [\n";
-    for (std::size_t i = 0; i < results.size(); ++i) {
-      std::cout << "  " << to_json(results[i]) << (i + 1 < results.size() ? ",\n" : "\n");
-    }
-    std::cout << "]";
-    if (score && score->queries() > 0) {
-      std::cout << ", \"summary\": {\"queries\": " << score->queries()
-                << ", \"off_grid_not_scored\": " << score->outside()
-                << ", \"spacing_m\": " << number(score->spacing_m(), 4)
-                << ", \"within_one_spacing\": " << number(score->within_spacing_share(), 4)
-                << ", \"at_nearest_place\": " << number(score->nearest_share(), 4)
-                << ", \"mean_error_m\": " << number(score->mean_error_m(), 4)
-                << ", \"level_contains_nearest\": [";
-      const auto contains = score->level_contains_share();
-      for (std::size_t l = 0; l < contains.size(); ++l) {
-        std::cout << (l ? ", " : "") << number(contains[l], 4);
-      }
-      std::cout << "], \"level_mean_candidates\": [";
-      const auto sizes = score->level_mean_size();
-      for (std::size_t l = 0; l < sizes.size(); ++l) {
-        std::cout << (l ? ", " : "") << number(sizes[l], 2);
-      }
-      std::cout << "]}";
-    }
-    std::cout << "}\n";
+  } else if (options.format == OutputFormat::kJson) {
+    std::cout << json_text(localisation_json(options.map, levels, results, score)) << "\n";
   } else {
     for (const QueryResult& q : results) print_text(q, map);
     if (score && score->queries() > 1) std::cout << score->summary(levels);
   }
-  if (score && score->queries() > 0 && options.format != "text") log_info(score->summary(levels));
+  if (score && score->queries() > 0 && options.format != OutputFormat::kText)
+    log_info(score->summary(levels));
   if (!options.plot.empty()) {
     log_info("wrote " + std::to_string(results.size()) + " figure" +
              (results.size() == 1 ? "" : "s") + " like Figs. 8-10 to " +
@@ -389,9 +352,7 @@ void add_localise_command(CLI::App& app, const GlobalOptions& global) {
                       "Components compared at each level, e.g. 2,5,15 (default: memory.yaml)");
   command->add_option("--top", options->top_k, "Best places to report (default: memory.yaml)")
       ->check(NumberRange(1, 100000));
-  command->add_option("--format", options->format, "text, csv or json")
-      ->check(CLI::IsMember({"text", "csv", "json"}))
-      ->capture_default_str();
+  add_format_option(command, options->format);
   command->add_option("--plot", options->plot,
                       "Write a PNG like Figs. 8-10 per query (several queries: FILE_0000.png, "
                       "...); needs place positions");

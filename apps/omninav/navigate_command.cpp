@@ -2,26 +2,25 @@
 // visual memory towards a goal image: a virtual robot in a rendered world, or a robot on a grid
 // of stored images (a BoB grid database); and the evaluation over seeded random start and goal
 // pairs (--trials).
-#include <iomanip>
 #include <iostream>
 #include <memory>
 
 #include "app_config.hpp"
 #include "cli.hpp"
 #include "omninav/core/angles.hpp"
+#include "omninav/core/csv.hpp"
 #include "omninav/core/errors.hpp"
+#include "omninav/core/format.hpp"
 #include "omninav/core/log.hpp"
 #include "omninav/core/output_file.hpp"
 #include "omninav/core/parse.hpp"
-#include "omninav/eval/plot.hpp"
 #include "omninav/eval/png.hpp"
 #include "omninav/evaluation/navigation_trials.hpp"
 #include "omninav/evaluation/robot_worlds.hpp"
 #include "omninav/io/image_file.hpp"
 #include "omninav/memory/map_store.hpp"
 #include "omninav/navigation/memory_places.hpp"
-#include "omninav/report/floor_plan.hpp"
-#include "panorama_input.hpp"
+#include "omninav/report/navigate_figures.hpp"
 
 namespace omninav::cli {
 namespace {
@@ -56,18 +55,21 @@ constexpr const char* kStepColumns =
 // One row per step, each after `prefix` (the trial's columns, or nothing). The lattice frame
 // turns with the first place's heading (lattice::lattice_headings): a heading in it plus that
 // heading is a heading in the world, when the map stores one.
-void write_step_rows(std::ostream& csv, const std::string& prefix,
+void write_step_rows(std::ostream& csv, const std::vector<std::string>& prefix,
                      const navigation::NavigationResult& result, double lattice_to_world_rad) {
   for (const navigation::NavigationStep& step : result.steps) {
-    csv << prefix << step.index << ',' << step.truth.x_m << ',' << step.truth.y_m << ','
-        << rad_to_deg(step.truth.heading_rad) << ','
-        << (step.match ? static_cast<int>(step.match->place) : -1) << ','
-        << (step.match ? step.match->similarity : 0.0) << ','
-        << (step.match ? step.match->dissimilarity_per_value : 0.0) << ','
-        << rad_to_deg(step.heading_estimate_rad) << ','
-        << rad_to_deg(signed_difference(step.heading_estimate_rad + lattice_to_world_rad,
-                                        step.truth.heading_rad))
-        << ',' << rad_to_deg(step.turn_rad) << ',' << (step.jump ? 1 : 0) << '\n';
+    std::vector<std::string> row = prefix;
+    row.insert(row.end(),
+               {std::to_string(step.index), general(step.truth.x_m), general(step.truth.y_m),
+                general(rad_to_deg(step.truth.heading_rad)),
+                step.match ? std::to_string(step.match->place) : "-1",
+                general(step.match ? step.match->similarity : 0.0),
+                general(step.match ? step.match->dissimilarity_per_value : 0.0),
+                general(rad_to_deg(step.heading_estimate_rad)),
+                general(rad_to_deg(signed_difference(
+                    step.heading_estimate_rad + lattice_to_world_rad, step.truth.heading_rad))),
+                general(rad_to_deg(step.turn_rad)), step.jump ? "1" : "0"});
+    write_csv_line(csv, row);
   }
 }
 
@@ -88,68 +90,39 @@ void write_trials_csv(const std::vector<evaluation::TrialOutcome>& outcomes,
       "replans,loops,homing_steps");
   const std::unique_ptr<OutputFile> steps_file =
       open_csv(folder / "steps.csv", std::string("trial,") + kStepColumns);
-  std::ostream& trials = trials_file->stream();
-  std::ostream& steps = steps_file->stream();
   for (std::size_t i = 0; i < outcomes.size(); ++i) {
     const evaluation::TrialOutcome& o = outcomes[i];
     const navigation::NavigationResult& r = o.result;
-    trials << i << ',' << o.trial.start.x_m << ',' << o.trial.start.y_m << ','
-           << rad_to_deg(o.trial.start.heading_rad) << ',' << o.trial.goal.x_m << ','
-           << o.trial.goal.y_m << ',' << rad_to_deg(o.trial.goal.heading_rad) << ',' << o.goal_place
-           << ',' << (o.stopped_at_goal ? 1 : 0) << ',' << (o.reached ? 1 : 0) << ','
-           << o.final_error_m << ',' << r.path_length_m << ',' << o.straight_m << ','
-           << r.path_length_m / o.straight_m << ',' << r.steps.size() << ',' << r.jumps << ','
-           << r.sidesteps << ',' << r.replans << ',' << r.loops << ',' << r.homing_steps << '\n';
-    write_step_rows(steps, std::to_string(i) + ",", r, lattice_to_world_rad);
+    write_csv_line(trials_file->stream(), {std::to_string(i),
+                                           general(o.trial.start.x_m),
+                                           general(o.trial.start.y_m),
+                                           general(rad_to_deg(o.trial.start.heading_rad)),
+                                           general(o.trial.goal.x_m),
+                                           general(o.trial.goal.y_m),
+                                           general(rad_to_deg(o.trial.goal.heading_rad)),
+                                           std::to_string(o.goal_place),
+                                           o.stopped_at_goal ? "1" : "0",
+                                           o.reached ? "1" : "0",
+                                           general(o.final_error_m),
+                                           general(r.path_length_m),
+                                           general(o.straight_m),
+                                           general(r.path_length_m / o.straight_m),
+                                           std::to_string(r.steps.size()),
+                                           std::to_string(r.jumps),
+                                           std::to_string(r.sidesteps),
+                                           std::to_string(r.replans),
+                                           std::to_string(r.loops),
+                                           std::to_string(r.homing_steps)});
+    write_step_rows(steps_file->stream(), {std::to_string(i)}, r, lattice_to_world_rad);
   }
   trials_file->commit();
   steps_file->commit();
 }
 
-// path.png: the places matched, in order, over the lattice; beside it the robot's true path
-// over the room's furniture (rendered worlds) or the grid's images (databases), the places'
-// true positions when the map has them, and the goal pose when known (trials).
-void draw_path(const navigation::NavigationResult& result,
-               const std::vector<navigation::PlaceNode>& places, int goal,
-               const memory::VisualMemory& memory, const std::vector<sim::FloorBox>& obstacles,
-               const std::vector<cv::Point2d>& grid, const std::optional<cv::Point2d>& goal_pose,
-               const std::filesystem::path& file) {
-  eval::PointsPlot lattice_path("The route over the lattice (places matched, in order)", "x", "y");
-  std::vector<cv::Point2d> lattice_points, matched, truth_path;
-  for (const navigation::PlaceNode& place : places)
-    lattice_points.emplace_back(place.position_m.x(), place.position_m.y());
-  for (const navigation::NavigationStep& step : result.steps) {
-    if (step.match) matched.push_back(lattice_points[step.match->place]);
-    truth_path.emplace_back(step.truth.x_m, step.truth.y_m);
-  }
-  for (std::size_t i = 1; i < matched.size(); ++i)
-    lattice_path.add_segment({matched[i - 1], matched[i], 0.2, 1.0});
-  lattice_path.add_points("places", lattice_points);
-  lattice_path.add_points("goal", {lattice_points[goal]});
-  eval::PointsPlot room_path("The robot's true path", "x (m)", "y (m)");
-  report::add_floor_boxes(room_path, obstacles, 0.3);
-  for (std::size_t i = 1; i < truth_path.size(); ++i)
-    room_path.add_segment({truth_path[i - 1], truth_path[i], 0.1, 1.0});
-  if (!grid.empty()) room_path.add_points("grid images", grid);
-  if (memory.all_have_truth()) {
-    std::vector<cv::Point2d> true_places;
-    for (std::size_t i = 0; i < memory.place_count(); ++i) {
-      true_places.emplace_back(memory.place(i).truth->x_m, memory.place(i).truth->y_m);
-    }
-    room_path.add_points("places (truth)", true_places);
-    room_path.add_points("goal place", {true_places[goal]});
-  }
-  room_path.add_points("start", {truth_path.front()});
-  if (goal_pose) room_path.add_points("goal pose", {*goal_pose});
-  cv::Mat picture;
-  cv::hconcat(lattice_path.render(), room_path.render(), picture);
-  eval::save_png(picture, file);
-}
-
 // The images of a grid database (or any input whose images have poses), as panoramas.
 std::vector<evaluation::GridImage> read_grid(const std::filesystem::path& input,
                                              const std::filesystem::path& config_dir) {
-  PanoramaInput panoramas(input, config_dir, false);
+  io::PanoramaInput panoramas = open_panoramas(input, config_dir);
   std::vector<evaluation::GridImage> images;
   while (std::optional<io::Frame> frame = panoramas.next()) {
     if (!frame->truth) {
@@ -182,14 +155,15 @@ void evaluate_trials(const GlobalOptions& global, const NavigateOptions& options
     const evaluation::TrialOutcome& o = outcomes[i];
     if (o.result.steps.empty()) continue;  // the goal image matched no place: nothing driven
     if (!o.reached || o.result.path_length_m > kDetourRatio * o.straight_m) {
-      draw_path(o.result, setup.places, o.goal_place, memory, world.obstacles, {},
-                cv::Point2d(o.trial.goal.x_m, o.trial.goal.y_m),
-                options.out / ("trial_" + std::to_string(i) + ".png"));
+      const report::NavigationScene scene{
+          world.obstacles, {}, Eigen::Vector2d(o.trial.goal.x_m, o.trial.goal.y_m)};
+      eval::save_png(
+          report::navigation_path_figure(o.result, setup.places, o.goal_place, memory, scene),
+          options.out / ("trial_" + std::to_string(i) + ".png"));
     }
   }
   summary(global) << evaluation::summarise(outcomes).text() << " (seed " << options.seed
-                  << "; reached: stopped within " << std::fixed << std::setprecision(2)
-                  << map_trials.goal_radius_m
+                  << "; reached: stopped within " << fixed(map_trials.goal_radius_m, 2)
                   << " m of the goal); trials: " << (options.out / "trials.csv").string() << "\n";
 }
 
@@ -220,7 +194,7 @@ void run_navigate(const GlobalOptions& global, const NavigateOptions& options) {
   std::unique_ptr<sim::Renderer> renderer;
   std::unique_ptr<sim::VirtualRobot> robot;
   std::unique_ptr<navigation::NavigationWorld> body;
-  std::vector<cv::Point2d> grid;
+  std::vector<Eigen::Vector2d> grid;  // the grid images' true positions
   if (options.database.empty()) {
     world = sim::load_world(options.world, worlds);
     // The robot's camera makes panoramas of the size the map was built from.
@@ -254,15 +228,16 @@ void run_navigate(const GlobalOptions& global, const NavigateOptions& options) {
   const navigation::NavigationResult& result = run.result;
 
   const std::unique_ptr<OutputFile> steps = open_csv(options.out / "steps.csv", kStepColumns);
-  write_step_rows(steps->stream(), "", result, memory.place(0).heading_rad.value_or(0.0));
+  write_step_rows(steps->stream(), {}, result, memory.place(0).heading_rad.value_or(0.0));
   steps->commit();
-  draw_path(result, setup.places, run.goal.place, memory,
-            world ? world->obstacles : std::vector<sim::FloorBox>{}, grid, std::nullopt,
-            options.out / "path.png");
-  summary(global) << std::fixed << std::setprecision(2)
-                  << (result.reached ? "reached" : "did not reach") << " the goal (place "
+  const report::NavigationScene scene{world ? world->obstacles : std::vector<sim::FloorBox>{}, grid,
+                                      std::nullopt};
+  eval::save_png(
+      report::navigation_path_figure(result, setup.places, run.goal.place, memory, scene),
+      options.out / "path.png");
+  summary(global) << (result.reached ? "reached" : "did not reach") << " the goal (place "
                   << run.goal.place << ") in " << result.steps.size() << " steps, "
-                  << result.path_length_m << " m driven, " << result.jumps
+                  << fixed(result.path_length_m, 2) << " m driven, " << result.jumps
                   << " localisation jumps; steps: " << (options.out / "steps.csv").string()
                   << ", picture: " << (options.out / "path.png").string() << "\n";
 }

@@ -1,15 +1,15 @@
 // omninav render: synthetic panoramas with exact ground truth, written as a BoB database.
 #include <iostream>
-#include <sstream>
 
 #include "app_config.hpp"
 #include "cli.hpp"
-#include "omninav/report/floor_plan.hpp"
 #include "omninav/core/angles.hpp"
+#include "omninav/core/format.hpp"
 #include "omninav/core/log.hpp"
 #include "omninav/eval/contact_sheet.hpp"
 #include "omninav/eval/png.hpp"
 #include "omninav/evaluation/render_database.hpp"
+#include "omninav/report/floor_plan.hpp"
 
 namespace omninav::cli {
 namespace {
@@ -54,11 +54,9 @@ void run_render(const GlobalOptions& global, const RenderOptions& options) {
   const std::size_t step = std::max<std::size_t>(1, trajectory.poses.size() / 12);
   for (std::size_t i = 0; i < previews.size(); ++i) {
     const CameraPose& pose = trajectory.poses[i * step].pose;
-    std::ostringstream caption;
-    caption.precision(2);
-    caption << std::fixed << "frame " << i * step << "  x " << pose.x_m << " m  y " << pose.y_m
-            << " m  heading " << std::setprecision(0) << rad_to_deg(pose.heading_rad) << " deg";
-    captions.push_back(caption.str());
+    captions.push_back("frame " + std::to_string(i * step) + "  x " + fixed(pose.x_m, 2) +
+                       " m  y " + fixed(pose.y_m, 2) + " m  heading " +
+                       fixed(rad_to_deg(pose.heading_rad), 0) + " deg");
   }
   const std::filesystem::path sheet = options.out / "contact_sheet.png";
   eval::save_png(eval::contact_sheet(previews, captions, 2), sheet);

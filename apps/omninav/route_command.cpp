@@ -2,13 +2,13 @@
 // the place of a goal image (001_5bb151a4e28490b4.txt §3.5), print the route and draw it.
 #include <iomanip>
 #include <iostream>
-#include <opencv2/core/persistence.hpp>
-#include <sstream>
 
 #include "app_config.hpp"
 #include "cli.hpp"
 #include "omninav/core/angles.hpp"
 #include "omninav/core/errors.hpp"
+#include "omninav/core/format.hpp"
+#include "omninav/core/json.hpp"
 #include "omninav/core/log.hpp"
 #include "omninav/core/output_file.hpp"
 #include "omninav/eval/png.hpp"
@@ -24,7 +24,7 @@ struct RouteOptions {
   std::filesystem::path map;
   std::filesystem::path from;
   std::filesystem::path to;
-  std::string format = "text";
+  OutputFormat format = OutputFormat::kText;
   std::filesystem::path plot;  // empty: <map>.route.png
 };
 
@@ -43,16 +43,6 @@ struct Route {
   std::vector<RouteStep> steps;
   std::optional<double> turn_deg;  // the start: turn from the robot's heading now
 };
-
-std::string number(double value, int digits) {
-  std::ostringstream text;
-  text << std::fixed << std::setprecision(digits) << value;
-  return text.str();
-}
-
-std::string optional_number(const std::optional<double>& value, int digits) {
-  return value ? number(*value, digits) : "";
-}
 
 Route make_route(const memory::VisualMemory& memory,
                  const std::vector<navigation::PlaceNode>& places,
@@ -81,13 +71,13 @@ Route make_route(const memory::VisualMemory& memory,
 
 void print_text(const Route& route, const RouteOptions& options) {
   std::cout << "route from " << options.from.string() << " (place " << route.from.place
-            << ", dissimilarity " << number(route.from.dissimilarity_per_value, 2)
+            << ", dissimilarity " << fixed(route.from.dissimilarity_per_value, 2)
             << " per value) to " << options.to.string() << " (place " << route.to.place << ", "
-            << number(route.to.dissimilarity_per_value, 2) << "): " << route.steps.size()
-            << " place" << (route.steps.size() == 1 ? "" : "s") << ", "
-            << number(route.steps.front().cost, 2) << " lattice units\n";
+            << fixed(route.to.dissimilarity_per_value, 2) << "): " << route.steps.size() << " place"
+            << (route.steps.size() == 1 ? "" : "s") << ", " << fixed(route.steps.front().cost, 2)
+            << " lattice units\n";
   if (route.turn_deg) {
-    std::cout << "now: turn " << (*route.turn_deg >= 0 ? "+" : "") << number(*route.turn_deg, 1)
+    std::cout << "now: turn " << signed_fixed(*route.turn_deg, 1)
               << " deg (counter-clockwise positive) from the robot's heading, then go\n";
   } else {
     std::cout << "now: the current image already matches the goal's place\n";
@@ -95,17 +85,17 @@ void print_text(const Route& route, const RouteOptions& options) {
   std::cout << "  place  lattice x,y      to goal  direction  from place's heading\n";
   for (const RouteStep& step : route.steps) {
     std::cout << "  " << std::setw(5) << step.place << "  " << std::setw(7)
-              << number(step.lattice.x(), 2) << "," << std::setw(7) << number(step.lattice.y(), 2)
-              << "  " << std::setw(7) << number(step.cost, 2) << "  ";
+              << fixed(step.lattice.x(), 2) << "," << std::setw(7) << fixed(step.lattice.y(), 2)
+              << "  " << std::setw(7) << fixed(step.cost, 2) << "  ";
     if (step.direction_deg) {
-      std::cout << std::setw(9) << number(*step.direction_deg, 1) << "  " << std::setw(9)
-                << number(*step.direction_in_place_deg, 1) << " deg";
+      std::cout << std::setw(9) << fixed(*step.direction_deg, 1) << "  " << std::setw(9)
+                << fixed(*step.direction_in_place_deg, 1) << " deg";
     } else {
       std::cout << "     goal";
     }
     if (step.truth_m) {
-      std::cout << "   (truth " << number(step.truth_m->x(), 2) << ", "
-                << number(step.truth_m->y(), 2) << " m)";
+      std::cout << "   (truth " << fixed(step.truth_m->x(), 2) << ", "
+                << fixed(step.truth_m->y(), 2) << " m)";
     }
     std::cout << "\n";
   }
@@ -116,48 +106,47 @@ void print_csv(const Route& route) {
                "turn_from_robot_deg,truth_x_m,truth_y_m\n";
   for (std::size_t i = 0; i < route.steps.size(); ++i) {
     const RouteStep& step = route.steps[i];
-    std::cout << i << ',' << step.place << ',' << number(step.lattice.x(), 4) << ','
-              << number(step.lattice.y(), 4) << ',' << number(step.cost, 4) << ','
-              << optional_number(step.direction_deg, 3) << ','
-              << optional_number(step.direction_in_place_deg, 3) << ','
-              << (i == 0 ? optional_number(route.turn_deg, 3) : "") << ','
-              << (step.truth_m ? number(step.truth_m->x(), 4) : "") << ','
-              << (step.truth_m ? number(step.truth_m->y(), 4) : "") << '\n';
+    std::cout << i << ',' << step.place << ',' << fixed(step.lattice.x(), 4) << ','
+              << fixed(step.lattice.y(), 4) << ',' << fixed(step.cost, 4) << ','
+              << fixed_or_empty(step.direction_deg, 3) << ','
+              << fixed_or_empty(step.direction_in_place_deg, 3) << ','
+              << (i == 0 ? fixed_or_empty(route.turn_deg, 3) : "") << ','
+              << (step.truth_m ? fixed(step.truth_m->x(), 4) : "") << ','
+              << (step.truth_m ? fixed(step.truth_m->y(), 4) : "") << '\n';
   }
 }
 
-// JSON through OpenCV's FileStorage, which quotes and escapes strings for us.
+// Numbers at full precision: JSON is for programs.
 void print_json(const Route& route, const RouteOptions& options) {
-  cv::FileStorage json(
-      ".json", cv::FileStorage::WRITE | cv::FileStorage::MEMORY | cv::FileStorage::FORMAT_JSON);
-  json << "map" << options.map.string();
-  const auto write_match = [&json](const std::string& key, const std::filesystem::path& image,
-                                   const memory::PlaceMatch& match) {
-    json << key << "{";
-    json << "image" << image.string() << "place" << static_cast<int>(match.place)
-         << "dissimilarity_per_value" << match.dissimilarity_per_value << "heading_in_place_deg"
-         << rad_to_deg(match.relative_heading_rad);
-    json << "}";
+  const auto match = [](const std::filesystem::path& image, const memory::PlaceMatch& m) {
+    return Json{{"image", image.string()},
+                {"place", static_cast<int>(m.place)},
+                {"dissimilarity_per_value", m.dissimilarity_per_value},
+                {"heading_in_place_deg", rad_to_deg(m.relative_heading_rad)}};
   };
-  write_match("from", options.from, route.from);
-  write_match("to", options.to, route.to);
-  json << "length" << route.steps.front().cost;
-  if (route.turn_deg) json << "turn_from_robot_deg" << *route.turn_deg;
-  json << "route"
-       << "[";
+  Json json{{"map", options.map.string()},
+            {"from", match(options.from, route.from)},
+            {"to", match(options.to, route.to)},
+            {"length", route.steps.front().cost}};
+  if (route.turn_deg) json["turn_from_robot_deg"] = *route.turn_deg;
+  Json steps = Json::array();
   for (const RouteStep& step : route.steps) {
-    json << "{"
-         << "place" << step.place << "lattice_x" << step.lattice.x() << "lattice_y"
-         << step.lattice.y() << "cost" << step.cost;
+    Json place{{"place", step.place},
+               {"lattice_x", step.lattice.x()},
+               {"lattice_y", step.lattice.y()},
+               {"cost", step.cost}};
     if (step.direction_deg) {
-      json << "direction_deg" << *step.direction_deg << "direction_in_place_deg"
-           << *step.direction_in_place_deg;
+      place["direction_deg"] = *step.direction_deg;
+      place["direction_in_place_deg"] = *step.direction_in_place_deg;
     }
-    if (step.truth_m) json << "truth_x_m" << step.truth_m->x() << "truth_y_m" << step.truth_m->y();
-    json << "}";
+    if (step.truth_m) {
+      place["truth_x_m"] = step.truth_m->x();
+      place["truth_y_m"] = step.truth_m->y();
+    }
+    steps.push_back(std::move(place));
   }
-  json << "]";
-  std::cout << json.releaseAndGetString();
+  json["route"] = std::move(steps);
+  std::cout << json_text(json) << "\n";
 }
 
 void run_route(const GlobalOptions& global, const RouteOptions& options) {
@@ -191,12 +180,12 @@ void run_route(const GlobalOptions& global, const RouteOptions& options) {
     throw InputError(options.map.string() + ": no route from place " + std::to_string(from.place) +
                      " to place " + std::to_string(to.place) +
                      " over the lattice neighbours (within " +
-                     number(navigation.route.neighbour_spacings, 1) + " spacings)");
+                     fixed(navigation.route.neighbour_spacings, 1) + " spacings)");
   }
   const Route route = make_route(memory, places, plan, from, to);
-  if (options.format == "csv") {
+  if (options.format == OutputFormat::kCsv) {
     print_csv(route);
-  } else if (options.format == "json") {
+  } else if (options.format == OutputFormat::kJson) {
     print_json(route, options);
   } else {
     print_text(route, options);
@@ -229,9 +218,7 @@ void add_route_command(CLI::App& app, const GlobalOptions& global) {
   command->add_option("map", options->map, "An organised map (.vmem)")->required();
   command->add_option("--from", options->from, "The current image (a panorama)")->required();
   command->add_option("--to", options->to, "The goal image (a panorama)")->required();
-  command->add_option("--format", options->format, "text, csv or json")
-      ->check(CLI::IsMember({"text", "csv", "json"}))
-      ->capture_default_str();
+  add_format_option(command, options->format);
   command->add_option("--plot", options->plot, "The route picture (default: <map>.route.png)");
   command->callback([&global, options] { run_route(global, *options); });
 }

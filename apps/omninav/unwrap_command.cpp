@@ -1,7 +1,8 @@
 // omninav unwrap: raw omnidirectional images in, panoramas (DESIGN.md's column convention) out.
 
+#include <fmt/format.h>
+
 #include <algorithm>
-#include <cctype>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -54,15 +55,6 @@ struct UnwrapOptions {
   CLI::Option* front_offset_option = nullptr;
 };
 
-bool is_video_file(const fs::path& input) {
-  std::error_code error;
-  if (!fs::is_regular_file(input, error)) return false;
-  std::string extension = input.extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return extension != ".csv";
-}
-
 // Command-line values override the file's. Lengths are converted to pixels first, because the
 // command line's unit (--units) need not be the file's.
 omni::UnwrapParams apply_overrides(omni::UnwrapParams params, const UnwrapOptions& options,
@@ -94,8 +86,7 @@ omni::UnwrapParams apply_overrides(omni::UnwrapParams params, const UnwrapOption
 // `<stem of the source>.png`, or `frame_00012.png` for a video; a stem seen before (a.jpg and
 // a.png in one folder) gets the frame index appended rather than overwriting the first.
 std::string output_name(const io::Frame& frame, bool video, std::set<std::string>& used) {
-  char numbered[32];
-  std::snprintf(numbered, sizeof numbered, "frame_%05d", frame.index);
+  const std::string numbered = fmt::format("frame_{:05}", frame.index);
   std::string stem = video ? numbered : fs::path(frame.source).stem().string();
   if (stem.empty()) stem = numbered;
   if (!used.insert(stem).second) {
@@ -133,7 +124,7 @@ void run_unwrap(const UnwrapOptions& options, const GlobalOptions& global) {
   if (error) {
     throw UsageError(options.out.string() + ": cannot create the folder: " + error.message());
   }
-  const bool video = is_video_file(options.input);
+  const bool video = reader->is_video();
   std::set<std::string> used_names;
   std::size_t written = 0;
   {

@@ -3,11 +3,11 @@
 // scoring), on a small grid of the built-in room.
 #include <cmath>
 #include <fstream>
-#include <regex>
 #include <sstream>
 
 #include "command_line_test.hpp"
 #include "omninav/core/angles.hpp"
+#include "omninav/core/json.hpp"
 #include "omninav/io/sequence.hpp"
 #include "omninav/memory/map_store.hpp"
 
@@ -95,13 +95,16 @@ TEST_F(ExploreLocaliseExport, LocaliseFindsEachQuerysPlaceAndHeadingInEveryForma
 
   ASSERT_EQ(run_omninav({"localise", map_.string(), queries_.string(), "--format", "json"}), 0)
       << errors_;
-  EXPECT_EQ(count(output_, "\"query\":"), query_frames_.size()) << output_;
-  const std::regex best_place("\"best\": \\[\\{\"place\": ([0-9]+)");
+  const Json json = Json::parse(output_);
+  EXPECT_EQ(json["map"], map_.string());
+  ASSERT_EQ(json["queries"].size(), query_frames_.size()) << output_;
   std::vector<std::string> json_best;
-  for (auto it = std::sregex_iterator(output_.begin(), output_.end(), best_place);
-       it != std::sregex_iterator(); ++it) {
-    json_best.push_back((*it)[1]);
+  for (const Json& query : json["queries"]) {
+    ASSERT_FALSE(query["best"].empty()) << output_;
+    json_best.push_back(std::to_string(query["best"][0]["place"].get<int>()));
+    EXPECT_TRUE(query["truth"].is_object()) << "the queries have ground truth";
   }
+  EXPECT_TRUE(json["summary"].is_object()) << output_;
   EXPECT_EQ(json_best, best_places) << "json and csv name the same best places";
 
   const std::filesystem::path plot = folder_ / "query.png";
@@ -128,6 +131,7 @@ TEST_F(ExploreLocaliseExport, LocaliseErrorsNameTheFile) {
   EXPECT_NE(errors_.find("missing.vmem"), std::string::npos) << errors_;
 
   EXPECT_EQ(run_omninav({"localise", map_.string(), queries_.string(), "--format", "yaml"}), 2);
+  EXPECT_NE(errors_.find("--format: yaml not in {text,csv,json}"), std::string::npos) << errors_;
   EXPECT_EQ(run_omninav({"localise", map_.string(), queries_.string(), "--levels", "15,5"}), 2)
       << "levels must increase";
   EXPECT_NE(errors_.find("levels"), std::string::npos) << errors_;

@@ -26,6 +26,9 @@ TEST(OpenSequence, FolderOfImages) {
   write_image(dir / "b10.png", make_image(10));
   const std::unique_ptr<SequenceReader> sequence = open_sequence(dir.path());
   EXPECT_NE(dynamic_cast<FolderSequence*>(sequence.get()), nullptr);
+  EXPECT_FALSE(sequence->is_video());
+  EXPECT_FALSE(sequence->is_grid());
+  EXPECT_FALSE(sequence->needs_unwrapping());
   const std::vector<Frame> frames = read_all(*sequence);
   ASSERT_EQ(frames.size(), 2u);
   EXPECT_EQ(index_of(frames[0].image), 2);
@@ -39,6 +42,17 @@ TEST(OpenSequence, FolderWithEntriesIsABobDatabase) {
              "X [mm], Y [mm], Z [mm], Heading [degrees], Filename\n"
              "0, 0, 0, 0, a.png\n");
   EXPECT_NE(dynamic_cast<BobDatabaseReader*>(open_sequence(dir.path()).get()), nullptr);
+  EXPECT_FALSE(open_sequence(dir.path())->is_grid()) << "no metadata: a route";
+  // The database says what its frames are, through the reader's interface.
+  write_text(dir / kBobEntriesFile,
+             "X [mm], Y [mm], Z [mm], Heading [degrees], Filename, Grid X, Grid Y, Grid Z\n"
+             "0, 0, 0, 0, a.png, 0, 0, 0\n");
+  write_text(dir / kBobMetadataFile,
+             "%YAML:1.0\n---\nmetadata:\n   type: grid\n   needsUnwrapping: 1\n");
+  const std::unique_ptr<SequenceReader> grid = open_sequence(dir.path());
+  EXPECT_TRUE(grid->is_grid());
+  EXPECT_TRUE(grid->needs_unwrapping());
+  EXPECT_FALSE(grid->is_video());
 }
 
 TEST(OpenSequence, FolderWithMetadataButNoEntriesIsInputErrorNotAPlainFolder) {
@@ -66,6 +80,7 @@ TEST(OpenSequence, OtherFileIsAVideo) {
     writer.write(cv::Mat(16, 32, CV_8UC3, cv::Scalar::all(100)));
   }
   EXPECT_NE(dynamic_cast<VideoSequence*>(open_sequence(file).get()), nullptr);
+  EXPECT_TRUE(open_sequence(file)->is_video());
 }
 
 TEST(OpenSequence, NonexistentPathIsInputErrorNamingIt) {

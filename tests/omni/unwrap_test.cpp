@@ -289,17 +289,6 @@ TEST(RowConvention, OuterRadiusAtTopUnlessAskedOtherwise) {
   EXPECT_NEAR(unwrap_spot(params, near_rim).row, 45 - 1 - 1.375, 0.2);
 }
 
-TEST(Unwrapper, RawPointOfFollowsTheDocumentedFormula) {
-  const Unwrapper unwrapper(synthetic_camera(360, 45), kRawSize);
-  const cv::Point2d front_rim = unwrapper.raw_point_of(90.0, -0.5);  // top edge of row 0
-  EXPECT_NEAR(front_rim.x, kCx, 1e-9);
-  EXPECT_NEAR(front_rim.y, kCy - 300.0, 1e-9);
-  const cv::Point2d left_inner = unwrapper.raw_point_of(0.0, 44.5);  // bottom edge of row 44
-  EXPECT_NEAR(left_inner.x, kCx - 60.0, 1e-9);
-  EXPECT_NEAR(left_inner.y, kCy, 1e-9);
-  EXPECT_EQ(unwrapper.panorama_size(), cv::Size(360, 45));
-}
-
 TEST(Unwrapper, FractionsAreOfTheRawWidth) {
   // The same annulus given in fractions of the 640 px width and in pixels: identical output.
   UnwrapParams fractions;

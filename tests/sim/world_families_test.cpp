@@ -11,6 +11,7 @@
 
 #include "omninav/core/angles.hpp"
 #include "omninav/core/errors.hpp"
+#include "omninav/sim/field.hpp"
 #include "omninav/sim/renderer.hpp"
 #include "omninav/sim/virtual_robot.hpp"
 #include "omninav/sim/world_loader.hpp"
@@ -133,6 +134,15 @@ TEST(WorldSpec, KeysOverrideTheConfiguredDefaults) {
   for (std::size_t i = 0; i < plain.textures.size(); ++i) {
     EXPECT_EQ(cv::norm(plain.textures[i], direct.textures[i], cv::NORM_INF), 0.0);
   }
+}
+
+TEST(WorldSpec, FieldHorizonIsOneOfThreeNames) {
+  for (const Horizon horizon : {Horizon::kTrees, Horizon::kHills, Horizon::kNone}) {
+    EXPECT_EQ(horizon_from_string(to_string(horizon)), horizon);
+  }
+  EXPECT_EQ(to_string(Horizon::kHills), "hills");
+  EXPECT_THROW(horizon_from_string("mountains"), UsageError);
+  EXPECT_THROW(horizon_from_string("Trees"), UsageError);
 }
 
 TEST(WorldSpec, PlainWallsHaveNoPictures) {

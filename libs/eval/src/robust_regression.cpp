@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "omninav/core/errors.hpp"
+#include "omninav/core/statistics.hpp"
 
 namespace omninav::eval {
 namespace {
@@ -31,18 +32,6 @@ void require_line_data(std::span<const double> x, std::span<const double> y) {
   }
 }
 
-// Median, averaging the two middle values of an even count. Reorders `values`.
-double median_of(std::vector<double>& values) {
-  const std::size_t half = values.size() / 2;
-  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(half),
-                   values.end());
-  const double upper = values[half];
-  if (values.size() % 2 == 1) return upper;
-  const double lower =
-      *std::max_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(half));
-  return 0.5 * (lower + upper);
-}
-
 double median_slope_exact(std::span<const double> x, std::span<const double> y) {
   std::vector<double> slopes;
   slopes.reserve(x.size() * (x.size() - 1) / 2);
@@ -51,7 +40,7 @@ double median_slope_exact(std::span<const double> x, std::span<const double> y) 
       if (x[i] != x[j]) slopes.push_back((y[j] - y[i]) / (x[j] - x[i]));
     }
   }
-  return median_of(slopes);
+  return median_of_middles(std::move(slopes));
 }
 
 // A bijection between doubles and int64 that preserves order (−0 and +0 both map to 0), so
@@ -188,7 +177,7 @@ LineFit theil_sen_fit(std::span<const double> x, std::span<const double> y,
                                                   : median_slope_by_counting(x, y);
   std::vector<double> intercepts(x.size());
   for (std::size_t i = 0; i < x.size(); ++i) intercepts[i] = y[i] - fit.slope * x[i];
-  fit.intercept = median_of(intercepts);
+  fit.intercept = median_of_middles(std::move(intercepts));
   return fit;
 }
 

@@ -15,6 +15,7 @@
 #include "omninav/compass/compass_run.hpp"
 #include "omninav/core/angles.hpp"
 #include "omninav/core/errors.hpp"
+#include "omninav/core/format.hpp"
 #include "omninav/core/log.hpp"
 #include "omninav/eval/png.hpp"
 #include "omninav/evaluation/compass_evaluation.hpp"
@@ -39,16 +40,9 @@ namespace {
 // The length scale of a world measured at its own spacing: the suite's lengths are for 0.3 m.
 constexpr double kReferenceSpacingM = 0.3;
 
+// Specs read naturally: "1.2", not "1.200".
 std::string num(double value, int decimals = 3) {
-  std::ostringstream text;
-  text << std::fixed << std::setprecision(decimals) << value;
-  std::string s = text.str();
-  // Trim trailing zeros so that specs read naturally ("1.2", not "1.200").
-  if (s.find('.') != std::string::npos) {
-    while (!s.empty() && s.back() == '0') s.pop_back();
-    if (!s.empty() && s.back() == '.') s.pop_back();
-  }
-  return s == "-0" ? "0" : s;
+  return trimmed(value, decimals);
 }
 
 // A command-line argument quoted for a POSIX shell when it needs it.
@@ -281,8 +275,7 @@ class WorldRun {
     args.insert(args.end(), {"--out", map_file.string(), "--overwrite"});
     memory::VisualMemory memory(memory_config.map);
     std::unique_ptr<io::SequenceReader> reader = io::open_sequence(input);
-    const auto* database = dynamic_cast<const io::BobDatabaseReader*>(reader.get());
-    const bool is_grid = database && database->info().is_grid;
+    const bool is_grid = reader->is_grid();
     const memory::Run run =
         memory::explore_frames(memory, params, input.string(), is_grid, false, reader->size(),
                                [&reader] { return reader->next(); });

@@ -14,11 +14,12 @@ std::vector<cv::Mat> render_database(const sim::Renderer& renderer,
                                      std::size_t preview_frames) {
   const std::vector<sim::TimedPose>& poses = trajectory.poses;
   io::DatabaseInfo info;
-  info.is_grid = trajectory.kind == "grid";
+  info.is_grid = trajectory.kind == sim::TrajectoryKind::kGrid;
   info.camera_name = "omninav renderer";
   info.description = description;
   info.needs_unwrapping = false;
-  if (poses.size() > 1 && trajectory.kind != "grid" && trajectory.kind != "csv") {
+  if (poses.size() > 1 && trajectory.kind != sim::TrajectoryKind::kGrid &&
+      trajectory.kind != sim::TrajectoryKind::kCsv) {
     info.frame_rate_hz = 1.0 / (poses[1].time_s - poses[0].time_s);
   }
   io::DatabaseWriter writer(folder, info, overwrite);

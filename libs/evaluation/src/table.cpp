@@ -7,16 +7,12 @@
 #include <opencv2/imgproc.hpp>
 #include <sstream>
 
+#include "omninav/core/csv.hpp"
 #include "omninav/core/errors.hpp"
+#include "omninav/core/format.hpp"
 
 namespace omninav::evaluation {
 namespace {
-
-std::string fixed(double value, int decimals) {
-  std::ostringstream text;
-  text << std::fixed << std::setprecision(decimals) << value;
-  return text.str();
-}
 
 // How bad a value is, larger = worse, whatever the measure's direction.
 double badness(const Measure& measure, double value) {
@@ -113,24 +109,28 @@ std::vector<int> worst_rows(const std::vector<Row>& rows, const std::vector<Meas
 std::string table_csv(const std::vector<Row>& rows, const std::vector<Measure>& columns) {
   const std::vector<int> worst = worst_rows(rows, columns);
   std::ostringstream csv;
-  csv << "world,family";
-  for (const Measure& m : columns) csv << ',' << m.key;
-  csv << '\n';
+  std::vector<std::string> header{"world", "family"};
+  for (const Measure& m : columns) header.push_back(m.key);
+  write_csv_line(csv, header);
   for (const Row& row : rows) {
-    csv << row.world << ',' << row.family;
+    std::vector<std::string> fields{row.world, row.family};
     for (std::size_t c = 0; c < columns.size(); ++c) {
       const Cell& cell = row.cells[c];
-      csv << ',';
-      if (cell.state == Cell::State::kValue) csv << fixed(cell.value, columns[c].decimals + 2);
-      if (cell.state == Cell::State::kFailed) csv << "failed";
+      fields.push_back(cell.state == Cell::State::kValue
+                           ? fixed(cell.value, columns[c].decimals + 2)
+                       : cell.state == Cell::State::kFailed ? "failed"
+                                                            : "");
     }
-    csv << '\n';
+    write_csv_line(csv, fields);
   }
-  csv << "worst_family,";
-  for (const int w : worst) csv << ',' << (w < 0 ? "" : rows[w].family);
-  csv << "\nworst_world,";
-  for (const int w : worst) csv << ',' << (w < 0 ? "" : rows[w].world);
-  csv << '\n';
+  // The worst row of each column: its family, then its world.
+  for (const bool family : {true, false}) {
+    std::vector<std::string> fields{family ? "worst_family" : "worst_world", ""};
+    for (const int w : worst) {
+      fields.push_back(w < 0 ? "" : family ? rows[w].family : rows[w].world);
+    }
+    write_csv_line(csv, fields);
+  }
   return csv.str();
 }
 

@@ -3,8 +3,8 @@
 #include <sstream>
 
 #include "bob_format.hpp"
-#include "csv_table.hpp"
 #include "omninav/core/angles.hpp"
+#include "omninav/core/csv.hpp"
 #include "omninav/core/errors.hpp"
 #include "omninav/core/parse.hpp"
 #include "omninav/io/bob_database.hpp"

@@ -1,5 +1,4 @@
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <opencv2/imgcodecs.hpp>
@@ -7,6 +6,7 @@
 #include "bob_format.hpp"
 #include "omninav/core/angles.hpp"
 #include "omninav/core/errors.hpp"
+#include "omninav/core/format.hpp"
 #include "omninav/core/output_file.hpp"
 #include "omninav/core/panorama.hpp"
 #include "omninav/io/bob_database.hpp"
@@ -16,13 +16,6 @@ namespace {
 
 // Hidden, so that a folder reader never lists the staged images as part of the folder.
 constexpr const char* kStagingFolder = ".omninav_staging";
-
-// The shortest text that reads back to exactly `value`.
-std::string format_number(double value) {
-  char buffer[64];
-  const auto [end, error] = std::to_chars(buffer, buffer + sizeof buffer, value);
-  return std::string(buffer, end);
-}
 
 std::string route_file_name(std::size_t index) {
   char name[32];
@@ -143,15 +136,15 @@ void DatabaseWriter::finish() {
   csv += '\n';
   for (const Entry& entry : entries_) {
     const CameraPose& pose = entry.truth;
-    csv += format_number(pose.x_m * 1000.0) + ", " + format_number(pose.y_m * 1000.0) + ", " +
-           format_number(pose.z_m * 1000.0) + ", " + format_number(rad_to_deg(pose.heading_rad)) +
-           ", " + format_number(rad_to_deg(pose.pitch_rad)) + ", " +
-           format_number(rad_to_deg(pose.roll_rad)) + ", " + entry.file_name;
+    csv += shortest(pose.x_m * 1000.0) + ", " + shortest(pose.y_m * 1000.0) + ", " +
+           shortest(pose.z_m * 1000.0) + ", " + shortest(rad_to_deg(pose.heading_rad)) + ", " +
+           shortest(rad_to_deg(pose.pitch_rad)) + ", " + shortest(rad_to_deg(pose.roll_rad)) +
+           ", " + entry.file_name;
     if (entry.grid) {
       csv += ", " + std::to_string((*entry.grid)[0]) + ", " + std::to_string((*entry.grid)[1]) +
              ", " + std::to_string((*entry.grid)[2]);
     }
-    if (has_times) csv += ", " + format_number(*entry.time_s * 1000.0);
+    if (has_times) csv += ", " + shortest(*entry.time_s * 1000.0);
     csv += '\n';
   }
   write_output_file(staging_ / kBobEntriesFile, csv);

@@ -1,7 +1,7 @@
 #include "omninav/io/csv_sequence.hpp"
 
-#include "csv_table.hpp"
 #include "omninav/core/angles.hpp"
+#include "omninav/core/csv.hpp"
 #include "omninav/core/errors.hpp"
 #include "omninav/core/parse.hpp"
 

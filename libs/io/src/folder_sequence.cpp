@@ -1,26 +1,13 @@
 #include "omninav/io/folder_sequence.hpp"
 
 #include <algorithm>
-#include <array>
-#include <cctype>
-#include <string_view>
 
 #include "omninav/core/errors.hpp"
+#include "omninav/io/image_file.hpp"
 #include "omninav/io/natural_sort.hpp"
 
 namespace omninav::io {
 namespace {
-
-constexpr std::array<std::string_view, 8> kImageExtensions = {".png", ".jpg",  ".jpeg", ".bmp",
-                                                              ".tif", ".tiff", ".ppm",  ".pgm"};
-
-bool has_image_extension(const std::filesystem::path& file) {
-  std::string extension = file.extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return std::find(kImageExtensions.begin(), kImageExtensions.end(), extension) !=
-         kImageExtensions.end();
-}
 
 // Hidden files such as macOS's "._img1.png" resource forks carry an image extension but are
 // not images.
@@ -36,7 +23,7 @@ std::vector<std::filesystem::path> list_images(const std::filesystem::path& fold
   std::filesystem::directory_iterator entries(folder, error);
   if (error) throw InputError(folder.string() + ": cannot list folder (" + error.message() + ")");
   for (const std::filesystem::directory_entry& entry : entries) {
-    if (entry.is_regular_file(error) && has_image_extension(entry.path()) &&
+    if (entry.is_regular_file(error) && is_image_file_name(entry.path()) &&
         !is_hidden(entry.path())) {
       files.push_back(entry.path());
     }

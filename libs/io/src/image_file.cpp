@@ -1,9 +1,12 @@
 #include "omninav/io/image_file.hpp"
 
 #include <algorithm>
+#include <array>
+#include <cctype>
 #include <cstdint>
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
+#include <string_view>
 #include <vector>
 
 #include "omninav/core/errors.hpp"
@@ -131,6 +134,16 @@ void ImageSizeCheck::check(const cv::Mat& image, const std::string& source) {
                      ", but the sequence's first image (" + first_source_ + ") is " +
                      size_text(*first_size_));
   }
+}
+
+bool is_image_file_name(const std::filesystem::path& file) {
+  constexpr std::array<std::string_view, 8> kImageExtensions = {".png", ".jpg",  ".jpeg", ".bmp",
+                                                                ".tif", ".tiff", ".ppm",  ".pgm"};
+  std::string extension = file.extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return std::find(kImageExtensions.begin(), kImageExtensions.end(), extension) !=
+         kImageExtensions.end();
 }
 
 }  // namespace omninav::io

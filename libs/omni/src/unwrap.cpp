@@ -10,6 +10,7 @@
 #include "omninav/core/angles.hpp"
 #include "omninav/core/config.hpp"
 #include "omninav/core/errors.hpp"
+#include "omninav/core/format.hpp"
 #include "omninav/core/log.hpp"
 
 namespace omninav::omni {
@@ -24,15 +25,7 @@ constexpr double kAnnulusOvershootWarningPx = 2.0;
 constexpr float kOutsideMap = -10.0F;
 
 std::string format_px(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.1f", value);
-  return text;
-}
-
-std::string format_number(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", value);
-  return text;
+  return fixed(value, 1);
 }
 
 std::string size_text(cv::Size size) {
@@ -123,10 +116,9 @@ void load_unwrap_params(const ConfigReader& section, UnwrapParams& params) {
                       "or neither to detect the mirror");
   }
   if (params.inner_radius && params.outer_radius && *params.inner_radius >= *params.outer_radius) {
-    throw ConfigError(section.source_name() + ": key 'unwrap.inner_radius' (" +
-                      format_number(*params.inner_radius) +
-                      ") must be smaller than 'unwrap.outer_radius' (" +
-                      format_number(*params.outer_radius) + ")");
+    throw ConfigError(
+        section.source_name() + ": key 'unwrap.inner_radius' (" + general(*params.inner_radius) +
+        ") must be smaller than 'unwrap.outer_radius' (" + general(*params.outer_radius) + ")");
   }
 }
 
@@ -260,12 +252,6 @@ cv::Mat Unwrapper::unwrap(const cv::Mat& raw) const {
   cv::remap(raw, panorama, map_x_, map_y_, cv_interpolation(params_.interpolation),
             cv::BORDER_CONSTANT, cv::Scalar::all(0));
   return panorama;
-}
-
-cv::Point2d Unwrapper::raw_point_of(double column, double row) const {
-  const double phi = raw_angle_of_column(column, params_.width_px, params_);
-  const double rho = radius_of_row(row, params_.height_px, annulus_, params_.outer_radius_at_top);
-  return {annulus_.centre_px.x - rho * std::sin(phi), annulus_.centre_px.y - rho * std::cos(phi)};
 }
 
 Unwrapper make_unwrapper(const UnwrapParams& params, const cv::Mat& first_raw) {

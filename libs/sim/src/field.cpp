@@ -193,6 +193,25 @@ std::vector<int> add_shades(World& world, const std::string& name, cv::Vec3f bas
 
 }  // namespace
 
+std::string to_string(Horizon horizon) {
+  switch (horizon) {
+    case Horizon::kTrees:
+      return "trees";
+    case Horizon::kHills:
+      return "hills";
+    case Horizon::kNone:
+      return "none";
+  }
+  return "?";
+}
+
+Horizon horizon_from_string(std::string_view text) {
+  for (const Horizon horizon : {Horizon::kTrees, Horizon::kHills, Horizon::kNone}) {
+    if (to_string(horizon) == text) return horizon;
+  }
+  throw UsageError("horizon '" + std::string(text) + "': expected trees, hills or none");
+}
+
 World make_field(const FieldParams& params) {
   if (params.grass_min_m > params.grass_max_m) {
     throw UsageError("field: grass_min_m must not exceed grass_max_m");
@@ -300,13 +319,13 @@ World make_field(const FieldParams& params) {
 
   // The horizon: hills, and a tree line in front of them, both hazy with distance.
   constexpr int kHorizonSamples = 720;
-  if (params.horizon != "none") {
+  if (params.horizon != Horizon::kNone) {
     std::vector<double> hills = horizon_profile(kHorizonSamples, rng);
     for (double& h : hills) h = hills_m * (0.09 + 0.04 * h);
     add_ring(world, centre, hills_m, hills,
              add_shades(world, "hills", {95.f, 120.f, 105.f}, 0.05, 0.45, 4, rng), rng);
   }
-  if (params.horizon == "trees") {
+  if (params.horizon == Horizon::kTrees) {
     std::vector<double> line = horizon_profile(kHorizonSamples, rng);
     for (double& h : line) h = tree_line_m * (0.07 + 0.03 * h) * rng.uniform(0.8, 1.2);
     add_ring(world, centre, tree_line_m, line,

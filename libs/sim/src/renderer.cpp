@@ -135,6 +135,12 @@ struct Renderer::Impl {
 
   // The shaded colour and distance of a ray Embree has intersected.
   Hit shade(const RTCRayHit& ray) const;
+
+  // Sets `rays` (every sample of every row of one column, rows fastest) to start at `origin`
+  // and look along the directions of world column `world_column`, turned by `fraction` of a
+  // column and tilted by `tilt`.
+  void aim_column(int world_column, double fraction, const cv::Matx33f& tilt,
+                  const cv::Vec3f& origin, std::vector<RTCRayHit>& rays) const;
 };
 
 Renderer::Renderer(const World& world, const RenderParams& params)
@@ -263,44 +269,112 @@ Hit Renderer::Impl::shade(const RTCRayHit& ray) const {
   return hit;
 }
 
+void Renderer::Impl::aim_column(int world_column, double fraction, const cv::Matx33f& tilt,
+                                const cv::Vec3f& origin, std::vector<RTCRayHit>& rays) const {
+  const int width = params.geometry.width_px;
+  const int height = params.geometry.height_px;
+  for (std::size_t sample = 0; sample < column_offsets.size(); ++sample) {
+    const double azimuth =
+        kPi / 2.0 - kTwoPi * (world_column + column_offsets[sample] - fraction) / width;
+    const float cos_azimuth = static_cast<float>(std::cos(azimuth));
+    const float sin_azimuth = static_cast<float>(std::sin(azimuth));
+    for (int row = 0; row < height; ++row) {
+      const std::size_t sub_row = sample * static_cast<std::size_t>(height) + row;
+      const cv::Vec3f level(cos_elevation[sub_row] * cos_azimuth,
+                            cos_elevation[sub_row] * sin_azimuth, sin_elevation[sub_row]);
+      const cv::Vec3f direction = tilt * level;
+      RTCRayHit& ray = rays[sub_row];
+      ray.ray.org_x = origin[0];
+      ray.ray.org_y = origin[1];
+      ray.ray.org_z = origin[2];
+      ray.ray.dir_x = direction[0];
+      ray.ray.dir_y = direction[1];
+      ray.ray.dir_z = direction[2];
+      ray.ray.tnear = 1e-4f;
+      ray.ray.tfar = std::numeric_limits<float>::infinity();
+      ray.ray.mask = std::numeric_limits<unsigned>::max();
+      ray.ray.flags = 0;
+      ray.ray.time = 0.f;
+      ray.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+      ray.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    }
+  }
+}
+
+namespace {
+
+// A heading in columns, split into the whole columns the panorama rolls by and the fraction
+// of a column its rays turn by (see kHeadingQuantum).
+struct HeadingInColumns {
+  int shift = 0;
+  double fraction = 0.0;
+};
+
+HeadingInColumns heading_in_columns(double heading_rad, int width) {
+  const double heading_columns =
+      std::round(heading_rad * width / kTwoPi / kHeadingQuantum) * kHeadingQuantum;
+  const double whole_columns = std::floor(heading_columns);
+  return {static_cast<int>(std::fmod(whole_columns, width)), heading_columns - whole_columns};
+}
+
+// Tilt in the level frame: M = Rz(θ)·Ry(pitch)·Rx(roll)·Rz(−θ) takes a direction of the
+// un-tilted camera (azimuth measured in the world) to the tilted one. Exactly the identity
+// when pitch and roll are zero, which keeps whole-column turns bit-exact.
+cv::Matx33f tilt_of(const CameraPose& pose) {
+  if (pose.pitch_rad == 0.0 && pose.roll_rad == 0.0) return cv::Matx33f::eye();
+  const double ch = std::cos(pose.heading_rad), sh = std::sin(pose.heading_rad);
+  const double cp = std::cos(pose.pitch_rad), sp = std::sin(pose.pitch_rad);
+  const double cr = std::cos(pose.roll_rad), sr = std::sin(pose.roll_rad);
+  const cv::Matx33d yaw(ch, -sh, 0, sh, ch, 0, 0, 0, 1);
+  const cv::Matx33d pitch(cp, 0, sp, 0, 1, 0, -sp, 0, cp);
+  const cv::Matx33d roll(1, 0, 0, 0, cr, -sr, 0, sr, cr);
+  return cv::Matx33f(yaw * pitch * roll * yaw.t());
+}
+
+// The moving occluder at one time, as the box a ray may hit (sensor effects).
+class Occluder {
+ public:
+  Occluder(const OccluderParams& params, double time_s, double ambient)
+      : params_(params), ambient_(ambient) {
+    if (!params.enabled) return;
+    const FloorBox box = occluder_footprint(params, time_s);
+    low_ = cv::Vec3f(static_cast<float>(box.min_x_m), static_cast<float>(box.min_y_m), 0.f);
+    high_ = cv::Vec3f(static_cast<float>(box.max_x_m), static_cast<float>(box.max_y_m),
+                      static_cast<float>(params.height_m));
+  }
+
+  // Colours `hit` with the occluder when the ray from `origin` along `direction` meets it
+  // before what it hit.
+  void cover(const cv::Vec3f& origin, const cv::Vec3f& direction, Hit& hit) const {
+    if (!params_.enabled) return;
+    float distance = 0.f;
+    cv::Vec3f normal;
+    if (intersect_box(origin, direction, low_, high_, distance, normal) &&
+        distance < hit.distance_m) {
+      const float light = static_cast<float>(ambient_) +
+                          static_cast<float>(1.0 - ambient_) * std::max(0.f, normal.dot(kToLight));
+      hit.colour = params_.colour_bgr * light;
+    }
+  }
+
+ private:
+  const OccluderParams& params_;
+  double ambient_ = 0.0;
+  cv::Vec3f low_, high_;
+};
+
+}  // namespace
+
 cv::Mat Renderer::render(const CameraPose& pose, double time_s, int frame_index) const {
   const Impl& impl = *impl_;
-  const PanoramaGeometry& panorama = impl.params.geometry;
-  const int width = panorama.width_px;
-  const int height = panorama.height_px;
+  const int width = impl.params.geometry.width_px;
+  const int height = impl.params.geometry.height_px;
   const int samples = static_cast<int>(impl.column_offsets.size());
-
-  // Heading in columns, split into a whole and a fractional part (see kHeadingQuantum).
-  const double heading_columns =
-      std::round(pose.heading_rad * width / kTwoPi / kHeadingQuantum) * kHeadingQuantum;
-  const double whole_columns = std::floor(heading_columns);
-  const double fraction = heading_columns - whole_columns;
-  const int shift = static_cast<int>(std::fmod(whole_columns, width));
-
-  // Tilt in the level frame: M = Rz(θ)·Ry(pitch)·Rx(roll)·Rz(−θ) takes a direction of the
-  // un-tilted camera (azimuth measured in the world) to the tilted one. Exactly the identity
-  // when pitch and roll are zero, which keeps whole-column turns bit-exact.
-  cv::Matx33f tilt = cv::Matx33f::eye();
-  if (pose.pitch_rad != 0.0 || pose.roll_rad != 0.0) {
-    const double ch = std::cos(pose.heading_rad), sh = std::sin(pose.heading_rad);
-    const double cp = std::cos(pose.pitch_rad), sp = std::sin(pose.pitch_rad);
-    const double cr = std::cos(pose.roll_rad), sr = std::sin(pose.roll_rad);
-    const cv::Matx33d yaw(ch, -sh, 0, sh, ch, 0, 0, 0, 1);
-    const cv::Matx33d pitch(cp, 0, sp, 0, 1, 0, -sp, 0, cp);
-    const cv::Matx33d roll(1, 0, 0, 0, cr, -sr, 0, sr, cr);
-    tilt = cv::Matx33f(yaw * pitch * roll * yaw.t());
-  }
-
+  const HeadingInColumns heading = heading_in_columns(pose.heading_rad, width);
+  const cv::Matx33f tilt = tilt_of(pose);
   const cv::Vec3f origin(static_cast<float>(pose.x_m), static_cast<float>(pose.y_m),
                          static_cast<float>(pose.z_m));
-  const OccluderParams& occluder = impl.params.effects.occluder;
-  cv::Vec3f occluder_low, occluder_high;
-  if (occluder.enabled) {
-    const FloorBox box = occluder_footprint(occluder, time_s);
-    occluder_low = cv::Vec3f(static_cast<float>(box.min_x_m), static_cast<float>(box.min_y_m), 0.f);
-    occluder_high = cv::Vec3f(static_cast<float>(box.max_x_m), static_cast<float>(box.max_y_m),
-                              static_cast<float>(occluder.height_m));
-  }
+  const Occluder occluder(impl.params.effects.occluder, time_s, impl.params.ambient);
 
   // One column's rays go to Embree together, flagged coherent: they fan out from one point
   // within a narrow wedge, which its stream traversal exploits (about twice as fast as one
@@ -318,51 +392,15 @@ cv::Mat Renderer::render(const CameraPose& pose, double time_s, int frame_index)
   cv::Mat panorama_8u(height, width, CV_8UC3);
   for (int column = 0; column < width; ++column) {
     // Column `column` at heading s looks where column (column − s) looks at heading 0.
-    const int world_column = ((column - shift) % width + width) % width;
-    for (int sample = 0; sample < samples; ++sample) {
-      const double azimuth =
-          kPi / 2.0 - kTwoPi * (world_column + impl.column_offsets[sample] - fraction) / width;
-      const float cos_azimuth = static_cast<float>(std::cos(azimuth));
-      const float sin_azimuth = static_cast<float>(std::sin(azimuth));
-      for (int row = 0; row < height; ++row) {
-        const std::size_t sub_row = static_cast<std::size_t>(sample * height + row);
-        const cv::Vec3f level(impl.cos_elevation[sub_row] * cos_azimuth,
-                              impl.cos_elevation[sub_row] * sin_azimuth,
-                              impl.sin_elevation[sub_row]);
-        const cv::Vec3f direction = tilt * level;
-        RTCRayHit& ray = rays[sub_row];
-        ray.ray.org_x = origin[0];
-        ray.ray.org_y = origin[1];
-        ray.ray.org_z = origin[2];
-        ray.ray.dir_x = direction[0];
-        ray.ray.dir_y = direction[1];
-        ray.ray.dir_z = direction[2];
-        ray.ray.tnear = 1e-4f;
-        ray.ray.tfar = std::numeric_limits<float>::infinity();
-        ray.ray.mask = std::numeric_limits<unsigned>::max();
-        ray.ray.flags = 0;
-        ray.ray.time = 0.f;
-        ray.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-        ray.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-      }
-    }
+    const int world_column = ((column - heading.shift) % width + width) % width;
+    impl.aim_column(world_column, heading.fraction, tilt, origin, rays);
     rtcIntersect1M(impl.scene, &context, rays.data(), static_cast<unsigned>(rays.size()),
                    sizeof(RTCRayHit));
     for (std::size_t index = 0; index < rays.size(); ++index) {
       Hit hit = impl.shade(rays[index]);
-      float occluder_distance = 0.f;
-      cv::Vec3f occluder_normal;
-      const cv::Vec3f direction(rays[index].ray.dir_x, rays[index].ray.dir_y,
-                                rays[index].ray.dir_z);
-      if (occluder.enabled &&
-          intersect_box(origin, direction, occluder_low, occluder_high, occluder_distance,
-                        occluder_normal) &&
-          occluder_distance < hit.distance_m) {
-        const float light = static_cast<float>(impl.params.ambient) +
-                            static_cast<float>(1.0 - impl.params.ambient) *
-                                std::max(0.f, occluder_normal.dot(kToLight));
-        hit.colour = occluder.colour_bgr * light;
-      }
+      occluder.cover(origin,
+                     cv::Vec3f(rays[index].ray.dir_x, rays[index].ray.dir_y, rays[index].ray.dir_z),
+                     hit);
       column_sum[index % height] += hit.colour;
     }
     for (int row = 0; row < height; ++row) {
@@ -378,7 +416,6 @@ cv::Mat Renderer::render(const CameraPose& pose, double time_s, int frame_index)
       column_sum[row] = cv::Vec3f(0.f, 0.f, 0.f);
     }
   }
-
   return panorama_8u;
 }
 

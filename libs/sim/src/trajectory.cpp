@@ -1,12 +1,13 @@
 #include "omninav/sim/trajectory.hpp"
 
+#include <array>
 #include <cmath>
-#include <fstream>
 #include <map>
 #include <opencv2/core.hpp>
 #include <set>
 
 #include "omninav/core/angles.hpp"
+#include "omninav/core/csv.hpp"
 #include "omninav/core/errors.hpp"
 #include "omninav/core/log.hpp"
 #include "omninav/core/parse.hpp"
@@ -131,40 +132,27 @@ void walk_polyline(const std::vector<cv::Point2d>& points, double speed_m_s, dou
 }
 
 std::vector<TimedPose> read_csv_poses(const std::string& path) {
-  std::ifstream file(path);
-  if (!file) throw InputError(path + ": cannot open the trajectory CSV");
-  std::string line;
-  if (!std::getline(file, line)) throw InputError(path + ": empty trajectory CSV");
-  const std::vector<std::string> header = split(line, ',');
-  auto column = [&](const std::string& name, bool required) -> int {
-    for (std::size_t i = 0; i < header.size(); ++i) {
-      if (header[i] == name) return static_cast<int>(i);
-    }
-    if (required) throw InputError(path + ": missing column '" + name + "'");
-    return -1;
-  };
-  const int x = column("x_m", true), y = column("y_m", true), heading = column("heading_deg", true);
-  const int time = column("time_s", false), z = column("z_m", false);
-  const int pitch = column("pitch_deg", false), roll = column("roll_deg", false);
+  const CsvTable table = CsvTable::read(path);
+  const std::size_t x = table.require_column("x_m"), y = table.require_column("y_m");
+  const std::size_t heading = table.require_column("heading_deg");
+  const std::optional<std::size_t> time = table.find_column("time_s"), z = table.find_column("z_m");
+  const std::optional<std::size_t> pitch = table.find_column("pitch_deg"),
+                                   roll = table.find_column("roll_deg");
   std::vector<TimedPose> poses;
-  for (int line_number = 2; std::getline(file, line); ++line_number) {
-    if (trim(line).empty()) continue;
-    const std::vector<std::string> fields = split(line, ',');
-    const std::string where = path + ":" + std::to_string(line_number);
-    auto field = [&](int index) -> const std::string& {
-      if (index >= static_cast<int>(fields.size())) {
-        throw InputError(where + ": expected " + std::to_string(header.size()) + " fields");
-      }
-      return fields[index];
+  for (const CsvTable::Row& row : table.rows()) {
+    const std::string where = table.where(row);
+    const auto number = [&](std::size_t column) { return parse_double(row.fields[column], where); };
+    const auto position_m = [&](std::size_t column) {
+      return check_coordinate_m(number(column), where);
     };
     TimedPose pose;
-    pose.pose.x_m = check_coordinate_m(parse_double(field(x), where), where);
-    pose.pose.y_m = check_coordinate_m(parse_double(field(y), where), where);
-    pose.pose.heading_rad = deg_to_rad(parse_double(field(heading), where));
-    pose.time_s = time >= 0 ? parse_double(field(time), where) : -1.0;
-    if (z >= 0) pose.pose.z_m = check_coordinate_m(parse_double(field(z), where), where);
-    if (pitch >= 0) pose.pose.pitch_rad = deg_to_rad(parse_double(field(pitch), where));
-    if (roll >= 0) pose.pose.roll_rad = deg_to_rad(parse_double(field(roll), where));
+    pose.pose.x_m = position_m(x);
+    pose.pose.y_m = position_m(y);
+    pose.pose.heading_rad = deg_to_rad(number(heading));
+    pose.time_s = time ? number(*time) : -1.0;
+    if (z) pose.pose.z_m = position_m(*z);
+    if (pitch) pose.pose.pitch_rad = deg_to_rad(number(*pitch));
+    if (roll) pose.pose.roll_rad = deg_to_rad(number(*roll));
     poses.push_back(pose);
   }
   if (poses.empty()) throw InputError(path + ": no poses in the trajectory CSV");
@@ -189,6 +177,27 @@ void add_tilt_noise(std::vector<TimedPose>& poses, double pitch_sd_rad, double r
   }
 }
 
+// What every kind's poses are made from: the spec's arguments, the world, and the defaults
+// the kinds share (the floor's centre and a margin inside its edges, the frame rate).
+// One member function per kind makes its poses.
+struct KindContext {
+  SpecArguments& args;
+  const World& world;
+  const std::string& spec;
+  double centre_x = 0.0;
+  double centre_y = 0.0;
+  double fps = 10.0;
+  double margin = 0.5;
+
+  std::vector<TimedPose> rotate_poses() const;
+  std::vector<TimedPose> polyline_poses(TrajectoryKind kind) const;
+  std::vector<TimedPose> circle_poses() const;
+  std::vector<TimedPose> walk_poses() const;
+  std::vector<TimedPose> wander_poses() const;
+  std::vector<TimedPose> grid_poses() const;
+  std::vector<TimedPose> csv_poses() const;
+};
+
 // An animal's or a small robot's route (kind `wander`): the direction of travel turns at a
 // rate that changes at random moments, mostly gently and now and then sharply (the rate's
 // magnitude is exponential with mean turn_rate_deg_s), and the body's heading wobbles about
@@ -196,8 +205,7 @@ void add_tilt_noise(std::vector<TimedPose>& poses, double pitch_sd_rad, double r
 // its amplitude and period jittered by ±30 % per cycle). Looking ahead 0.5 s, the walker turns
 // away from walls, obstacles and the floor's edge by the smallest turn that keeps it
 // clearance_m clear, so that every pose is in the free space.
-std::vector<TimedPose> wander(SpecArguments& args, const World& world, const std::string& spec,
-                              double centre_x, double centre_y, double fps) {
+std::vector<TimedPose> KindContext::wander_poses() const {
   double x = args.number("x", centre_x), y = args.number("y", centre_y);
   double travel = deg_to_rad(args.number("heading_deg", 0.0));
   const double speed = args.number("speed_m_s", 0.2);
@@ -289,7 +297,194 @@ std::vector<TimedPose> wander(SpecArguments& args, const World& world, const std
   return poses;
 }
 
+// kind rotate: on the spot at a constant rate.
+std::vector<TimedPose> KindContext::rotate_poses() const {
+  std::vector<TimedPose> poses;
+  const double x = args.number("x", centre_x), y = args.number("y", centre_y);
+  const double start = deg_to_rad(args.number("heading_deg", 0.0));
+  const double turns = args.number("turns", 1.0);
+  const double rate = deg_to_rad(args.number("rate_deg_s", 30.0));
+  if (rate == 0.0) throw UsageError("trajectory '" + spec + "': rate_deg_s must not be 0");
+  const int frames = pose_count(std::floor(turns * kTwoPi / std::abs(rate) * fps + 1e-9) + 1, spec);
+  for (int i = 0; i < frames; ++i) {
+    poses.push_back({i / fps, {x, y, 0.0, wrap_angle(start + rate * i / fps), 0.0, 0.0}, {}});
+  }
+  return poses;
+}
+
+// kinds line and zigzag: along a polyline at a constant speed, turning on the spot at corners.
+std::vector<TimedPose> KindContext::polyline_poses(TrajectoryKind kind) const {
+  std::vector<TimedPose> poses;
+  const double x0 = args.number("x0", world.floor.min_x_m + margin);
+  const double y0 =
+      args.number("y0", kind == TrajectoryKind::kLine ? centre_y : world.floor.min_y_m + margin);
+  const double x1 = args.number("x1", world.floor.max_x_m - margin);
+  const double y1 =
+      args.number("y1", kind == TrajectoryKind::kLine ? centre_y : world.floor.max_y_m - margin);
+  const double speed = args.number("speed_m_s", 0.2);
+  require_positive(speed, "speed_m_s", spec);
+  const double turn_rate = deg_to_rad(args.number("turn_rate_deg_s", 90.0));
+  if (turn_rate < 0.0)
+    throw UsageError("trajectory '" + spec + "': turn_rate_deg_s must not be negative");
+  std::vector<cv::Point2d> points{{x0, y0}, {x1, y1}};
+  if (kind == TrajectoryKind::kZigzag) {
+    const int rows = pose_count(args.whole("rows", 4), spec);
+    if (rows < 2) throw UsageError("trajectory '" + spec + "': rows must be at least 2");
+    points.clear();
+    for (int row = 0; row < rows; ++row) {
+      const double y = y0 + (y1 - y0) * row / (rows - 1);
+      points.emplace_back(row % 2 == 0 ? x0 : x1, y);
+      points.emplace_back(row % 2 == 0 ? x1 : x0, y);
+    }
+  }
+  if (cv::norm(points.back() - points.front()) == 0.0 && points.size() == 2) {
+    throw UsageError("trajectory '" + spec + "': the line has zero length");
+  }
+  walk_polyline(points, speed, fps, turn_rate, spec, poses);
+  return poses;
+}
+
+// kind circle: round a centre, facing along the tangent.
+std::vector<TimedPose> KindContext::circle_poses() const {
+  std::vector<TimedPose> poses;
+  const double cx = args.number("cx", centre_x), cy = args.number("cy", centre_y);
+  const double radius = args.number("radius_m", 1.0);
+  const double turns = args.number("turns", 1.0);
+  const double speed = args.number("speed_m_s", 0.2);
+  require_positive(radius, "radius_m", spec);
+  if (speed == 0.0) throw UsageError("trajectory '" + spec + "': speed_m_s must not be 0");
+  const double angular_rate = speed / radius;  // rad/s, signed
+  const int frames =
+      pose_count(std::floor(turns * kTwoPi / std::abs(angular_rate) * fps + 1e-9) + 1, spec);
+  for (int i = 0; i < frames; ++i) {
+    const double angle = angular_rate * i / fps;
+    const double tangent = angle + (angular_rate > 0 ? kPi / 2 : -kPi / 2);
+    poses.push_back({i / fps,
+                     {cx + radius * std::cos(angle), cy + radius * std::sin(angle), 0.0,
+                      wrap_angle(tangent), 0.0, 0.0},
+                     {}});
+  }
+  return poses;
+}
+
+// kind walk: a random walk that turns away from walls and furniture.
+std::vector<TimedPose> KindContext::walk_poses() const {
+  std::vector<TimedPose> poses;
+  double x = args.number("x", centre_x), y = args.number("y", centre_y);
+  double heading = deg_to_rad(args.number("heading_deg", 0.0));
+  const int steps = pose_count(args.whole("steps", 200), spec);
+  const double step_m = args.number("step_m", 0.05);
+  const double turn_sd = deg_to_rad(args.number("turn_deg", 20.0));
+  cv::RNG rng(static_cast<std::uint64_t>(args.whole("seed", 1)));
+  require_positive(step_m, "step_m", spec);
+  constexpr double kClearance = 0.3;
+  for (int i = 0; i < steps; ++i) {
+    poses.push_back({i / fps, {x, y, 0.0, heading, 0.0, 0.0}, {}});
+    double turn = rng.gaussian(turn_sd);
+    // Turn further until the next step is free; give up after a full circle of tries.
+    for (int attempt = 0; attempt < 36; ++attempt) {
+      const double h = wrap_angle(heading + turn);
+      if (world.is_free(x + step_m * std::cos(h), y + step_m * std::sin(h), kClearance)) break;
+      turn += deg_to_rad(10.0);
+    }
+    heading = wrap_angle(heading + turn);
+    x += step_m * std::cos(heading);
+    y += step_m * std::sin(heading);
+  }
+  return poses;
+}
+
+// kind grid: a sweep over grid points, those inside furniture left out.
+std::vector<TimedPose> KindContext::grid_poses() const {
+  std::vector<TimedPose> poses;
+  const double x0 = args.number("x0", world.floor.min_x_m + margin);
+  const double y0 = args.number("y0", world.floor.min_y_m + margin);
+  const int nx = args.whole("nx", 10), ny = args.whole("ny", 8);
+  pose_count(static_cast<double>(nx) * ny, spec);
+  const double spacing = args.number("spacing_m", 0.3);
+  const double heading = deg_to_rad(args.number("heading_deg", 0.0));
+  if (nx < 1 || ny < 1) throw UsageError("trajectory '" + spec + "': nx and ny must be at least 1");
+  require_positive(spacing, "spacing_m", spec);
+  int frame = 0;
+  for (int iy = 0; iy < ny; ++iy) {
+    for (int ix = 0; ix < nx; ++ix) {
+      const double x = x0 + ix * spacing, y = y0 + iy * spacing;
+      if (!world.is_free(x, y, 0.05)) continue;
+      poses.push_back(
+          {frame++ / fps, {x, y, 0.0, heading, 0.0, 0.0}, std::array<int, 3>{ix, iy, 0}});
+    }
+  }
+  return poses;
+}
+
+// kind csv: the poses of a file, timed by the frame rate when it has no times.
+std::vector<TimedPose> KindContext::csv_poses() const {
+  std::vector<TimedPose> poses;
+  const std::string path = args.text("path", "");
+  if (path.empty()) throw UsageError("trajectory '" + spec + "': csv needs path=<file>");
+  poses = read_csv_poses(path);
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    if (poses[i].time_s < 0.0) poses[i].time_s = i / fps;
+  }
+  return poses;
+}
+
+std::vector<TimedPose> kind_poses(TrajectoryKind kind, const KindContext& context) {
+  switch (kind) {
+    case TrajectoryKind::kRotate:
+      return context.rotate_poses();
+    case TrajectoryKind::kLine:
+    case TrajectoryKind::kZigzag:
+      return context.polyline_poses(kind);
+    case TrajectoryKind::kCircle:
+      return context.circle_poses();
+    case TrajectoryKind::kWalk:
+      return context.walk_poses();
+    case TrajectoryKind::kWander:
+      return context.wander_poses();
+    case TrajectoryKind::kGrid:
+      return context.grid_poses();
+    case TrajectoryKind::kCsv:
+      return context.csv_poses();
+  }
+  return {};
+}
+
+// The kinds in the order the spec's help lists them.
+constexpr std::array<TrajectoryKind, 8> kKinds = {
+    TrajectoryKind::kRotate, TrajectoryKind::kLine, TrajectoryKind::kCircle, TrajectoryKind::kWalk,
+    TrajectoryKind::kWander, TrajectoryKind::kGrid, TrajectoryKind::kZigzag, TrajectoryKind::kCsv};
+
 }  // namespace
+
+std::string to_string(TrajectoryKind kind) {
+  switch (kind) {
+    case TrajectoryKind::kRotate:
+      return "rotate";
+    case TrajectoryKind::kLine:
+      return "line";
+    case TrajectoryKind::kCircle:
+      return "circle";
+    case TrajectoryKind::kWalk:
+      return "walk";
+    case TrajectoryKind::kWander:
+      return "wander";
+    case TrajectoryKind::kGrid:
+      return "grid";
+    case TrajectoryKind::kZigzag:
+      return "zigzag";
+    case TrajectoryKind::kCsv:
+      return "csv";
+  }
+  return "?";
+}
+
+std::optional<TrajectoryKind> trajectory_kind_from_string(std::string_view text) {
+  for (const TrajectoryKind kind : kKinds) {
+    if (to_string(kind) == text) return kind;
+  }
+  return std::nullopt;
+}
 
 double Trajectory::length_m() const {
   double length = 0.0;
@@ -302,136 +497,29 @@ double Trajectory::length_m() const {
 
 Trajectory make_trajectory(const std::string& spec, const World& world) {
   const std::size_t colon = spec.find(':');
-  Trajectory trajectory;
-  trajectory.kind = std::string(trim(spec.substr(0, colon)));
-  SpecArguments args(spec, trajectory.kind,
-                     colon == std::string::npos ? "" : spec.substr(colon + 1));
-
-  const double centre_x = (world.floor.min_x_m + world.floor.max_x_m) / 2.0;
-  const double centre_y = (world.floor.min_y_m + world.floor.max_y_m) / 2.0;
-  const double margin = 0.5;
-  const double fps = args.number("fps", 10.0);
-  require_positive(fps, "fps", spec);
-  std::vector<TimedPose>& poses = trajectory.poses;
-
-  if (trajectory.kind == "rotate") {
-    const double x = args.number("x", centre_x), y = args.number("y", centre_y);
-    const double start = deg_to_rad(args.number("heading_deg", 0.0));
-    const double turns = args.number("turns", 1.0);
-    const double rate = deg_to_rad(args.number("rate_deg_s", 30.0));
-    if (rate == 0.0) throw UsageError("trajectory '" + spec + "': rate_deg_s must not be 0");
-    const int frames =
-        pose_count(std::floor(turns * kTwoPi / std::abs(rate) * fps + 1e-9) + 1, spec);
-    for (int i = 0; i < frames; ++i) {
-      poses.push_back({i / fps, {x, y, 0.0, wrap_angle(start + rate * i / fps), 0.0, 0.0}, {}});
-    }
-  } else if (trajectory.kind == "line" || trajectory.kind == "zigzag") {
-    const double x0 = args.number("x0", world.floor.min_x_m + margin);
-    const double y0 =
-        args.number("y0", trajectory.kind == "line" ? centre_y : world.floor.min_y_m + margin);
-    const double x1 = args.number("x1", world.floor.max_x_m - margin);
-    const double y1 =
-        args.number("y1", trajectory.kind == "line" ? centre_y : world.floor.max_y_m - margin);
-    const double speed = args.number("speed_m_s", 0.2);
-    require_positive(speed, "speed_m_s", spec);
-    const double turn_rate = deg_to_rad(args.number("turn_rate_deg_s", 90.0));
-    if (turn_rate < 0.0)
-      throw UsageError("trajectory '" + spec + "': turn_rate_deg_s must not be negative");
-    std::vector<cv::Point2d> points{{x0, y0}, {x1, y1}};
-    if (trajectory.kind == "zigzag") {
-      const int rows = pose_count(args.whole("rows", 4), spec);
-      if (rows < 2) throw UsageError("trajectory '" + spec + "': rows must be at least 2");
-      points.clear();
-      for (int row = 0; row < rows; ++row) {
-        const double y = y0 + (y1 - y0) * row / (rows - 1);
-        points.emplace_back(row % 2 == 0 ? x0 : x1, y);
-        points.emplace_back(row % 2 == 0 ? x1 : x0, y);
-      }
-    }
-    if (cv::norm(points.back() - points.front()) == 0.0 && points.size() == 2) {
-      throw UsageError("trajectory '" + spec + "': the line has zero length");
-    }
-    walk_polyline(points, speed, fps, turn_rate, spec, poses);
-  } else if (trajectory.kind == "circle") {
-    const double cx = args.number("cx", centre_x), cy = args.number("cy", centre_y);
-    const double radius = args.number("radius_m", 1.0);
-    const double turns = args.number("turns", 1.0);
-    const double speed = args.number("speed_m_s", 0.2);
-    require_positive(radius, "radius_m", spec);
-    if (speed == 0.0) throw UsageError("trajectory '" + spec + "': speed_m_s must not be 0");
-    const double angular_rate = speed / radius;  // rad/s, signed
-    const int frames =
-        pose_count(std::floor(turns * kTwoPi / std::abs(angular_rate) * fps + 1e-9) + 1, spec);
-    for (int i = 0; i < frames; ++i) {
-      const double angle = angular_rate * i / fps;
-      const double tangent = angle + (angular_rate > 0 ? kPi / 2 : -kPi / 2);
-      poses.push_back({i / fps,
-                       {cx + radius * std::cos(angle), cy + radius * std::sin(angle), 0.0,
-                        wrap_angle(tangent), 0.0, 0.0},
-                       {}});
-    }
-  } else if (trajectory.kind == "walk") {
-    double x = args.number("x", centre_x), y = args.number("y", centre_y);
-    double heading = deg_to_rad(args.number("heading_deg", 0.0));
-    const int steps = pose_count(args.whole("steps", 200), spec);
-    const double step_m = args.number("step_m", 0.05);
-    const double turn_sd = deg_to_rad(args.number("turn_deg", 20.0));
-    cv::RNG rng(static_cast<std::uint64_t>(args.whole("seed", 1)));
-    require_positive(step_m, "step_m", spec);
-    constexpr double kClearance = 0.3;
-    for (int i = 0; i < steps; ++i) {
-      poses.push_back({i / fps, {x, y, 0.0, heading, 0.0, 0.0}, {}});
-      double turn = rng.gaussian(turn_sd);
-      // Turn further until the next step is free; give up after a full circle of tries.
-      for (int attempt = 0; attempt < 36; ++attempt) {
-        const double h = wrap_angle(heading + turn);
-        if (world.is_free(x + step_m * std::cos(h), y + step_m * std::sin(h), kClearance)) break;
-        turn += deg_to_rad(10.0);
-      }
-      heading = wrap_angle(heading + turn);
-      x += step_m * std::cos(heading);
-      y += step_m * std::sin(heading);
-    }
-  } else if (trajectory.kind == "wander") {
-    poses = wander(args, world, spec, centre_x, centre_y, fps);
-  } else if (trajectory.kind == "grid") {
-    const double x0 = args.number("x0", world.floor.min_x_m + margin);
-    const double y0 = args.number("y0", world.floor.min_y_m + margin);
-    const int nx = args.whole("nx", 10), ny = args.whole("ny", 8);
-    pose_count(static_cast<double>(nx) * ny, spec);
-    const double spacing = args.number("spacing_m", 0.3);
-    const double heading = deg_to_rad(args.number("heading_deg", 0.0));
-    if (nx < 1 || ny < 1)
-      throw UsageError("trajectory '" + spec + "': nx and ny must be at least 1");
-    require_positive(spacing, "spacing_m", spec);
-    int frame = 0;
-    for (int iy = 0; iy < ny; ++iy) {
-      for (int ix = 0; ix < nx; ++ix) {
-        const double x = x0 + ix * spacing, y = y0 + iy * spacing;
-        if (!world.is_free(x, y, 0.05)) continue;
-        poses.push_back(
-            {frame++ / fps, {x, y, 0.0, heading, 0.0, 0.0}, std::array<int, 3>{ix, iy, 0}});
-      }
-    }
-  } else if (trajectory.kind == "csv") {
-    const std::string path = args.text("path", "");
-    if (path.empty()) throw UsageError("trajectory '" + spec + "': csv needs path=<file>");
-    poses = read_csv_poses(path);
-    for (std::size_t i = 0; i < poses.size(); ++i) {
-      if (poses[i].time_s < 0.0) poses[i].time_s = i / fps;
-    }
-  } else {
-    throw UsageError("trajectory '" + spec + "': unknown kind '" + trajectory.kind +
+  const std::string kind_text(trim(spec.substr(0, colon)));
+  SpecArguments args(spec, kind_text, colon == std::string::npos ? "" : spec.substr(colon + 1));
+  KindContext context{args, world, spec};
+  context.centre_x = (world.floor.min_x_m + world.floor.max_x_m) / 2.0;
+  context.centre_y = (world.floor.min_y_m + world.floor.max_y_m) / 2.0;
+  context.fps = args.number("fps", 10.0);
+  require_positive(context.fps, "fps", spec);
+  const std::optional<TrajectoryKind> kind = trajectory_kind_from_string(kind_text);
+  if (!kind) {
+    throw UsageError("trajectory '" + spec + "': unknown kind '" + kind_text +
                      "' (rotate, line, circle, walk, wander, grid, zigzag, csv)");
   }
-
+  Trajectory trajectory;
+  trajectory.kind = *kind;
+  std::vector<TimedPose>& poses = trajectory.poses;
+  poses = kind_poses(*kind, context);
   const double z = args.number("z_m", 1.0);
   const double pitch_sd = deg_to_rad(args.number("pitch_noise_deg", 0.0));
   const double roll_sd = deg_to_rad(args.number("roll_noise_deg", 0.0));
   const auto noise_seed = static_cast<std::uint64_t>(args.whole("noise_seed", 1));
   args.require_all_known();
   for (TimedPose& pose : poses) {
-    if (trajectory.kind != "csv" || pose.pose.z_m == 0.0) pose.pose.z_m = z;
+    if (*kind != TrajectoryKind::kCsv || pose.pose.z_m == 0.0) pose.pose.z_m = z;
   }
   add_tilt_noise(poses, pitch_sd, roll_sd, noise_seed);
   if (poses.empty()) throw UsageError("trajectory '" + spec + "' has no poses");

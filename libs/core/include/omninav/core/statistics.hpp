@@ -1,6 +1,8 @@
 #pragma once
 // Order statistics of a sample, one implementation for the whole project (medians of
-// spacings, ratios, errors; the lattice's plateau quantile).
+// spacings, ratios, errors; the lattice's plateau quantile; Theil-Sen's slopes). Two medians,
+// named for how they treat an even count: median() takes the upper middle value (a value of
+// the sample), median_of_middles() the mean of the two middle values (the textbook median).
 
 #include <utility>
 #include <vector>
@@ -15,5 +17,9 @@ double quantile(std::vector<double> values, double share);
 inline double median(std::vector<double> values) {
   return quantile(std::move(values), 0.5);
 }
+
+// The median with an even count's two middle values averaged (Theil-Sen's estimator, as
+// published). `values` must not be empty.
+double median_of_middles(std::vector<double> values);
 
 }  // namespace omninav

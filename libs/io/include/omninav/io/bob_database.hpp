@@ -77,6 +77,8 @@ class BobDatabaseReader : public SequenceReader {
   std::optional<Frame> next() override;
   std::size_t size() const override { return entries_.size(); }
   std::string describe() const override;
+  bool needs_unwrapping() const override { return info_.needs_unwrapping.value_or(false); }
+  bool is_grid() const override { return info_.is_grid; }
 
   const DatabaseInfo& info() const { return info_; }
   const std::vector<DatabaseEntry>& entries() const { return entries_; }

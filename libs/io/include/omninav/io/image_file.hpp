@@ -20,6 +20,10 @@ inline constexpr long long kMaxImagePixels = 8192LL * 8192LL;
 // image file omninav reads goes through here.
 cv::Mat read_image(const std::filesystem::path& file);
 
+// Whether `file`'s extension, in any case, is one of the image formats omninav reads: png,
+// jpg, jpeg, bmp, tif, tiff, ppm, pgm (the one list: folders are read by it too).
+bool is_image_file_name(const std::filesystem::path& file);
+
 // The size a PNG or JPEG file declares in its header (PNG's IHDR, JPEG's start-of-frame), or
 // nothing for other formats and for headers too short or malformed to say.
 std::optional<cv::Size> declared_image_size(const std::filesystem::path& file);

@@ -27,11 +27,18 @@ class SequenceReader {
 
   // One line saying what is being read, e.g. "BoB database grid/ (80 images, with poses)".
   virtual std::string describe() const = 0;
+
+  // Whether the frames are raw omnidirectional images to unwrap (a BoB database marked
+  // needsUnwrapping), and whether they lie on a grid (a BoB grid database).
+  virtual bool needs_unwrapping() const { return false; }
+  virtual bool is_grid() const { return false; }
+  // Whether the frames come from a video file (they have no file names of their own).
+  virtual bool is_video() const { return false; }
 };
 
 // Opens `path` as whichever kind it is:
 //   - a folder holding database_entries.csv: a BoB robotics image database;
-//   - any other folder: its images (png, jpg, jpeg, bmp, tif, tiff, ppm, pgm), natural sort;
+//   - any other folder: its images (is_image_file_name), natural sort;
 //   - a .csv file: rows of `file, x_m, y_m, heading_deg` (files relative to the CSV);
 //   - any other file: a video, read with cv::VideoCapture.
 std::unique_ptr<SequenceReader> open_sequence(const std::filesystem::path& path);

@@ -21,6 +21,7 @@ class VideoSequence : public SequenceReader {
   // What the container declares; 0 when it does not know.
   std::size_t size() const override { return declared_frames_; }
   std::string describe() const override;
+  bool is_video() const override { return true; }
 
   // The frame rate the container declares, if any.
   std::optional<double> fps() const { return fps_; }

@@ -138,9 +138,6 @@ class Unwrapper {
   // black. Throws InputError when `raw` is empty or not of the size given at construction.
   cv::Mat unwrap(const cv::Mat& raw) const;
 
-  // Where panorama pixel (column, row) samples the raw image (fractional coordinates allowed).
-  cv::Point2d raw_point_of(double column, double row) const;
-
   const Annulus& annulus() const { return annulus_; }
   cv::Size raw_size() const { return raw_size_; }
   cv::Size panorama_size() const { return map_x_.size(); }

@@ -8,20 +8,32 @@
 // [0, size_m] × [0, size_m]; tussocks also grow a few metres beyond it.
 
 #include <string>
+#include <string_view>
 
 #include "omninav/sim/world.hpp"
 
 namespace omninav::sim {
+
+// What stands on the field's horizon.
+enum class Horizon {
+  kTrees,  // a tree line before hills
+  kHills,
+  kNone,
+};
+
+std::string to_string(Horizon horizon);
+// "trees", "hills" or "none"; throws UsageError for any other text.
+Horizon horizon_from_string(std::string_view text);
 
 struct FieldParams {
   double size_m = 20.0;       // side of the square the robot may roam
   int tussocks = 6000;        // grass tussocks on that square (more in the margin round it)
   double grass_min_m = 0.05;  // tussock heights are drawn in [min, max]
   double grass_max_m = 0.4;
-  int bushes = 12;                 // obstacles, 0.3-0.9 m across
-  int trees = 6;                   // obstacles: a trunk and a crown above 2 m
-  int rocks = 8;                   // obstacles, low and flattened, 0.2-0.9 m across
-  std::string horizon = "trees";   // trees (a tree line before hills), hills, or none
+  int bushes = 12;  // obstacles, 0.3-0.9 m across
+  int trees = 6;    // obstacles: a trunk and a crown above 2 m
+  int rocks = 8;    // obstacles, low and flattened, 0.2-0.9 m across
+  Horizon horizon = Horizon::kTrees;
   double texture_px_per_m = 40.0;  // ground texture resolution (at most 2048 px a side)
   int seed = 1;
 };
@@ -36,7 +48,9 @@ void read_field_keys(const Reader& reader, FieldParams& params) {
   reader.read("bushes", params.bushes, 0, 200);
   reader.read("trees", params.trees, 0, 100);
   reader.read("rocks", params.rocks, 0, 200);
-  reader.read("horizon", params.horizon, {"trees", "hills", "none"});
+  std::string horizon = to_string(params.horizon);
+  reader.read("horizon", horizon, {"trees", "hills", "none"});
+  params.horizon = horizon_from_string(horizon);
   reader.read("texture_px_per_m", params.texture_px_per_m, 5.0, 200.0);
   reader.read("seed", params.seed, 0, 1'000'000'000);
 }

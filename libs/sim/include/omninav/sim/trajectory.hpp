@@ -30,6 +30,7 @@
 #include <array>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "omninav/core/pose.hpp"
@@ -43,8 +44,15 @@ struct TimedPose {
   std::optional<std::array<int, 3>> grid;  // for grid sweeps: (ix, iy, 0)
 };
 
+// The kinds of trajectory a spec names (the list above).
+enum class TrajectoryKind { kRotate, kLine, kCircle, kWalk, kWander, kGrid, kZigzag, kCsv };
+
+std::string to_string(TrajectoryKind kind);
+// The kind a spec's name gives, or nothing for an unknown name.
+std::optional<TrajectoryKind> trajectory_kind_from_string(std::string_view text);
+
 struct Trajectory {
-  std::string kind;
+  TrajectoryKind kind = TrajectoryKind::kRotate;
   std::vector<TimedPose> poses;
   double length_m() const;  // distance travelled on the floor
 };

@@ -1,0 +1,30 @@
+#pragma once
+// The picture of one navigation run (path.png and trial_<i>.png of `omninav navigate`).
+
+#include <Eigen/Core>
+#include <opencv2/core.hpp>
+#include <optional>
+#include <vector>
+
+#include "omninav/memory/visual_memory.hpp"
+#include "omninav/navigation/navigator.hpp"
+#include "omninav/navigation/route_planner.hpp"
+#include "omninav/sim/world.hpp"
+
+namespace omninav::report {
+
+// Where the run took place, beside the map: drawn under the robot's true path.
+struct NavigationScene {
+  std::vector<sim::FloorBox> obstacles;                // a rendered world's furniture
+  std::vector<Eigen::Vector2d> grid_world_positions;   // a grid database's images
+  std::optional<Eigen::Vector2d> goal_world_position;  // the goal pose, when known (trials)
+};
+
+// Two panels: the places matched, in order, over the lattice (with the goal place `goal`);
+// and the robot's true path over the scene, with the places' true positions when the map has
+// them.
+cv::Mat navigation_path_figure(const navigation::NavigationResult& result,
+                               const std::vector<navigation::PlaceNode>& places, int goal,
+                               const memory::VisualMemory& memory, const NavigationScene& scene);
+
+}  // namespace omninav::report
