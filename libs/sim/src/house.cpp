@@ -156,6 +156,196 @@ std::vector<double> row_widths(int count, const HouseParams& params, cv::RNG& rn
   return widths;
 }
 
+// Where the rooms, the corridor and the doorways are.
+struct HousePlan {
+  double length = 0.0;  // along x, both rows of rooms and the corridor
+  double south_depth = 0.0, corridor_low = 0.0, corridor_high = 0.0, north_low = 0.0;
+  double north_high = 0.0;
+  std::vector<Area> areas;  // the rooms, then the corridor
+  std::vector<Door> doors;
+};
+
+// Two rows of rooms, south (y from 0) and north, either side of the corridor; each room has a
+// doorway to the corridor, and some a doorway to the next room of the row.
+HousePlan plan_house(const HouseParams& params, cv::RNG& rng) {
+  HousePlan plan;
+  const int south_count = (params.rooms + 1) / 2, north_count = params.rooms / 2;
+  std::vector<double> south = row_widths(south_count, params, rng);
+  std::vector<double> north = row_widths(north_count, params, rng);
+  const auto row_length = [](const std::vector<double>& widths) {
+    double length = kWall_m * (static_cast<double>(widths.size()) - 1.0);
+    for (double w : widths) length += w;
+    return length;
+  };
+  plan.length = std::max(row_length(south), row_length(north));
+  south.back() += plan.length - row_length(south);  // the shorter row's last room is stretched
+  north.back() += plan.length - row_length(north);
+  plan.south_depth = rng.uniform(params.room_min_m, params.room_max_m);
+  const double north_depth = rng.uniform(params.room_min_m, params.room_max_m);
+  plan.corridor_low = plan.south_depth + kWall_m;
+  plan.corridor_high = plan.corridor_low + params.corridor_width_m;
+  plan.north_low = plan.corridor_high + kWall_m;
+  plan.north_high = plan.north_low + north_depth;
+
+  const double door = params.door_width_m;
+  const auto door_at = [&](double low, double high) {
+    const double centre = rng.uniform(low + 0.3 + door / 2.0, high - 0.3 - door / 2.0);
+    return std::pair<double, double>(centre - door / 2.0, centre + door / 2.0);
+  };
+  const auto add_row = [&](const std::vector<double>& widths, double y_low, double y_high,
+                           bool is_south) {
+    double x = 0.0;
+    for (std::size_t i = 0; i < widths.size(); ++i) {
+      const FloorBox inside{x, y_low, x + widths[i], y_high};
+      plan.areas.push_back({"room " + std::to_string(plan.areas.size() + 1), inside});
+      const auto [from, to] = door_at(inside.min_x_m, inside.max_x_m);
+      plan.doors.push_back(is_south ? Door{true, plan.south_depth, plan.corridor_low, from, to}
+                                    : Door{true, plan.corridor_high, plan.north_low, from, to});
+      if (i + 1 < widths.size() && rng.uniform(0.0, 1.0) < 0.4) {
+        const auto [a, b] = door_at(y_low, y_high);
+        plan.doors.push_back({false, inside.max_x_m, inside.max_x_m + kWall_m, a, b});
+      }
+      x += widths[i] + kWall_m;
+    }
+  };
+  add_row(south, 0.0, plan.south_depth, true);
+  add_row(north, plan.north_low, plan.north_high, false);
+  plan.areas.push_back({"corridor", {0.0, plan.corridor_low, plan.length, plan.corridor_high}});
+  return plan;
+}
+
+// One of three floors for a room, planks for the corridor.
+cv::Mat area_floor(const Area& area, double ppm, cv::RNG& rng) {
+  const double width_m = area.inside.max_x_m - area.inside.min_x_m;
+  const double depth_m = area.inside.max_y_m - area.inside.min_y_m;
+  switch (area.name == "corridor" ? 1 : rng.uniform(0, 3)) {
+    case 0:
+      return textures::floor(width_m, depth_m, ppm, rng);
+    case 1:
+      return textures::planks(width_m, depth_m, ppm, rng);
+    default:
+      return textures::carpet(width_m, depth_m, ppm, rng);
+  }
+}
+
+// An area's look: `paint` on its four walls (cut by the doorways), its own floor and ceiling;
+// and its name as a region.
+void dress_area(World& world, const Area& area, const std::vector<Door>& doors,
+                const HouseParams& params, cv::Scalar paint, cv::RNG& rng) {
+  const double ppm = params.texture_px_per_m;
+  const float height = static_cast<float>(params.height_m);
+  const FloorBox& box = area.inside;
+  const float x0 = static_cast<float>(box.min_x_m), x1 = static_cast<float>(box.max_x_m);
+  const float y0 = static_cast<float>(box.min_y_m), y1 = static_cast<float>(box.max_y_m);
+  const std::array<cv::Vec2f, 5> corners{cv::Vec2f(x0, y0), cv::Vec2f(x1, y0), cv::Vec2f(x1, y1),
+                                         cv::Vec2f(x0, y1), cv::Vec2f(x0, y0)};
+  for (int side = 0; side < 4; ++side) {
+    const double side_m = cv::norm(corners[side + 1] - corners[side]);
+    const int material =
+        build::add_material(world, area.name + " wall " + std::to_string(side),
+                            textures::painted_wall(side_m, params.height_m, ppm, paint, true, rng));
+    add_wall_with_openings(world, corners[side], corners[side + 1], height,
+                           openings_in(doors, corners[side], corners[side + 1]), material);
+  }
+  const double width_m = box.max_x_m - box.min_x_m, depth_m = box.max_y_m - box.min_y_m;
+  cv::Mat floor_texture = area_floor(area, ppm, rng);
+  const std::array<cv::Vec2f, 4> whole{cv::Vec2f(0.f, 0.f), cv::Vec2f(1.f, 0.f),
+                                       cv::Vec2f(1.f, 1.f), cv::Vec2f(0.f, 1.f)};
+  build::add_quad(world,
+                  {cv::Vec3f(x0, y0, 0.f), cv::Vec3f(x1, y0, 0.f), cv::Vec3f(x1, y1, 0.f),
+                   cv::Vec3f(x0, y1, 0.f)},
+                  whole,
+                  build::add_material(world, area.name + " floor", std::move(floor_texture)));
+  build::add_quad(world,
+                  {cv::Vec3f(x0, y0, height), cv::Vec3f(x1, y0, height), cv::Vec3f(x1, y1, height),
+                   cv::Vec3f(x0, y1, height)},
+                  whole,
+                  build::add_material(world, area.name + " ceiling",
+                                      textures::ceiling(width_m, depth_m, ppm, rng)));
+  world.regions.push_back({area.name, box});
+}
+
+// Every area in its own paint (far apart in hue, shuffled per house so that neighbouring rooms
+// differ), then the doorways' frames.
+void dress_house(World& world, const HousePlan& plan, const HouseParams& params, cv::RNG& rng) {
+  std::vector<int> paint_order(kPaints.size());
+  for (std::size_t i = 0; i < paint_order.size(); ++i) paint_order[i] = static_cast<int>(i);
+  for (std::size_t i = paint_order.size() - 1; i > 0; --i) {
+    std::swap(paint_order[i], paint_order[rng.uniform(0, static_cast<int>(i) + 1)]);
+  }
+  const int frame_material = build::add_colour(world, "door frame", {225.f, 235.f, 240.f});
+  for (std::size_t index = 0; index < plan.areas.size(); ++index) {
+    cv::Scalar paint(kPaints[paint_order[index % kPaints.size()]]);
+    paint *= rng.uniform(0.9, 1.05);
+    dress_area(world, plan.areas[index], plan.doors, params, paint, rng);
+  }
+  const int threshold_material = build::add_colour(world, "threshold", {60.f, 85.f, 110.f});
+  for (const Door& d : plan.doors) add_door_frame(world, d, frame_material, threshold_material);
+}
+
+// Walls between areas are obstacles, open at the doorways; the outer walls are the floor's edge.
+void add_inner_walls(World& world, const HousePlan& plan) {
+  add_wall_obstacles(world, true, 0.0, plan.length, plan.south_depth, plan.corridor_low,
+                     plan.doors);
+  add_wall_obstacles(world, true, 0.0, plan.length, plan.corridor_high, plan.north_low, plan.doors);
+  for (const Area& area : plan.areas) {
+    if (area.name == "corridor" || area.inside.max_x_m >= plan.length - kEpsilon_m) continue;
+    add_wall_obstacles(world, false, area.inside.min_y_m, area.inside.max_y_m, area.inside.max_x_m,
+                       area.inside.max_x_m + kWall_m, plan.doors);
+  }
+}
+
+// Up to params.furniture tables and boxes in `area`, clear of the walls and other obstacles by
+// kGap_m and of `keep_clear`.
+void furnish_room(World& world, const Area& area, const std::vector<FloorBox>& keep_clear,
+                  const HouseParams& params, cv::RNG& rng) {
+  constexpr double kGap_m = 0.4;
+  const FloorBox& room = area.inside;
+  int placed = 0;
+  for (int attempt = 0; attempt < 200 * params.furniture && placed < params.furniture; ++attempt) {
+    const double side_x = rng.uniform(0.4, 1.4), side_y = rng.uniform(0.4, 1.4);
+    const double free_x = room.max_x_m - room.min_x_m - 2 * kGap_m - side_x;
+    const double free_y = room.max_y_m - room.min_y_m - 2 * kGap_m - side_y;
+    if (free_x <= 0.0 || free_y <= 0.0) continue;
+    const double x = room.min_x_m + kGap_m + rng.uniform(0.0, free_x);
+    const double y = room.min_y_m + kGap_m + rng.uniform(0.0, free_y);
+    const FloorBox box{x, y, x + side_x, y + side_y};
+    bool free = true;
+    for (const FloorBox& other : world.obstacles)
+      free = free && !build::overlaps(box, other, kGap_m);
+    for (const FloorBox& clear : keep_clear) free = free && !build::overlaps(box, clear, 0.0);
+    if (!free) continue;
+    const int material =
+        build::add_material(world, area.name + " furniture " + std::to_string(placed),
+                            textures::furniture(params.texture_px_per_m, rng));
+    if (rng.uniform(0.0, 1.0) < 0.35) {
+      add_table(world, box, static_cast<float>(rng.uniform(0.45, 0.8)), material);
+    } else {  // a cupboard, a bed, a sofa, a shelf...
+      build::add_box(world, box, static_cast<float>(rng.uniform(0.4, 1.9)), material);
+    }
+    world.obstacles.push_back(box);
+    ++placed;
+  }
+  if (placed < params.furniture) {
+    log_warning("house: placed " + std::to_string(placed) + " of " +
+                std::to_string(params.furniture) + " furniture boxes in " + area.name);
+  }
+}
+
+// Furniture along the rooms, clear of the doorways (a 1 m deep space in front of each).
+void furnish_house(World& world, const HousePlan& plan, const HouseParams& params, cv::RNG& rng) {
+  std::vector<FloorBox> keep_clear;
+  for (const Door& d : plan.doors) {
+    const double margin = 0.2;
+    keep_clear.push_back(
+        d.along_x ? FloorBox{d.from - margin, d.wall_low - 1.0, d.to + margin, d.wall_high + 1.0}
+                  : FloorBox{d.wall_low - 1.0, d.from - margin, d.wall_high + 1.0, d.to + margin});
+  }
+  for (const Area& area : plan.areas) {
+    if (area.name != "corridor") furnish_room(world, area, keep_clear, params, rng);
+  }
+}
+
 }  // namespace
 
 World make_house(const HouseParams& params) {
@@ -166,162 +356,11 @@ World make_house(const HouseParams& params) {
   World world;
   world.name = "house";
   cv::RNG rng(static_cast<std::uint64_t>(params.seed) * 7919 + 17);
-  const double ppm = params.texture_px_per_m;
-  const float height = static_cast<float>(params.height_m);
-  const double door = params.door_width_m;
-
-  // Two rows of rooms, south (y from 0) and north, either side of the corridor.
-  const int south_count = (params.rooms + 1) / 2, north_count = params.rooms / 2;
-  std::vector<double> south = row_widths(south_count, params, rng);
-  std::vector<double> north = row_widths(north_count, params, rng);
-  const auto row_length = [](const std::vector<double>& widths) {
-    double length = kWall_m * (static_cast<double>(widths.size()) - 1.0);
-    for (double w : widths) length += w;
-    return length;
-  };
-  const double length = std::max(row_length(south), row_length(north));
-  south.back() += length - row_length(south);  // the shorter row's last room is stretched
-  north.back() += length - row_length(north);
-  const double south_depth = rng.uniform(params.room_min_m, params.room_max_m);
-  const double north_depth = rng.uniform(params.room_min_m, params.room_max_m);
-  const double corridor_low = south_depth + kWall_m;
-  const double corridor_high = corridor_low + params.corridor_width_m;
-  const double north_low = corridor_high + kWall_m;
-  world.floor = {0.0, 0.0, length, north_low + north_depth};
-
-  // Rooms and their doorways: one to the corridor each, and some to the next room of the row.
-  std::vector<Area> areas;
-  std::vector<Door> doors;
-  const auto door_at = [&](double low, double high) {
-    const double centre = rng.uniform(low + 0.3 + door / 2.0, high - 0.3 - door / 2.0);
-    return std::pair<double, double>(centre - door / 2.0, centre + door / 2.0);
-  };
-  const auto add_row = [&](const std::vector<double>& widths, double y_low, double y_high,
-                           bool is_south) {
-    double x = 0.0;
-    for (std::size_t i = 0; i < widths.size(); ++i) {
-      const FloorBox inside{x, y_low, x + widths[i], y_high};
-      areas.push_back({"room " + std::to_string(areas.size() + 1), inside});
-      const auto [from, to] = door_at(inside.min_x_m, inside.max_x_m);
-      doors.push_back(is_south ? Door{true, south_depth, corridor_low, from, to}
-                               : Door{true, corridor_high, north_low, from, to});
-      if (i + 1 < widths.size() && rng.uniform(0.0, 1.0) < 0.4) {
-        const auto [a, b] = door_at(y_low, y_high);
-        doors.push_back({false, inside.max_x_m, inside.max_x_m + kWall_m, a, b});
-      }
-      x += widths[i] + kWall_m;
-    }
-  };
-  add_row(south, 0.0, south_depth, true);
-  add_row(north, north_low, north_low + north_depth, false);
-  areas.push_back({"corridor", {0.0, corridor_low, length, corridor_high}});
-
-  // Each area's look: its own paint on all four walls, its own floor and ceiling.
-  std::vector<int> paint_order(kPaints.size());
-  for (std::size_t i = 0; i < paint_order.size(); ++i) paint_order[i] = static_cast<int>(i);
-  for (std::size_t i = paint_order.size() - 1; i > 0; --i) {
-    std::swap(paint_order[i], paint_order[rng.uniform(0, static_cast<int>(i) + 1)]);
-  }
-  const int frame_material = build::add_colour(world, "door frame", {225.f, 235.f, 240.f});
-  for (std::size_t index = 0; index < areas.size(); ++index) {
-    const Area& area = areas[index];
-    const FloorBox& box = area.inside;
-    const float x0 = static_cast<float>(box.min_x_m), x1 = static_cast<float>(box.max_x_m);
-    const float y0 = static_cast<float>(box.min_y_m), y1 = static_cast<float>(box.max_y_m);
-    cv::Scalar paint(kPaints[paint_order[index % kPaints.size()]]);
-    paint *= rng.uniform(0.9, 1.05);
-    const std::array<cv::Vec2f, 5> corners{cv::Vec2f(x0, y0), cv::Vec2f(x1, y0), cv::Vec2f(x1, y1),
-                                           cv::Vec2f(x0, y1), cv::Vec2f(x0, y0)};
-    for (int side = 0; side < 4; ++side) {
-      const double side_m = cv::norm(corners[side + 1] - corners[side]);
-      const int material = build::add_material(
-          world, area.name + " wall " + std::to_string(side),
-          textures::painted_wall(side_m, params.height_m, ppm, paint, true, rng));
-      add_wall_with_openings(world, corners[side], corners[side + 1], height,
-                             openings_in(doors, corners[side], corners[side + 1]), material);
-    }
-    const double width_m = box.max_x_m - box.min_x_m, depth_m = box.max_y_m - box.min_y_m;
-    cv::Mat floor_texture;
-    switch (area.name == "corridor" ? 1 : rng.uniform(0, 3)) {
-      case 0:
-        floor_texture = textures::floor(width_m, depth_m, ppm, rng);
-        break;
-      case 1:
-        floor_texture = textures::planks(width_m, depth_m, ppm, rng);
-        break;
-      default:
-        floor_texture = textures::carpet(width_m, depth_m, ppm, rng);
-    }
-    const std::array<cv::Vec2f, 4> whole{cv::Vec2f(0.f, 0.f), cv::Vec2f(1.f, 0.f),
-                                         cv::Vec2f(1.f, 1.f), cv::Vec2f(0.f, 1.f)};
-    build::add_quad(world,
-                    {cv::Vec3f(x0, y0, 0.f), cv::Vec3f(x1, y0, 0.f), cv::Vec3f(x1, y1, 0.f),
-                     cv::Vec3f(x0, y1, 0.f)},
-                    whole,
-                    build::add_material(world, area.name + " floor", std::move(floor_texture)));
-    build::add_quad(world,
-                    {cv::Vec3f(x0, y0, height), cv::Vec3f(x1, y0, height),
-                     cv::Vec3f(x1, y1, height), cv::Vec3f(x0, y1, height)},
-                    whole,
-                    build::add_material(world, area.name + " ceiling",
-                                        textures::ceiling(width_m, depth_m, ppm, rng)));
-    world.regions.push_back({area.name, box});
-  }
-  const int threshold_material = build::add_colour(world, "threshold", {60.f, 85.f, 110.f});
-  for (const Door& d : doors) add_door_frame(world, d, frame_material, threshold_material);
-
-  // Walls between areas are obstacles, open at the doorways; the outer walls are the floor's
-  // edge.
-  add_wall_obstacles(world, true, 0.0, length, south_depth, corridor_low, doors);
-  add_wall_obstacles(world, true, 0.0, length, corridor_high, north_low, doors);
-  for (const Area& area : areas) {
-    if (area.name == "corridor" || area.inside.max_x_m >= length - kEpsilon_m) continue;
-    add_wall_obstacles(world, false, area.inside.min_y_m, area.inside.max_y_m, area.inside.max_x_m,
-                       area.inside.max_x_m + kWall_m, doors);
-  }
-
-  // Furniture along the rooms, clear of the doorways (a 1 m deep space in front of each).
-  std::vector<FloorBox> keep_clear;
-  for (const Door& d : doors) {
-    const double margin = 0.2;
-    keep_clear.push_back(
-        d.along_x ? FloorBox{d.from - margin, d.wall_low - 1.0, d.to + margin, d.wall_high + 1.0}
-                  : FloorBox{d.wall_low - 1.0, d.from - margin, d.wall_high + 1.0, d.to + margin});
-  }
-  constexpr double kGap_m = 0.4;
-  for (const Area& area : areas) {
-    if (area.name == "corridor") continue;
-    const FloorBox& room = area.inside;
-    int placed = 0;
-    for (int attempt = 0; attempt < 200 * params.furniture && placed < params.furniture;
-         ++attempt) {
-      const double side_x = rng.uniform(0.4, 1.4), side_y = rng.uniform(0.4, 1.4);
-      const double free_x = room.max_x_m - room.min_x_m - 2 * kGap_m - side_x;
-      const double free_y = room.max_y_m - room.min_y_m - 2 * kGap_m - side_y;
-      if (free_x <= 0.0 || free_y <= 0.0) continue;
-      const double x = room.min_x_m + kGap_m + rng.uniform(0.0, free_x);
-      const double y = room.min_y_m + kGap_m + rng.uniform(0.0, free_y);
-      const FloorBox box{x, y, x + side_x, y + side_y};
-      bool free = true;
-      for (const FloorBox& other : world.obstacles)
-        free = free && !build::overlaps(box, other, kGap_m);
-      for (const FloorBox& clear : keep_clear) free = free && !build::overlaps(box, clear, 0.0);
-      if (!free) continue;
-      const int material = build::add_material(
-          world, area.name + " furniture " + std::to_string(placed), textures::furniture(ppm, rng));
-      if (rng.uniform(0.0, 1.0) < 0.35) {
-        add_table(world, box, static_cast<float>(rng.uniform(0.45, 0.8)), material);
-      } else {  // a cupboard, a bed, a sofa, a shelf...
-        build::add_box(world, box, static_cast<float>(rng.uniform(0.4, 1.9)), material);
-      }
-      world.obstacles.push_back(box);
-      ++placed;
-    }
-    if (placed < params.furniture) {
-      log_warning("house: placed " + std::to_string(placed) + " of " +
-                  std::to_string(params.furniture) + " furniture boxes in " + area.name);
-    }
-  }
+  const HousePlan plan = plan_house(params, rng);
+  world.floor = {0.0, 0.0, plan.length, plan.north_high};
+  dress_house(world, plan, params, rng);
+  add_inner_walls(world, plan);
+  furnish_house(world, plan, params, rng);
   return world;
 }
 
