@@ -212,6 +212,147 @@ Horizon horizon_from_string(std::string_view text) {
   throw UsageError("horizon '" + std::string(text) + "': expected trees, hills or none");
 }
 
+namespace {
+
+// The extent of a field: its floor, the margin round it that holds the same scenery, and the
+// distances of the tree line and the hills.
+struct FieldExtent {
+  double size = 0.0;
+  cv::Vec2d centre;
+  double near_low = 0.0, near_high = 0.0;
+  double tree_line_m = 0.0, hills_m = 0.0;
+  double margin_share = 0.0;  // the area of floor and margin over the floor's
+};
+
+std::array<cv::Vec3f, 4> flat_quad(double x0, double y0, double x1, double y1, double z) {
+  return {cv::Vec3f(static_cast<float>(x0), static_cast<float>(y0), static_cast<float>(z)),
+          cv::Vec3f(static_cast<float>(x1), static_cast<float>(y0), static_cast<float>(z)),
+          cv::Vec3f(static_cast<float>(x1), static_cast<float>(y1), static_cast<float>(z)),
+          cv::Vec3f(static_cast<float>(x0), static_cast<float>(y1), static_cast<float>(z))};
+}
+
+// The ground: a unique texture over the floor and its margin, one smooth low-resolution texture
+// out to the hills (a little lower, so that the near ground is always hit first). Far away the
+// ground is seen at grazing angles, where a tiled texture's repeats would show as a chequer.
+void add_ground(World& world, const FieldExtent& extent, const FieldParams& params, cv::RNG& rng) {
+  const std::array<cv::Vec2f, 4> whole{cv::Vec2f(0.f, 0.f), cv::Vec2f(1.f, 0.f),
+                                       cv::Vec2f(1.f, 1.f), cv::Vec2f(0.f, 1.f)};
+  const double near_m = extent.near_high - extent.near_low;
+  build::add_quad(
+      world, flat_quad(extent.near_low, extent.near_low, extent.near_high, extent.near_high, 0.0),
+      whole,
+      build::add_material(
+          world, "ground",
+          ground_texture(near_m, std::min(params.texture_px_per_m, kMaxGroundTexture_px / near_m),
+                         rng)));
+  const double far = extent.hills_m * 1.05;
+  cv::Mat far_ground(512, 512, CV_8UC3, cv::Scalar(75, 120, 135));
+  textures::add_smooth_noise(far_ground, 10.0, 512.0 / (2.0 * far), 14.0, rng);
+  const cv::Vec2d& c = extent.centre;
+  build::add_quad(world, flat_quad(c[0] - far, c[1] - far, c[0] + far, c[1] + far, -0.01), whole,
+                  build::add_material(world, "far ground", std::move(far_ground)));
+}
+
+// Places round things on the floor and its margin, each at least 0.8 m from the others.
+class Spots {
+ public:
+  Spots(const FieldExtent& extent, cv::RNG& rng) : extent_(extent), rng_(rng) {}
+
+  // A free centre for a thing of `radius_m`, none after 200 tries; its box is last().
+  std::optional<cv::Vec2d> place(double radius_m) {
+    for (int attempt = 0; attempt < 200; ++attempt) {
+      const cv::Vec2d at(rng_.uniform(extent_.near_low + 1.0, extent_.near_high - 1.0),
+                         rng_.uniform(extent_.near_low + 1.0, extent_.near_high - 1.0));
+      const FloorBox box{at[0] - radius_m, at[1] - radius_m, at[0] + radius_m, at[1] + radius_m};
+      bool free = true;
+      for (const FloorBox& other : taken_) free = free && !build::overlaps(box, other, 0.8);
+      if (!free) continue;
+      taken_.push_back(box);
+      return at;
+    }
+    return std::nullopt;
+  }
+  const FloorBox& last() const { return taken_.back(); }
+
+ private:
+  const FieldExtent& extent_;
+  cv::RNG& rng_;
+  std::vector<FloorBox> taken_;
+};
+
+// Trees, rocks and bushes, apart from each other; trunks, rocks and bushes are obstacles.
+void add_trees_rocks_and_bushes(World& world, const FieldExtent& extent, const FieldParams& params,
+                                cv::RNG& rng) {
+  const std::vector<int> bark = add_shades(world, "bark", {60.f, 75.f, 90.f}, 0.25, 0.0, 6, rng);
+  const std::vector<int> leaves =
+      add_shades(world, "leaves", {40.f, 105.f, 60.f}, 0.35, 0.0, 10, rng);
+  const std::vector<int> shrub = add_shades(world, "bush", {45.f, 95.f, 70.f}, 0.35, 0.0, 10, rng);
+  Spots spots(extent, rng);
+  const int trees = static_cast<int>(std::lround(params.trees * extent.margin_share));
+  for (int i = 0; i < trees; ++i) {
+    const double trunk_m = rng.uniform(0.08, 0.2);
+    const double crown_xy = rng.uniform(1.0, 2.2), crown_z = rng.uniform(0.9, 1.8);
+    const double trunk_height = 1.9 + 0.7 * crown_z + rng.uniform(0.0, 1.5);
+    const std::optional<cv::Vec2d> at = spots.place(trunk_m);
+    if (!at) break;
+    add_trunk(world, (*at)[0], (*at)[1], trunk_m, trunk_height + 0.3 * crown_z, bark, rng);
+    add_blob(world, {(*at)[0], (*at)[1], trunk_height + 0.3 * crown_z}, crown_xy, crown_z, leaves,
+             rng);
+    world.obstacles.push_back(spots.last());
+  }
+  const std::vector<int> stone = add_shades(world, "rock", {120.f, 125.f, 130.f}, 0.3, 0.0, 6, rng);
+  const int rocks = static_cast<int>(std::lround(params.rocks * extent.margin_share));
+  for (int i = 0; i < rocks; ++i) {  // low, flattened
+    const double radius = rng.uniform(0.1, 0.45), height = rng.uniform(0.08, 0.4);
+    const std::optional<cv::Vec2d> at = spots.place(radius);
+    if (!at) break;
+    add_blob(world, {(*at)[0], (*at)[1], 0.2 * height}, radius, 0.8 * height, stone, rng);
+    world.obstacles.push_back(spots.last());
+  }
+  const int bushes = static_cast<int>(std::lround(params.bushes * extent.margin_share));
+  for (int i = 0; i < bushes; ++i) {
+    const double radius = rng.uniform(0.15, 0.45), height = rng.uniform(0.3, 1.2);
+    const std::optional<cv::Vec2d> at = spots.place(radius);
+    if (!at) break;
+    add_blob(world, {(*at)[0], (*at)[1], height / 2.0}, radius, height / 2.0, shrub, rng);
+    world.obstacles.push_back(spots.last());
+  }
+}
+
+// Grass tussocks at the same density over the floor and its margin, more short ones than tall
+// ones; not obstacles.
+void add_grass(World& world, const FieldExtent& extent, const FieldParams& params, cv::RNG& rng) {
+  constexpr int kPalette = 48;
+  const int palette = add_grass_palette(world, rng, kPalette);
+  const int tussocks = static_cast<int>(std::lround(params.tussocks * extent.margin_share));
+  for (int i = 0; i < tussocks; ++i) {
+    const double x = rng.uniform(extent.near_low, extent.near_high);
+    const double y = rng.uniform(extent.near_low, extent.near_high);
+    const double height = params.grass_min_m + (params.grass_max_m - params.grass_min_m) *
+                                                   std::pow(rng.uniform(0.0, 1.0), 1.5);
+    add_tussock(world, x, y, height, palette, kPalette, rng);
+  }
+}
+
+// The horizon: hills, and a tree line in front of them, both hazy with distance.
+void add_horizon(World& world, const FieldExtent& extent, Horizon horizon, cv::RNG& rng) {
+  constexpr int kHorizonSamples = 720;
+  if (horizon != Horizon::kNone) {
+    std::vector<double> hills = horizon_profile(kHorizonSamples, rng);
+    for (double& h : hills) h = extent.hills_m * (0.09 + 0.04 * h);
+    add_ring(world, extent.centre, extent.hills_m, hills,
+             add_shades(world, "hills", {95.f, 120.f, 105.f}, 0.05, 0.45, 4, rng), rng);
+  }
+  if (horizon == Horizon::kTrees) {
+    std::vector<double> line = horizon_profile(kHorizonSamples, rng);
+    for (double& h : line) h = extent.tree_line_m * (0.07 + 0.03 * h) * rng.uniform(0.8, 1.2);
+    add_ring(world, extent.centre, extent.tree_line_m, line,
+             add_shades(world, "tree line", {45.f, 85.f, 55.f}, 0.2, 0.2, 8, rng), rng);
+  }
+}
+
+}  // namespace
+
 World make_field(const FieldParams& params) {
   if (params.grass_min_m > params.grass_max_m) {
     throw UsageError("field: grass_min_m must not exceed grass_max_m");
@@ -221,116 +362,20 @@ World make_field(const FieldParams& params) {
   world.background_bgr = kHorizonSky;
   world.sky_zenith_bgr = kZenithSky;
   cv::RNG rng(static_cast<std::uint64_t>(params.seed) * 7919 + 31);
-  const double size = params.size_m;
-  world.floor = {0.0, 0.0, size, size};
-  const cv::Vec2d centre(size / 2.0, size / 2.0);
-  const double tree_line_m = std::max(80.0, 4.0 * size);
-  const double hills_m = 4.0 * tree_line_m;
-
-  // The ground: a unique texture over the floor and its margin, a tiled one out to the hills
-  // (a little lower, so that the near ground is always hit first).
-  const double near_low = -kMargin_m, near_high = size + kMargin_m;
-  const auto flat = [](double x0, double y0, double x1, double y1, double z) {
-    return std::array<cv::Vec3f, 4>{
-        cv::Vec3f(static_cast<float>(x0), static_cast<float>(y0), static_cast<float>(z)),
-        cv::Vec3f(static_cast<float>(x1), static_cast<float>(y0), static_cast<float>(z)),
-        cv::Vec3f(static_cast<float>(x1), static_cast<float>(y1), static_cast<float>(z)),
-        cv::Vec3f(static_cast<float>(x0), static_cast<float>(y1), static_cast<float>(z))};
-  };
-  build::add_quad(
-      world, flat(near_low, near_low, near_high, near_high, 0.0),
-      {cv::Vec2f(0.f, 0.f), cv::Vec2f(1.f, 0.f), cv::Vec2f(1.f, 1.f), cv::Vec2f(0.f, 1.f)},
-      build::add_material(world, "ground",
-                          ground_texture(near_high - near_low,
-                                         std::min(params.texture_px_per_m,
-                                                  kMaxGroundTexture_px / (near_high - near_low)),
-                                         rng)));
-  // Far away the ground is seen at grazing angles: one smooth, low-resolution texture
-  // (no tiling, whose repeats would show as a chequer towards the horizon).
-  const double far = hills_m * 1.05;
-  cv::Mat far_ground(512, 512, CV_8UC3, cv::Scalar(75, 120, 135));
-  textures::add_smooth_noise(far_ground, 10.0, 512.0 / (2.0 * far), 14.0, rng);
-  build::add_quad(
-      world, flat(centre[0] - far, centre[1] - far, centre[0] + far, centre[1] + far, -0.01),
-      {cv::Vec2f(0.f, 0.f), cv::Vec2f(1.f, 0.f), cv::Vec2f(1.f, 1.f), cv::Vec2f(0.f, 1.f)},
-      build::add_material(world, "far ground", std::move(far_ground)));
-
-  // Trees, rocks and bushes, apart from each other; trunks, rocks and bushes are obstacles.
-  const std::vector<int> bark = add_shades(world, "bark", {60.f, 75.f, 90.f}, 0.25, 0.0, 6, rng);
-  const std::vector<int> leaves =
-      add_shades(world, "leaves", {40.f, 105.f, 60.f}, 0.35, 0.0, 10, rng);
-  const std::vector<int> shrub = add_shades(world, "bush", {45.f, 95.f, 70.f}, 0.35, 0.0, 10, rng);
-  std::vector<FloorBox> taken;
-  const auto place = [&](double radius_m) -> std::optional<cv::Vec2d> {
-    for (int attempt = 0; attempt < 200; ++attempt) {
-      const cv::Vec2d at(rng.uniform(near_low + 1.0, near_high - 1.0),
-                         rng.uniform(near_low + 1.0, near_high - 1.0));
-      const FloorBox box{at[0] - radius_m, at[1] - radius_m, at[0] + radius_m, at[1] + radius_m};
-      bool free = true;
-      for (const FloorBox& other : taken) free = free && !build::overlaps(box, other, 0.8);
-      if (!free) continue;
-      taken.push_back(box);
-      return at;
-    }
-    return std::nullopt;
-  };
-  const double margin_share = (near_high - near_low) * (near_high - near_low) / (size * size);
-  const int trees = static_cast<int>(std::lround(params.trees * margin_share));
-  for (int i = 0; i < trees; ++i) {
-    const double trunk_m = rng.uniform(0.08, 0.2);
-    const double crown_xy = rng.uniform(1.0, 2.2), crown_z = rng.uniform(0.9, 1.8);
-    const double trunk_height = 1.9 + 0.7 * crown_z + rng.uniform(0.0, 1.5);
-    const std::optional<cv::Vec2d> at = place(trunk_m);
-    if (!at) break;
-    add_trunk(world, (*at)[0], (*at)[1], trunk_m, trunk_height + 0.3 * crown_z, bark, rng);
-    add_blob(world, {(*at)[0], (*at)[1], trunk_height + 0.3 * crown_z}, crown_xy, crown_z, leaves,
-             rng);
-    world.obstacles.push_back(taken.back());
-  }
-  const std::vector<int> stone = add_shades(world, "rock", {120.f, 125.f, 130.f}, 0.3, 0.0, 6, rng);
-  const int rocks = static_cast<int>(std::lround(params.rocks * margin_share));
-  for (int i = 0; i < rocks; ++i) {  // low, flattened
-    const double radius = rng.uniform(0.1, 0.45), height = rng.uniform(0.08, 0.4);
-    const std::optional<cv::Vec2d> at = place(radius);
-    if (!at) break;
-    add_blob(world, {(*at)[0], (*at)[1], 0.2 * height}, radius, 0.8 * height, stone, rng);
-    world.obstacles.push_back(taken.back());
-  }
-  const int bushes = static_cast<int>(std::lround(params.bushes * margin_share));
-  for (int i = 0; i < bushes; ++i) {
-    const double radius = rng.uniform(0.15, 0.45), height = rng.uniform(0.3, 1.2);
-    const std::optional<cv::Vec2d> at = place(radius);
-    if (!at) break;
-    add_blob(world, {(*at)[0], (*at)[1], height / 2.0}, radius, height / 2.0, shrub, rng);
-    world.obstacles.push_back(taken.back());
-  }
-
-  // Grass tussocks at the same density over the floor and its margin; not obstacles.
-  constexpr int kPalette = 48;
-  const int palette = add_grass_palette(world, rng, kPalette);
-  const int tussocks = static_cast<int>(std::lround(params.tussocks * margin_share));
-  for (int i = 0; i < tussocks; ++i) {
-    const double x = rng.uniform(near_low, near_high), y = rng.uniform(near_low, near_high);
-    // More short tussocks than tall ones.
-    const double height = params.grass_min_m + (params.grass_max_m - params.grass_min_m) *
-                                                   std::pow(rng.uniform(0.0, 1.0), 1.5);
-    add_tussock(world, x, y, height, palette, kPalette, rng);
-  }
-
-  // The horizon: hills, and a tree line in front of them, both hazy with distance.
-  constexpr int kHorizonSamples = 720;
-  if (params.horizon != Horizon::kNone) {
-    std::vector<double> hills = horizon_profile(kHorizonSamples, rng);
-    for (double& h : hills) h = hills_m * (0.09 + 0.04 * h);
-    add_ring(world, centre, hills_m, hills,
-             add_shades(world, "hills", {95.f, 120.f, 105.f}, 0.05, 0.45, 4, rng), rng);
-  }
-  if (params.horizon == Horizon::kTrees) {
-    std::vector<double> line = horizon_profile(kHorizonSamples, rng);
-    for (double& h : line) h = tree_line_m * (0.07 + 0.03 * h) * rng.uniform(0.8, 1.2);
-    add_ring(world, centre, tree_line_m, line,
-             add_shades(world, "tree line", {45.f, 85.f, 55.f}, 0.2, 0.2, 8, rng), rng);
-  }
+  FieldExtent extent;
+  extent.size = params.size_m;
+  extent.centre = cv::Vec2d(extent.size / 2.0, extent.size / 2.0);
+  extent.near_low = -kMargin_m;
+  extent.near_high = extent.size + kMargin_m;
+  extent.tree_line_m = std::max(80.0, 4.0 * extent.size);
+  extent.hills_m = 4.0 * extent.tree_line_m;
+  extent.margin_share = (extent.near_high - extent.near_low) *
+                        (extent.near_high - extent.near_low) / (extent.size * extent.size);
+  world.floor = {0.0, 0.0, extent.size, extent.size};
+  add_ground(world, extent, params, rng);
+  add_trees_rocks_and_bushes(world, extent, params, rng);
+  add_grass(world, extent, params, rng);
+  add_horizon(world, extent, params.horizon, rng);
   return world;
 }
 
