@@ -89,28 +89,26 @@ std::array<FloorBox, 2> add_desk(World& world, double x, double y, const DeskMat
   return {desk, chair};
 }
 
-}  // namespace
+// Where the desks stand: x of a column, y of a row, and the floor's size.
+struct OfficeGrid {
+  const OfficeParams& params;
+  double size_x = 0.0, size_y = 0.0;
 
-World make_office(const OfficeParams& params) {
-  World world;
-  world.name = "office";
-  cv::RNG rng(static_cast<std::uint64_t>(params.seed) * 7919 + 43);
+  double desk_x(int column) const { return kEndAisle_m + params.desk_pitch_m * (column + 0.5); }
+  double row_y(int row) const { return kSideAisle_m + params.row_pitch_m * (row + 0.5); }
+};
+
+// Walls in one paint, windows along the north wall at the desks' pitch; carpet tiles; a ceiling
+// with a light over every desk.
+void add_office_room(World& world, const OfficeGrid& grid, cv::RNG& rng) {
+  const OfficeParams& params = grid.params;
   const double ppm = params.texture_px_per_m;
-  const double size_x = 2 * kEndAisle_m + params.desks_per_row * params.desk_pitch_m;
-  const double size_y = 2 * kSideAisle_m + params.rows * params.row_pitch_m;
-  const float lx = static_cast<float>(size_x), ly = static_cast<float>(size_y);
+  const float lx = static_cast<float>(grid.size_x), ly = static_cast<float>(grid.size_y);
   const float height = static_cast<float>(params.height_m);
-  world.floor = {0.0, 0.0, size_x, size_y};
-  const auto desk_x = [&](int column) {
-    return kEndAisle_m + params.desk_pitch_m * (column + 0.5);
-  };
-  const auto row_y = [&](int row) { return kSideAisle_m + params.row_pitch_m * (row + 0.5); };
-
-  // Walls: one paint; windows along the north wall at the desks' pitch; plain elsewhere.
   const cv::Scalar paint(rng.uniform(200, 235), rng.uniform(205, 235), rng.uniform(205, 235));
   std::vector<double> windows;
   for (int column = 0; column < params.desks_per_row; ++column) {
-    windows.push_back(size_x - desk_x(column));  // the north wall runs from east to west
+    windows.push_back(grid.size_x - grid.desk_x(column));  // the north wall runs east to west
   }
   const std::array<cv::Vec2f, 5> corners{cv::Vec2f(0.f, 0.f), cv::Vec2f(lx, 0.f), cv::Vec2f(lx, ly),
                                          cv::Vec2f(0.f, ly), cv::Vec2f(0.f, 0.f)};
@@ -124,69 +122,93 @@ World make_office(const OfficeParams& params) {
   }
   const std::array<cv::Vec2f, 4> whole{cv::Vec2f(0.f, 0.f), cv::Vec2f(1.f, 0.f),
                                        cv::Vec2f(1.f, 1.f), cv::Vec2f(0.f, 1.f)};
-  build::add_quad(world,
-                  {cv::Vec3f(0.f, 0.f, 0.f), cv::Vec3f(lx, 0.f, 0.f), cv::Vec3f(lx, ly, 0.f),
-                   cv::Vec3f(0.f, ly, 0.f)},
-                  whole,
-                  build::add_material(world, "floor", carpet_tiles(size_x, size_y, ppm, rng)));
+  build::add_quad(
+      world,
+      {cv::Vec3f(0.f, 0.f, 0.f), cv::Vec3f(lx, 0.f, 0.f), cv::Vec3f(lx, ly, 0.f),
+       cv::Vec3f(0.f, ly, 0.f)},
+      whole, build::add_material(world, "floor", carpet_tiles(grid.size_x, grid.size_y, ppm, rng)));
   // Texture rows run from the top (v = 1, y = size_y) down.
   std::vector<cv::Point2d> lights;
   for (int row = 0; row < params.rows; ++row) {
     for (int column = 0; column < params.desks_per_row; ++column) {
-      lights.emplace_back(desk_x(column), size_y - row_y(row));
+      lights.emplace_back(grid.desk_x(column), grid.size_y - grid.row_y(row));
     }
   }
-  build::add_quad(
-      world,
-      {cv::Vec3f(0.f, 0.f, height), cv::Vec3f(lx, 0.f, height), cv::Vec3f(lx, ly, height),
-       cv::Vec3f(0.f, ly, height)},
-      whole,
-      build::add_material(world, "ceiling", ceiling_lights(size_x, size_y, ppm, lights, rng)));
+  build::add_quad(world,
+                  {cv::Vec3f(0.f, 0.f, height), cv::Vec3f(lx, 0.f, height),
+                   cv::Vec3f(lx, ly, height), cv::Vec3f(0.f, ly, height)},
+                  whole,
+                  build::add_material(world, "ceiling",
+                                      ceiling_lights(grid.size_x, grid.size_y, ppm, lights, rng)));
+}
 
-  // Identical desks in rows, columns between every column_every-th pair of desks.
-  // The office's furniture scheme (the same for every desk) depends on the seed: a desk top
-  // of light or dark wood, white or grey laminate; grey panels; a dark chair.
-  const auto colour = [&](int low, int high) {
-    const cv::Scalar c = textures::random_colour(rng, low, high);
-    return cv::Vec3f(static_cast<float>(c[0]), static_cast<float>(c[1]), static_cast<float>(c[2]));
-  };
+// The office's furniture scheme, the same for every desk, depends on the seed: a desk top of
+// light or dark wood, white or grey laminate; grey panels; a dark chair.
+DeskMaterials desk_materials(World& world, cv::RNG& rng) {
   const std::array<cv::Vec3f, 4> tops{
       {{150.f, 185.f, 210.f}, {60.f, 90.f, 125.f}, {225.f, 225.f, 220.f}, {150.f, 155.f, 160.f}}};
   const float panel_grey = static_cast<float>(rng.uniform(90, 200));
-  const DeskMaterials desk{
-      build::add_colour(world, "desk top",
-                        tops[rng.uniform(0, 4)] * static_cast<float>(rng.uniform(0.9, 1.1))),
-      build::add_colour(world, "desk panel", {panel_grey, panel_grey, panel_grey * 0.95f}),
-      build::add_colour(world, "screen", {35.f, 30.f, 30.f}),
-      build::add_colour(world, "chair", colour(25, 110))};
+  const int top = build::add_colour(
+      world, "desk top", tops[rng.uniform(0, 4)] * static_cast<float>(rng.uniform(0.9, 1.1)));
+  const int panel =
+      build::add_colour(world, "desk panel", {panel_grey, panel_grey, panel_grey * 0.95f});
+  const int screen = build::add_colour(world, "screen", {35.f, 30.f, 30.f});
+  const cv::Scalar chair = textures::random_colour(rng, 25, 110);
+  return {top, panel, screen,
+          build::add_colour(world, "chair",
+                            cv::Vec3f(static_cast<float>(chair[0]), static_cast<float>(chair[1]),
+                                      static_cast<float>(chair[2])))};
+}
+
+// A plant, a box of files, a lamp... on the desk at (x, y), with probability params.clutter.
+void maybe_add_clutter(World& world, double desk_x, double desk_y, const OfficeParams& params,
+                       cv::RNG& rng) {
+  if (rng.uniform(0.0, 1.0) >= params.clutter) return;
+  const double side = rng.uniform(0.1, 0.35);
+  const double x = desk_x + rng.uniform(-0.6, 0.6 - side);
+  const double y = desk_y + rng.uniform(-0.3, 0.3 - side);
+  const cv::Scalar colour = textures::random_colour(rng, 20, 240);
+  build::add_box(world, {x, y, x + side, y + side},
+                 static_cast<float>(kDeskHeight_m + rng.uniform(0.1, 0.5)),
+                 build::add_colour(world, "clutter",
+                                   {static_cast<float>(colour[0]), static_cast<float>(colour[1]),
+                                    static_cast<float>(colour[2])}),
+                 static_cast<float>(kDeskHeight_m));
+}
+
+// Identical desks in rows, columns between every column_every-th pair of desks.
+void add_desk_rows(World& world, const OfficeGrid& grid, cv::RNG& rng) {
+  const OfficeParams& params = grid.params;
+  const DeskMaterials desk = desk_materials(world, rng);
   const int column_material = build::add_colour(world, "column", {200.f, 200.f, 195.f});
   for (int row = 0; row < params.rows; ++row) {
     for (int column = 0; column < params.desks_per_row; ++column) {
-      for (const FloorBox& box : add_desk(world, desk_x(column), row_y(row), desk)) {
+      for (const FloorBox& box : add_desk(world, grid.desk_x(column), grid.row_y(row), desk)) {
         world.obstacles.push_back(box);
       }
-      if (rng.uniform(0.0, 1.0) < params.clutter) {  // a plant, a box of files, a lamp...
-        const double side = rng.uniform(0.1, 0.35);
-        const double x = desk_x(column) + rng.uniform(-0.6, 0.6 - side);
-        const double y = row_y(row) + rng.uniform(-0.3, 0.3 - side);
-        const cv::Scalar colour = textures::random_colour(rng, 20, 240);
-        build::add_box(
-            world, {x, y, x + side, y + side},
-            static_cast<float>(kDeskHeight_m + rng.uniform(0.1, 0.5)),
-            build::add_colour(world, "clutter",
-                              {static_cast<float>(colour[0]), static_cast<float>(colour[1]),
-                               static_cast<float>(colour[2])}),
-            static_cast<float>(kDeskHeight_m));
-      }
+      maybe_add_clutter(world, grid.desk_x(column), grid.row_y(row), params, rng);
     }
     for (int gap = params.column_every; gap < params.desks_per_row; gap += params.column_every) {
-      const double x = kEndAisle_m + params.desk_pitch_m * gap, y = row_y(row);
+      const double x = kEndAisle_m + params.desk_pitch_m * gap, y = grid.row_y(row);
       const double h = kColumnSide_m / 2;
       const FloorBox column{x - h, y - h, x + h, y + h};
-      build::add_box(world, column, height, column_material);
+      build::add_box(world, column, static_cast<float>(params.height_m), column_material);
       world.obstacles.push_back(column);
     }
   }
+}
+
+}  // namespace
+
+World make_office(const OfficeParams& params) {
+  World world;
+  world.name = "office";
+  cv::RNG rng(static_cast<std::uint64_t>(params.seed) * 7919 + 43);
+  const OfficeGrid grid{params, 2 * kEndAisle_m + params.desks_per_row * params.desk_pitch_m,
+                        2 * kSideAisle_m + params.rows * params.row_pitch_m};
+  world.floor = {0.0, 0.0, grid.size_x, grid.size_y};
+  add_office_room(world, grid, rng);
+  add_desk_rows(world, grid, rng);
   return world;
 }
 
