@@ -198,6 +198,102 @@ struct KindContext {
   std::vector<TimedPose> csv_poses() const;
 };
 
+// The settings of a wander, from its spec.
+struct WanderSettings {
+  double speed_m_s = 0.2;
+  double seconds = 0.0;
+  double mean_turn_rate_rad_s = 0.0;
+  double wobble_rad = 0.0;
+  double wobble_period_s = 2.0;
+  double clearance_m = 0.25;
+  int seed = 1;
+};
+
+WanderSettings read_wander(SpecArguments& args, const std::string& spec) {
+  WanderSettings w;
+  w.speed_m_s = args.number("speed_m_s", 0.2);
+  require_positive(w.speed_m_s, "speed_m_s", spec);
+  const double length = args.number("length_m", 0.0);
+  const double duration = args.number("duration_s", 0.0);
+  if (length < 0.0 || duration < 0.0 || (length > 0.0 && duration > 0.0)) {
+    throw UsageError("trajectory '" + spec + "': give length_m or duration_s (positive), not both");
+  }
+  w.seconds = duration > 0.0 ? duration : (length > 0.0 ? length : 10.0) / w.speed_m_s;
+  w.mean_turn_rate_rad_s = deg_to_rad(args.number("turn_rate_deg_s", 30.0));
+  w.wobble_rad = deg_to_rad(args.number("wobble_deg", 15.0));
+  w.wobble_period_s = args.number("wobble_period_s", 2.0);
+  w.clearance_m = args.number("clearance_m", 0.25);
+  w.seed = args.whole("seed", 1);
+  if (w.seed < 0) throw UsageError("trajectory '" + spec + "': seed must not be negative");
+  if (w.mean_turn_rate_rad_s < 0.0 || w.wobble_rad < 0.0 || w.clearance_m < 0.0) {
+    throw UsageError("trajectory '" + spec +
+                     "': turn_rate_deg_s, wobble_deg and clearance_m must not be negative");
+  }
+  require_positive(w.wobble_period_s, "wobble_period_s", spec);
+  return w;
+}
+
+// The free point nearest (x, y), searched on rings 5 cm apart (x, y unchanged when none is).
+void move_to_free_point(const World& world, double clearance_m, double& x, double& y) {
+  const double centre_x = x, centre_y = y;
+  for (int ring = 1; ring < 400 && !world.is_free(x, y, clearance_m); ++ring) {
+    for (int k = 0; k < 8 * ring && !world.is_free(x, y, clearance_m); ++k) {
+      const double angle = kTwoPi * k / (8 * ring);
+      x = centre_x + 0.05 * ring * std::cos(angle);
+      y = centre_y + 0.05 * ring * std::sin(angle);
+    }
+  }
+}
+
+// Steers away from what lies ahead: the smallest turn, either way, in steps of 10°, that
+// leaves the `lookahead_m` ahead free by `keep_m`, turning on (`turn_rate` keeps turning away).
+// False when no direction is free: the walker stands and turns.
+bool steer_clear(const World& world, double x, double y, double lookahead_m, double keep_m,
+                 double& travel, double& turn_rate) {
+  const auto clear = [&](double direction) {
+    return world.segment_is_free(x, y, x + lookahead_m * std::cos(direction),
+                                 y + lookahead_m * std::sin(direction), keep_m);
+  };
+  if (clear(travel)) return true;
+  for (int k = 1; k <= 18; ++k) {
+    for (const double side : {1.0, -1.0}) {
+      const double direction = wrap_angle(travel + side * k * deg_to_rad(10.0));
+      if (clear(direction)) {
+        travel = direction;
+        turn_rate = side * std::abs(turn_rate);
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
+// The body's heading about the direction of travel: a sinusoid whose amplitude and period are
+// jittered by ±30 % each cycle.
+class Wobble {
+ public:
+  Wobble(const WanderSettings& settings, cv::RNG& rng)
+      : settings_(settings),
+        phase_(rng.uniform(0.0, kTwoPi)),
+        amplitude_(settings.wobble_rad),
+        rate_(kTwoPi / settings.wobble_period_s) {}
+
+  double offset_rad() const { return amplitude_ * std::sin(phase_); }
+
+  void advance(double fps, cv::RNG& rng) {
+    const double previous = phase_;
+    phase_ += rate_ / fps;
+    if (std::floor(phase_ / kTwoPi) != std::floor(previous / kTwoPi)) {
+      amplitude_ = settings_.wobble_rad * rng.uniform(0.7, 1.3);
+      rate_ = kTwoPi / (settings_.wobble_period_s * rng.uniform(0.7, 1.3));
+    }
+  }
+
+ private:
+  const WanderSettings& settings_;
+  double phase_, amplitude_, rate_;
+};
+
 // An animal's or a small robot's route (kind `wander`): the direction of travel turns at a
 // rate that changes at random moments, mostly gently and now and then sharply (the rate's
 // magnitude is exponential with mean turn_rate_deg_s), and the body's heading wobbles about
@@ -208,85 +304,34 @@ struct KindContext {
 std::vector<TimedPose> KindContext::wander_poses() const {
   double x = args.number("x", centre_x), y = args.number("y", centre_y);
   double travel = deg_to_rad(args.number("heading_deg", 0.0));
-  const double speed = args.number("speed_m_s", 0.2);
-  require_positive(speed, "speed_m_s", spec);
-  const double length = args.number("length_m", 0.0);
-  const double duration = args.number("duration_s", 0.0);
-  if (length < 0.0 || duration < 0.0 || (length > 0.0 && duration > 0.0)) {
-    throw UsageError("trajectory '" + spec + "': give length_m or duration_s (positive), not both");
-  }
-  const double seconds = duration > 0.0 ? duration : (length > 0.0 ? length : 10.0) / speed;
-  const double mean_turn_rate = deg_to_rad(args.number("turn_rate_deg_s", 30.0));
-  const double wobble = deg_to_rad(args.number("wobble_deg", 15.0));
-  const double wobble_period = args.number("wobble_period_s", 2.0);
-  const double clearance = args.number("clearance_m", 0.25);
-  const int seed = args.whole("seed", 1);
-  if (seed < 0) throw UsageError("trajectory '" + spec + "': seed must not be negative");
-  cv::RNG rng(static_cast<std::uint64_t>(seed) * 2654435761ULL + 7);
-  if (mean_turn_rate < 0.0 || wobble < 0.0 || clearance < 0.0) {
-    throw UsageError("trajectory '" + spec +
-                     "': turn_rate_deg_s, wobble_deg and clearance_m must not be negative");
-  }
-  require_positive(wobble_period, "wobble_period_s", spec);
-  if (x == centre_x && y == centre_y) {  // the default start: the free point nearest the centre
-    for (int ring = 1; ring < 400 && !world.is_free(x, y, clearance); ++ring) {
-      for (int k = 0; k < 8 * ring && !world.is_free(x, y, clearance); ++k) {
-        const double angle = kTwoPi * k / (8 * ring);
-        x = centre_x + 0.05 * ring * std::cos(angle);
-        y = centre_y + 0.05 * ring * std::sin(angle);
-      }
-    }
-  }
+  const WanderSettings settings = read_wander(args, spec);
+  cv::RNG rng(static_cast<std::uint64_t>(settings.seed) * 2654435761ULL + 7);
+  const double clearance = settings.clearance_m;
+  if (x == centre_x && y == centre_y) move_to_free_point(world, clearance, x, y);
   if (!world.is_free(x, y, clearance)) {
     log_warning("trajectory '" + spec + "': the start is closer than clearance_m to an obstacle");
   }
 
-  const int frames = pose_count(std::floor(seconds * fps + 1e-9) + 1, spec);
-  const double step = speed / fps;
-  const double lookahead = std::max(0.5 * speed, 2.0 * step);
+  const int frames = pose_count(std::floor(settings.seconds * fps + 1e-9) + 1, spec);
+  const double step = settings.speed_m_s / fps;
+  const double lookahead = std::max(0.5 * settings.speed_m_s, 2.0 * step);
   double turn_rate = 0.0, next_change_s = 0.0;
-  double wobble_phase = rng.uniform(0.0, kTwoPi);
-  double wobble_amplitude = wobble, wobble_rate = kTwoPi / wobble_period;
+  Wobble wobble(settings, rng);
   std::vector<TimedPose> poses;
   for (int frame = 0; frame < frames; ++frame) {
     const double time = frame / fps;
     if (time >= next_change_s) {  // a new turn: mostly gentle, sometimes sharp
       const double sign = rng.uniform(0, 2) == 0 ? -1.0 : 1.0;
-      turn_rate = sign * mean_turn_rate * -std::log(1.0 - rng.uniform(0.0, 1.0));
+      turn_rate = sign * settings.mean_turn_rate_rad_s * -std::log(1.0 - rng.uniform(0.0, 1.0));
       next_change_s = time + rng.uniform(0.5, 3.0);
     }
     if (frame > 0) travel = wrap_angle(travel + turn_rate / fps);
-    // Steer away from what lies ahead: the smallest turn, either way, that leaves the path
-    // ahead free; stand and turn when none does.
-    // (A walker closer than clearance_m to something, at its start, keeps out of it only.)
+    // A walker closer than clearance_m to something, at its start, keeps out of it only.
     const double keep = world.is_free(x, y, clearance) ? clearance : 0.0;
-    const auto clear = [&](double direction) {
-      return world.segment_is_free(x, y, x + lookahead * std::cos(direction),
-                                   y + lookahead * std::sin(direction), keep);
-    };
-    bool moving = clear(travel);
-    for (int k = 1; !moving && k <= 18; ++k) {
-      for (const double side : {1.0, -1.0}) {
-        const double direction = wrap_angle(travel + side * k * deg_to_rad(10.0));
-        if (clear(direction)) {
-          travel = direction;
-          turn_rate = side * std::abs(turn_rate);  // keep turning away
-          moving = true;
-          break;
-        }
-      }
-    }
+    const bool moving = steer_clear(world, x, y, lookahead, keep, travel, turn_rate);
     // The body faces the direction it is about to travel in, give or take the wobble.
-    poses.push_back(
-        {time,
-         {x, y, 0.0, wrap_angle(travel + wobble_amplitude * std::sin(wobble_phase)), 0.0, 0.0},
-         {}});
-    const double previous_phase = wobble_phase;
-    wobble_phase += wobble_rate / fps;
-    if (std::floor(wobble_phase / kTwoPi) != std::floor(previous_phase / kTwoPi)) {
-      wobble_amplitude = wobble * rng.uniform(0.7, 1.3);  // each cycle a little different
-      wobble_rate = kTwoPi / (wobble_period * rng.uniform(0.7, 1.3));
-    }
+    poses.push_back({time, {x, y, 0.0, wrap_angle(travel + wobble.offset_rad()), 0.0, 0.0}, {}});
+    wobble.advance(fps, rng);
     if (moving) {
       x += step * std::cos(travel);
       y += step * std::sin(travel);
