@@ -256,6 +256,58 @@ std::vector<double> ticks_within(double low, double high, const TickStep& step) 
                     step);
 }
 
+// Equal scales: one data unit per the same number of pixels on both axes, the data centred,
+// with 5 % of the larger extent as padding so that points on the edge are not cut.
+Frame equal_scale_frame(const Bounds& bounds, cv::Size size_px) {
+  Frame frame;
+  frame.area = plot_area(size_px);
+  double extent = std::max(bounds.x_high - bounds.x_low, bounds.y_high - bounds.y_low);
+  if (extent <= 0.0) extent = std::max(1.0, std::abs(bounds.x_low) + std::abs(bounds.y_low));
+  const double padded_w = bounds.x_high - bounds.x_low + 0.1 * extent;
+  const double padded_h = bounds.y_high - bounds.y_low + 0.1 * extent;
+  const double units_per_px =
+      std::max(padded_w / (frame.area.width - 1), padded_h / (frame.area.height - 1));
+  const double centre_x = 0.5 * (bounds.x_low + bounds.x_high);
+  const double centre_y = 0.5 * (bounds.y_low + bounds.y_high);
+  frame.x_low = centre_x - 0.5 * units_per_px * (frame.area.width - 1);
+  frame.x_high = centre_x + 0.5 * units_per_px * (frame.area.width - 1);
+  frame.y_low = centre_y - 0.5 * units_per_px * (frame.area.height - 1);
+  frame.y_high = centre_y + 0.5 * units_per_px * (frame.area.height - 1);
+  return frame;
+}
+
+// A segment of grey `level` from a to b (pixels), opaque or translucent (`alpha` < 1): the
+// line's coverage drawn into a mask over its bounding box, then image ← image·(1 − α·m) +
+// level·α·m only there.
+void draw_segment(cv::Mat& image, const cv::Point2d& a, const cv::Point2d& b, double level,
+                  double alpha) {
+  if (alpha >= 1.0) {
+    cv::line(image, subpixel(a), subpixel(b), cv::Scalar::all(level), 1, cv::LINE_AA, kShift);
+    return;
+  }
+  const cv::Rect box =
+      cv::Rect(cv::Point(cvFloor(std::min(a.x, b.x)) - 2, cvFloor(std::min(a.y, b.y)) - 2),
+               cv::Point(cvCeil(std::max(a.x, b.x)) + 3, cvCeil(std::max(a.y, b.y)) + 3)) &
+      cv::Rect(0, 0, image.cols, image.rows);
+  if (box.empty()) return;
+  cv::Mat mask = cv::Mat::zeros(box.size(), CV_8U);
+  const cv::Point2d offset(box.x, box.y);
+  cv::line(mask, subpixel(a - offset), subpixel(b - offset), cv::Scalar(255), 1, cv::LINE_AA,
+           kShift);
+  cv::Mat roi = image(box);
+  for (int r = 0; r < roi.rows; ++r) {
+    const uchar* m = mask.ptr<uchar>(r);
+    cv::Vec3b* pixel = roi.ptr<cv::Vec3b>(r);
+    for (int c = 0; c < roi.cols; ++c) {
+      if (m[c] == 0) continue;
+      const double weight = alpha * m[c] / 255.0;
+      for (int k = 0; k < 3; ++k) {
+        pixel[c][k] = cv::saturate_cast<uchar>(pixel[c][k] * (1.0 - weight) + level * weight);
+      }
+    }
+  }
+}
+
 }  // namespace
 
 cv::Scalar palette_colour(std::size_t index) {
@@ -409,23 +461,7 @@ cv::Mat PointsPlot::render() const {
     bounds.add(s.to.x, s.to.y);
   }
   if (bounds.empty()) bounds = {0.0, 1.0, 0.0, 1.0};
-
-  // Equal scales: one data unit per `units_per_px` pixels on both axes, the data centred,
-  // with 5 % of the larger extent as padding so that points on the edge are not cut.
-  Frame frame;
-  frame.area = plot_area(size_px_);
-  double extent = std::max(bounds.x_high - bounds.x_low, bounds.y_high - bounds.y_low);
-  if (extent <= 0.0) extent = std::max(1.0, std::abs(bounds.x_low) + std::abs(bounds.y_low));
-  const double padded_w = bounds.x_high - bounds.x_low + 0.1 * extent;
-  const double padded_h = bounds.y_high - bounds.y_low + 0.1 * extent;
-  const double units_per_px =
-      std::max(padded_w / (frame.area.width - 1), padded_h / (frame.area.height - 1));
-  const double centre_x = 0.5 * (bounds.x_low + bounds.x_high);
-  const double centre_y = 0.5 * (bounds.y_low + bounds.y_high);
-  frame.x_low = centre_x - 0.5 * units_per_px * (frame.area.width - 1);
-  frame.x_high = centre_x + 0.5 * units_per_px * (frame.area.width - 1);
-  frame.y_low = centre_y - 0.5 * units_per_px * (frame.area.height - 1);
-  frame.y_high = centre_y + 0.5 * units_per_px * (frame.area.height - 1);
+  const Frame frame = equal_scale_frame(bounds, size_px_);
 
   // One tick step for both axes, so the grid is made of squares.
   const TickStep step =
@@ -440,36 +476,8 @@ cv::Mat PointsPlot::render() const {
         !std::isfinite(s.to.y)) {
       continue;
     }
-    const cv::Point2d a = frame.to_pixel(s.from.x, s.from.y);
-    const cv::Point2d b = frame.to_pixel(s.to.x, s.to.y);
-    const double level = 255.0 * s.grey;
-    if (s.alpha >= 1.0) {
-      cv::line(image, subpixel(a), subpixel(b), cv::Scalar::all(level), 1, cv::LINE_AA, kShift);
-      continue;
-    }
-    // Translucent: draw the line's coverage into a mask over its bounding box, then blend
-    // image ← image·(1 − α·m) + level·α·m only there.
-    const cv::Rect box =
-        cv::Rect(cv::Point(cvFloor(std::min(a.x, b.x)) - 2, cvFloor(std::min(a.y, b.y)) - 2),
-                 cv::Point(cvCeil(std::max(a.x, b.x)) + 3, cvCeil(std::max(a.y, b.y)) + 3)) &
-        cv::Rect(0, 0, image.cols, image.rows);
-    if (box.empty()) continue;
-    cv::Mat mask = cv::Mat::zeros(box.size(), CV_8U);
-    const cv::Point2d offset(box.x, box.y);
-    cv::line(mask, subpixel(a - offset), subpixel(b - offset), cv::Scalar(255), 1, cv::LINE_AA,
-             kShift);
-    cv::Mat roi = image(box);
-    for (int r = 0; r < roi.rows; ++r) {
-      const uchar* m = mask.ptr<uchar>(r);
-      cv::Vec3b* pixel = roi.ptr<cv::Vec3b>(r);
-      for (int c = 0; c < roi.cols; ++c) {
-        if (m[c] == 0) continue;
-        const double weight = s.alpha * m[c] / 255.0;
-        for (int k = 0; k < 3; ++k) {
-          pixel[c][k] = cv::saturate_cast<uchar>(pixel[c][k] * (1.0 - weight) + level * weight);
-        }
-      }
-    }
+    draw_segment(image, frame.to_pixel(s.from.x, s.from.y), frame.to_pixel(s.to.x, s.to.y),
+                 255.0 * s.grey, s.alpha);
   }
 
   std::vector<LegendEntry> legend;
