@@ -75,19 +75,15 @@ std::optional<Circle> fit_circle(const std::vector<cv::Point2d>& points) {
   return Circle{{cx + mean.x, cy + mean.y}, std::sqrt(squared)};
 }
 
-}  // namespace
-
-std::optional<MirrorCircle> find_mirror_circle(const cv::Mat& raw) {
-  if (raw.empty()) throw InputError("find_mirror_circle: the raw image is empty");
-  const cv::Mat grey = to_grey8(raw);
+// The bright disc of the mirror on its darker surround: Otsu's threshold of the smoothed
+// image, cleaned; none when the two classes hardly differ or the bright one is too small or
+// almost everything.
+std::optional<cv::Mat> bright_disc_mask(const cv::Mat& grey) {
   const int min_side = std::min(grey.cols, grey.rows);
-  if (min_side < 16) return std::nullopt;
-
   // Smooth sensor noise and fine texture before thresholding; scale with the image.
   cv::Mat smooth;
   const double sigma = std::max(1.0, min_side / 600.0);
   cv::GaussianBlur(grey, smooth, cv::Size(0, 0), sigma);
-
   cv::Mat bright;
   const double threshold =
       cv::threshold(smooth, bright, 0, 255, cv::THRESH_BINARY | cv::THRESH_OTSU);
@@ -99,44 +95,49 @@ std::optional<MirrorCircle> find_mirror_circle(const cv::Mat& raw) {
   cv::bitwise_not(bright, dark);
   const double contrast = cv::mean(smooth, bright)[0] - cv::mean(smooth, dark)[0];
   if (contrast < kMinContrast || threshold <= 0.0) return std::nullopt;
-
   // Remove specks, then close the gaps that dark texture on the mirror leaves near its rim.
   const int close_px = std::max(3, (min_side / 60) | 1);
   cv::morphologyEx(bright, bright, cv::MORPH_OPEN,
                    cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(3, 3)));
   cv::morphologyEx(bright, bright, cv::MORPH_CLOSE,
                    cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(close_px, close_px)));
+  return bright;
+}
 
+// The rim of the largest bright region: its contour points not on the image border (a disc
+// cropped by the image edges has straight border runs that are not its rim). Empty when the
+// region is too small.
+std::vector<cv::Point2d> rim_of_largest_region(cv::Mat& bright) {
   std::vector<std::vector<cv::Point>> contours;
   cv::findContours(bright, contours, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_NONE);
-  if (contours.empty()) return std::nullopt;
+  if (contours.empty()) return {};
   const auto largest = std::max_element(
       contours.begin(), contours.end(),
       [](const auto& a, const auto& b) { return cv::contourArea(a) < cv::contourArea(b); });
-  if (cv::contourArea(*largest) < kMinAreaShare * static_cast<double>(grey.total())) {
-    return std::nullopt;
-  }
-
-  // The rim: contour points not on the image border (a disc cropped by the image edges has
-  // straight border runs that are not its rim).
+  if (cv::contourArea(*largest) < kMinAreaShare * static_cast<double>(bright.total())) return {};
   std::vector<cv::Point2d> rim;
   for (const cv::Point& point : *largest) {
-    if (point.x > 0 && point.y > 0 && point.x < grey.cols - 1 && point.y < grey.rows - 1) {
+    if (point.x > 0 && point.y > 0 && point.x < bright.cols - 1 && point.y < bright.rows - 1) {
       rim.emplace_back(point.x, point.y);
     }
   }
-  if (rim.size() < kMinRimPoints) return std::nullopt;
+  return rim;
+}
 
-  // Fit, then refit without the points far off the circle (dents where dark texture touches
-  // the rim, bright things next to the mirror), robust to a minority of them.
+double distance_off(const Circle& circle, const cv::Point2d& point) {
+  return std::hypot(point.x - circle.centre.x, point.y - circle.centre.y) - circle.radius;
+}
+
+// Fits, then refits without the points far off the circle (dents where dark texture touches
+// the rim, bright things next to the mirror), robust to a minority of them. `rim` keeps the
+// points of the last fit.
+std::optional<Circle> robust_circle(std::vector<cv::Point2d>& rim) {
   std::optional<Circle> circle = fit_circle(rim);
   for (int pass = 0; pass < 2 && circle; ++pass) {
     std::vector<double> residuals;
     residuals.reserve(rim.size());
-    for (const cv::Point2d& point : rim) {
-      residuals.push_back(std::abs(
-          std::hypot(point.x - circle->centre.x, point.y - circle->centre.y) - circle->radius));
-    }
+    for (const cv::Point2d& point : rim)
+      residuals.push_back(std::abs(distance_off(*circle, point)));
     const double cutoff = std::max(1.5, 3.0 * 1.4826 * median(residuals));
     std::vector<cv::Point2d> kept;
     for (std::size_t i = 0; i < rim.size(); ++i) {
@@ -146,16 +147,31 @@ std::optional<MirrorCircle> find_mirror_circle(const cv::Mat& raw) {
     rim = std::move(kept);
     circle = fit_circle(rim);
   }
-  if (!circle || circle->radius < 4.0) return std::nullopt;
+  return circle;
+}
 
+double rms_distance_off(const Circle& circle, const std::vector<cv::Point2d>& rim) {
   double sum_squares = 0.0;
   for (const cv::Point2d& point : rim) {
-    const double residual =
-        std::hypot(point.x - circle->centre.x, point.y - circle->centre.y) - circle->radius;
-    sum_squares += residual * residual;
+    const double off = distance_off(circle, point);
+    sum_squares += off * off;
   }
-  const double rms = std::sqrt(sum_squares / static_cast<double>(rim.size()));
-  if (rms > kMaxRmsResidualShare * circle->radius) return std::nullopt;
+  return std::sqrt(sum_squares / static_cast<double>(rim.size()));
+}
+
+}  // namespace
+
+std::optional<MirrorCircle> find_mirror_circle(const cv::Mat& raw) {
+  if (raw.empty()) throw InputError("find_mirror_circle: the raw image is empty");
+  const cv::Mat grey = to_grey8(raw);
+  if (std::min(grey.cols, grey.rows) < 16) return std::nullopt;
+  std::optional<cv::Mat> bright = bright_disc_mask(grey);
+  if (!bright) return std::nullopt;
+  std::vector<cv::Point2d> rim = rim_of_largest_region(*bright);
+  if (rim.size() < kMinRimPoints) return std::nullopt;
+  const std::optional<Circle> circle = robust_circle(rim);
+  if (!circle || circle->radius < 4.0) return std::nullopt;
+  if (rms_distance_off(*circle, rim) > kMaxRmsResidualShare * circle->radius) return std::nullopt;
   // The centre must lie in the image, or the "disc" is a bright corner or edge.
   if (circle->centre.x < 0.0 || circle->centre.y < 0.0 || circle->centre.x > grey.cols - 1.0 ||
       circle->centre.y > grey.rows - 1.0) {
