@@ -1,8 +1,8 @@
 // omninav compass: the visual compass over a sequence of panoramas (libs/compass), with the
-// evaluation of Tables 3-4 of 000_9e80abd5855643af.txt when the input has ground truth.
+// evaluation of Tables 3-4 of the visual compass paper (Labrosse 2006) when the input has ground
+// truth.
 #include <algorithm>
 #include <chrono>
-#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -14,8 +14,6 @@
 #include "app_config.hpp"
 #include "cli.hpp"
 #include "omninav/compass/compass_run.hpp"
-#include "omninav/core/angles.hpp"
-#include "omninav/core/csv.hpp"
 #include "omninav/core/errors.hpp"
 #include "omninav/core/format.hpp"
 #include "omninav/core/log.hpp"
@@ -23,7 +21,7 @@
 #include "omninav/core/parse.hpp"
 #include "omninav/core/progress.hpp"
 #include "omninav/eval/png.hpp"
-#include "omninav/evaluation/compass_evaluation.hpp"
+#include "omninav/evaluation/compass_output.hpp"
 #include "omninav/io/panorama_input.hpp"
 #include "omninav/report/compass_figures.hpp"
 
@@ -62,57 +60,6 @@ void apply_method(const std::string& method, compass::CompassParams& params) {
   } else {
     throw UsageError("--method " + method +
                      ": expected alg1, fx:N (N frames skipped), exhaustive, fft or phase");
-  }
-}
-
-struct Row {
-  compass::CompassEstimate estimate;
-  std::string source;
-  std::optional<double> time_s;
-  std::optional<CameraPose> truth;
-};
-
-void write_csv(std::ostream& out, const std::vector<Row>& rows, bool with_truth) {
-  std::vector<std::string> columns{
-      "frame",        "source",         "time_s",          "heading_deg", "heading_unwrapped_deg",
-      "rotation_deg", "amplitude_norm", "reference_frame", "confidence",  "shift_px",
-      "evaluations",  "pitch_deg",      "roll_deg"};
-  if (with_truth) columns.insert(columns.end(), {"truth_heading_deg", "error_deg", "distance_m"});
-  write_csv_line(out, columns);
-  double travelled = 0.0;
-  std::optional<CameraPose> last_truth;
-  for (const Row& row : rows) {
-    const compass::CompassEstimate& e = row.estimate;
-    std::vector<std::string> fields{std::to_string(e.frame_index),
-                                    row.source,
-                                    fixed_or_empty(row.time_s, 4),
-                                    fixed(rad_to_deg(wrap_angle(e.heading_rad)), 4),
-                                    fixed(rad_to_deg(e.heading_rad), 4),
-                                    fixed(rad_to_deg(e.rotation_rad), 4),
-                                    fixed(e.amplitude_norm, 4),
-                                    std::to_string(e.reference_index),
-                                    e.flags.describe(),
-                                    fixed(e.shift_px, 4),
-                                    std::to_string(e.evaluations),
-                                    fixed(rad_to_deg(e.pitch_rad), 4),
-                                    fixed(rad_to_deg(e.roll_rad), 4)};
-    if (with_truth) {
-      if (row.truth) {
-        if (last_truth) {
-          travelled +=
-              std::hypot(row.truth->x_m - last_truth->x_m, row.truth->y_m - last_truth->y_m);
-        }
-        last_truth = row.truth;
-        fields.insert(
-            fields.end(),
-            {fixed(rad_to_deg(wrap_angle(row.truth->heading_rad)), 4),
-             fixed(rad_to_deg(signed_difference(e.heading_rad, row.truth->heading_rad)), 4),
-             fixed(travelled, 4)});
-      } else {
-        fields.resize(fields.size() + 3);
-      }
-    }
-    write_csv_line(out, fields);
   }
 }
 
@@ -156,7 +103,7 @@ void log_start(const CompassSetup& setup, const cv::Mat& panorama, bool has_trut
 }
 
 struct CompassRows {
-  std::vector<Row> rows;
+  std::vector<evaluation::CompassFrame> rows;
   int reference_count = 0;
   int input_width = 0;  // the first panorama's columns
 };
@@ -208,9 +155,9 @@ struct TruthRows {
   std::vector<evaluation::CompassTruth> truth;
 };
 
-TruthRows truth_rows(const std::vector<Row>& rows) {
+TruthRows truth_rows(const std::vector<evaluation::CompassFrame>& rows) {
   TruthRows result;
-  for (const Row& row : rows) {
+  for (const evaluation::CompassFrame& row : rows) {
     if (!row.truth) continue;
     result.estimates.push_back(row.estimate);
     result.truth.push_back({row.truth->heading_rad, row.truth->floor_position(), row.time_s});
@@ -235,31 +182,11 @@ std::string method_label(const compass::CompassParams& params) {
               : " (" + to_string(params.matcher.minimiser.kind) + ")");
 }
 
-// Without --truth: frames, references, the final heading and how many frames were flagged.
-void print_summary(const CompassRows& run, const std::string& method) {
-  const compass::CompassEstimate& last = run.rows.back().estimate;
-  int flagged = 0;
-  for (const Row& row : run.rows) flagged += row.estimate.flags.ok() ? 0 : 1;
-  std::cout << run.rows.size() << " frames, " << run.reference_count << " reference frames ("
-            << method << "); final heading " << fixed(rad_to_deg(wrap_angle(last.heading_rad)), 3)
-            << " deg (" << fixed(rad_to_deg(last.heading_rad), 3) << " deg unwrapped); " << flagged
-            << " frames with a low-confidence flag\n";
-}
-
 // --stats: the statistics as a one-row CSV.
-void write_stats(const fs::path& path, const std::string& label, const std::string& method,
-                 int width_px, const evaluation::CompassEvaluation& evaluation) {
+void write_stats(const fs::path& path, const evaluation::CompassStatsRow& row,
+                 const evaluation::CompassEvaluation& evaluation) {
   std::ostringstream csv;
-  write_csv_line(csv, {"dataset", "method", "width_px", "reference_frames", "total_frames",
-                       "max_abs_error_deg", "mean_error_deg", "std_error_deg", "slope_deg_per_s",
-                       "slope_deg_per_m", "final_error_deg"});
-  const double stddev = evaluation.error_deg.stddev;
-  write_csv_line(
-      csv, {label, method, std::to_string(width_px), std::to_string(evaluation.reference_frames),
-            std::to_string(evaluation.total_frames), fixed(evaluation.error_deg.max_abs, 4),
-            fixed(evaluation.error_deg.mean, 4), std::isfinite(stddev) ? fixed(stddev, 4) : "",
-            fixed_or_empty(evaluation.slope_deg_per_s, 5),
-            fixed_or_empty(evaluation.slope_deg_per_m, 4), fixed(evaluation.final_error_deg, 4)});
+  evaluation::write_compass_stats_csv(csv, row, evaluation);
   write_output_file(path, csv.str());
 }
 
@@ -268,7 +195,7 @@ void write_plot(const fs::path& path, const CompassRows& run, const TruthRows& w
                 const std::string& title) {
   std::vector<compass::CompassEstimate> all;
   std::vector<double> all_truth_rad;
-  for (const Row& row : run.rows) all.push_back(row.estimate);
+  for (const evaluation::CompassFrame& row : run.rows) all.push_back(row.estimate);
   if (with_truth.estimates.size() == run.rows.size()) {
     for (const evaluation::CompassTruth& t : with_truth.truth)
       all_truth_rad.push_back(t.heading_rad);
@@ -286,11 +213,12 @@ void run_compass(const GlobalOptions& global, const CompassOptions& options) {
   const CompassSetup setup = compass_setup(global, options);
   const CompassRows run = run_over_input(global, options, setup);
 
-  const bool has_truth = std::any_of(run.rows.begin(), run.rows.end(),
-                                     [](const Row& r) { return r.truth.has_value(); });
+  const bool has_truth =
+      std::any_of(run.rows.begin(), run.rows.end(),
+                  [](const evaluation::CompassFrame& r) { return r.truth.has_value(); });
   if (!options.out.empty()) {
     std::ostringstream csv;
-    write_csv(csv, run.rows, has_truth);
+    evaluation::write_compass_csv(csv, run.rows, has_truth);
     if (options.out == "-") {
       std::cout << csv.str();
     } else {
@@ -312,11 +240,11 @@ void run_compass(const GlobalOptions& global, const CompassOptions& options) {
         evaluation::evaluate_compass(with_truth.estimates, with_truth.truth, run.reference_count);
     if (printing) std::cout << evaluation::format_compass_table(label, method, statistics);
     if (!options.stats.empty()) {
-      write_stats(options.stats, label, method, setup.width ? *setup.width : run.input_width,
+      write_stats(options.stats, {label, method, setup.width ? *setup.width : run.input_width},
                   statistics);
     }
   } else if (printing) {
-    print_summary(run, method);
+    evaluation::write_compass_summary(std::cout, run.rows, run.reference_count, method);
   }
   if (!options.plot.empty()) write_plot(options.plot, run, with_truth, label + ", " + method);
 }

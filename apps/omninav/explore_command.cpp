@@ -75,9 +75,12 @@ void run_explore(const GlobalOptions& global, const ExploreOptions& options) {
                 ? " (every frame a place: " +
                       std::string(input.is_grid() ? "a grid database" : "--all-frames") + ")"
                 : ""));
-  const memory::Run run =
-      memory::explore_frames(memory, params, options.input.string(), input.is_grid(),
-                             options.all_frames, input.size(), [&input] { return input.next(); });
+  const memory::Run run = memory::explore_frames(memory, params,
+                                                 {.name = options.input.string(),
+                                                  .is_grid = input.is_grid(),
+                                                  .all_frames = options.all_frames,
+                                                  .frame_count = input.size(),
+                                                  .next = [&input] { return input.next(); }});
   store.save(memory, {.overwrite = options.overwrite, .after_place = {}});
   const std::size_t added = memory.place_count() - places_before;
   summary(global) << "explored " << run.frames << " frames of " << options.input.string()
@@ -94,7 +97,7 @@ void add_explore_command(CLI::App& app, const GlobalOptions& global) {
   auto options = std::make_shared<ExploreOptions>();
   CLI::App* command = app.add_subcommand(
       "explore",
-      "Turn a stream of panoramas into places of a visual memory (001_5bb151a4e28490b4.txt "
+      "Turn a stream of panoramas into places of a visual memory (Menegatti et al. 2004, "
       "§2-3): each place keeps its Fourier signature, heading, a thumbnail, its source and "
       "frame (and the ground truth when the input has it, for evaluation), with an edge to the "
       "previous place (relative heading and direction of motion from the phases). Exploring "

@@ -1,5 +1,5 @@
 // omninav export: a map's places and edges for other tools (CSV, GraphML), and the figures of
-// 001_5bb151a4e28490b4.txt §2 from a map of a rendered grid.
+// Menegatti et al. 2004, §2, from a map of a rendered grid.
 #include <iostream>
 #include <optional>
 
@@ -53,7 +53,7 @@ void add_export_command(CLI::App& app, const GlobalOptions& global) {
       "export",
       "Export a map: its places or edges as CSV (degrees, units in the column names), the "
       "whole graph as GraphML, or, for a map of a rendered grid, the figures of "
-      "001_5bb151a4e28490b4.txt §2 (Figs. 5-7, PNG and CSV; docs/memory.md).");
+      "Menegatti et al. 2004, §2 (Figs. 5-7, PNG and CSV; docs/memory.md).");
   command->add_option("map", options->map, "The map, e.g. maps/room.vmem")->required();
   command->add_option("--what", options->what, "places, edges or figures")
       ->check(CLI::IsMember({"places", "edges", "figures"}))

@@ -1,4 +1,4 @@
-// omninav navigate: the reactive loop of 001_5bb151a4e28490b4.txt §3.5, driven by the organised
+// omninav navigate: the reactive loop of Menegatti et al. 2004, §3.5, driven by the organised
 // visual memory towards a goal image: a virtual robot in a rendered world, or a robot on a grid
 // of stored images (a BoB grid database); and the evaluation over seeded random start and goal
 // pairs (--trials).
@@ -8,7 +8,6 @@
 #include "app_config.hpp"
 #include "cli.hpp"
 #include "omninav/core/angles.hpp"
-#include "omninav/core/csv.hpp"
 #include "omninav/core/errors.hpp"
 #include "omninav/core/format.hpp"
 #include "omninav/core/log.hpp"
@@ -17,10 +16,12 @@
 #include "omninav/eval/png.hpp"
 #include "omninav/evaluation/navigation_trials.hpp"
 #include "omninav/evaluation/robot_worlds.hpp"
+#include "omninav/evaluation/trials_output.hpp"
 #include "omninav/io/image_file.hpp"
 #include "omninav/memory/map_store.hpp"
 #include "omninav/navigation/memory_places.hpp"
 #include "omninav/report/navigate_figures.hpp"
+#include "omninav/report/navigation_output.hpp"
 
 namespace omninav::cli {
 namespace {
@@ -48,75 +49,12 @@ Pose2 parse_start(const std::string& text) {
 // Trials that drive more than this many times the straight line get a picture of their path.
 constexpr double kDetourRatio = 2.0;
 
-constexpr const char* kStepColumns =
-    "step,x_m,y_m,heading_deg,place,similarity,dissimilarity_per_value,heading_estimate_deg,"
-    "heading_error_deg,turn_deg,jump";
-
-// One row per step, each after `prefix` (the trial's columns, or nothing). The lattice frame
-// turns with the first place's heading (lattice::lattice_headings): a heading in it plus that
-// heading is a heading in the world, when the map stores one.
-void write_step_rows(std::ostream& csv, const std::vector<std::string>& prefix,
-                     const navigation::NavigationResult& result, double lattice_to_world_rad) {
-  for (const navigation::NavigationStep& step : result.steps) {
-    std::vector<std::string> row = prefix;
-    row.insert(row.end(),
-               {std::to_string(step.index), general(step.truth.x_m), general(step.truth.y_m),
-                general(rad_to_deg(step.truth.heading_rad)),
-                step.match ? std::to_string(step.match->place) : "-1",
-                general(step.match ? step.match->similarity : 0.0),
-                general(step.match ? step.match->dissimilarity_per_value : 0.0),
-                general(rad_to_deg(step.heading_estimate_rad)),
-                general(rad_to_deg(signed_difference(
-                    step.heading_estimate_rad + lattice_to_world_rad, step.truth.heading_rad))),
-                general(rad_to_deg(step.turn_rad)), step.jump ? "1" : "0"});
-    write_csv_line(csv, row);
-  }
-}
-
-// A CSV written whole or not at all: its header now, its rows by the caller, then commit().
-std::unique_ptr<OutputFile> open_csv(const std::filesystem::path& file, const std::string& header) {
-  auto csv = std::make_unique<OutputFile>(file);
-  csv->stream() << header << '\n';
-  return csv;
-}
-
-// trials.csv, one row per trial, and steps.csv, every step of every trial.
-void write_trials_csv(const std::vector<evaluation::TrialOutcome>& outcomes,
-                      double lattice_to_world_rad, const std::filesystem::path& folder) {
-  const std::unique_ptr<OutputFile> trials_file = open_csv(
-      folder / "trials.csv",
-      "trial,start_x_m,start_y_m,start_heading_deg,goal_x_m,goal_y_m,goal_heading_deg,goal_place,"
-      "stopped_at_goal,reached,final_error_m,path_m,straight_m,path_ratio,steps,jumps,sidesteps,"
-      "replans,loops,homing_steps");
-  const std::unique_ptr<OutputFile> steps_file =
-      open_csv(folder / "steps.csv", std::string("trial,") + kStepColumns);
-  for (std::size_t i = 0; i < outcomes.size(); ++i) {
-    const evaluation::TrialOutcome& o = outcomes[i];
-    const navigation::NavigationResult& r = o.result;
-    write_csv_line(trials_file->stream(), {std::to_string(i),
-                                           general(o.trial.start.x_m),
-                                           general(o.trial.start.y_m),
-                                           general(rad_to_deg(o.trial.start.heading_rad)),
-                                           general(o.trial.goal.x_m),
-                                           general(o.trial.goal.y_m),
-                                           general(rad_to_deg(o.trial.goal.heading_rad)),
-                                           std::to_string(o.goal_place),
-                                           o.stopped_at_goal ? "1" : "0",
-                                           o.reached ? "1" : "0",
-                                           general(o.final_error_m),
-                                           general(r.path_length_m),
-                                           general(o.straight_m),
-                                           general(r.path_length_m / o.straight_m),
-                                           std::to_string(r.steps.size()),
-                                           std::to_string(r.jumps),
-                                           std::to_string(r.sidesteps),
-                                           std::to_string(r.replans),
-                                           std::to_string(r.loops),
-                                           std::to_string(r.homing_steps)});
-    write_step_rows(steps_file->stream(), {std::to_string(i)}, r, lattice_to_world_rad);
-  }
-  trials_file->commit();
-  steps_file->commit();
+// A CSV written whole or not at all: its rows by `write`, then commit().
+template <typename Write>
+void write_csv_file(const std::filesystem::path& file, Write write) {
+  OutputFile csv(file);
+  write(csv.stream());
+  csv.commit();
 }
 
 // The images of a grid database (or any input whose images have poses), as panoramas.
@@ -149,7 +87,12 @@ void evaluate_trials(const GlobalOptions& global, const NavigateOptions& options
   const evaluation::MapTrials map_trials = evaluation::run_map_trials(
       memory, setup, {world, renderer, navigation.robot}, navigation.trials);
   const std::vector<evaluation::TrialOutcome>& outcomes = map_trials.outcomes;
-  write_trials_csv(outcomes, memory.place(0).heading_rad.value_or(0.0), options.out);
+  const double lattice_to_world_rad = memory.place(0).heading_rad.value_or(0.0);
+  write_csv_file(options.out / "trials.csv",
+                 [&](std::ostream& csv) { evaluation::write_trials_csv(csv, outcomes); });
+  write_csv_file(options.out / "steps.csv", [&](std::ostream& csv) {
+    evaluation::write_trial_steps_csv(csv, outcomes, lattice_to_world_rad);
+  });
   // The trials worth a look: those that missed their goal and those that drove the long way.
   for (std::size_t i = 0; i < outcomes.size(); ++i) {
     const evaluation::TrialOutcome& o = outcomes[i];
@@ -227,9 +170,10 @@ void run_navigate(const GlobalOptions& global, const NavigateOptions& options) {
                                                                 options.goal.string(), setup);
   const navigation::NavigationResult& result = run.result;
 
-  const std::unique_ptr<OutputFile> steps = open_csv(options.out / "steps.csv", kStepColumns);
-  write_step_rows(steps->stream(), {}, result, memory.place(0).heading_rad.value_or(0.0));
-  steps->commit();
+  write_csv_file(options.out / "steps.csv", [&](std::ostream& csv) {
+    report::write_navigation_steps_header(csv, false);
+    report::write_navigation_steps(csv, result, memory.place(0).heading_rad.value_or(0.0));
+  });
   const report::NavigationScene scene{world ? world->obstacles : std::vector<sim::FloorBox>{}, grid,
                                       std::nullopt};
   eval::save_png(
@@ -250,7 +194,7 @@ void add_navigate_command(CLI::App& app, const GlobalOptions& global) {
       "navigate",
       "Drive a robot to the place of a goal image, reactively: grab a panorama, localise it in "
       "the organised memory, read the heading against the place, turn to the place's direction "
-      "towards the goal, step, repeat (001_5bb151a4e28490b4.txt §3.5). The robot is a virtual "
+      "towards the goal, step, repeat (Menegatti et al. 2004, §3.5). The robot is a virtual "
       "one in a rendered --world, or stands on the images of a grid --database (a step goes to "
       "the nearest grid image, a turn rolls the panorama). Writes steps.csv (true pose, place "
       "matched, heading estimate and error) and path.png. With --trials N: N seeded random "

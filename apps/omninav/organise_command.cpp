@@ -87,7 +87,7 @@ void add_organise_command(CLI::App& app, const GlobalOptions& global) {
   CLI::App* command = app.add_subcommand(
       "organise",
       "Arrange the places of a visual memory into a 2-D lattice with the spring model "
-      "(001_5bb151a4e28490b4.txt §3; Ceres): distances from similarity, stiff short springs, "
+      "(Menegatti et al. 2004, §3; Ceres): distances from similarity, stiff short springs, "
       "directions of motion from the phases. Stores the positions in the map, prints the "
       "calibration and the solver's report, and draws <map>.lattice.png. When the map has ground "
       "truth: the truth beside it, the Procrustes RMSE, and the folds (triangles of true "

@@ -75,7 +75,9 @@ TEST_F(CommandLine, ConfigWithAnUnknownKeyNamesFileAndKey) {
 }
 
 TEST_F(CommandLine, ShippedConfigIsValid) {
-  // Every shipped YAML file loads strictly: no unknown keys, every value in range.
+  // `render` runs with the shipped camera.yaml and worlds.yaml as the binary finds them
+  // (--config-dir). Each shipped file is loaded strictly, key by key, by
+  // tests/evaluation/shipped_config_test.cpp.
   EXPECT_EQ(run_omninav({"render", "--trajectory", "rotate:turns=0.05", "--out",
                          (folder_ / "ok").string(), "--width", "36", "--height", "4"}),
             0)

@@ -276,9 +276,12 @@ class WorldRun {
     memory::VisualMemory memory(memory_config.map);
     std::unique_ptr<io::SequenceReader> reader = io::open_sequence(input);
     const bool is_grid = reader->is_grid();
-    const memory::Run run =
-        memory::explore_frames(memory, params, input.string(), is_grid, false, reader->size(),
-                               [&reader] { return reader->next(); });
+    const memory::Run run = memory::explore_frames(memory, params,
+                                                   {.name = input.string(),
+                                                    .is_grid = is_grid,
+                                                    .all_frames = false,
+                                                    .frame_count = reader->size(),
+                                                    .next = [&reader] { return reader->next(); }});
     memory::MapStore(map_file).save(memory, {.overwrite = true, .after_place = {}});
     command(args);
     log_stage("explored " + name + ": " + std::to_string(run.places) + " places, headings " +

@@ -287,12 +287,11 @@ PlaceIndex Explorer::make_place(const io::Frame& frame, const signature::Signatu
   return index;
 }
 
-Run explore_frames(VisualMemory& memory, const ExplorationParams& params, const std::string& input,
-                   bool is_grid, bool all_frames, std::size_t frame_count,
-                   const std::function<std::optional<io::Frame>()>& next) {
-  const bool every_frame = all_frames || is_grid;
+Run explore_frames(VisualMemory& memory, const ExplorationParams& params,
+                   const ExplorationInput& input) {
+  const bool every_frame = input.all_frames || input.is_grid;
   std::ostringstream description;
-  description << "omninav explore --input " << input << "; ";
+  description << "omninav explore --input " << input.name << "; ";
   if (every_frame) {
     description << "every frame a place";
   } else {
@@ -300,10 +299,10 @@ Run explore_frames(VisualMemory& memory, const ExplorationParams& params, const 
                 << ", every_n_frames " << params.every_n_frames << ", every_m " << params.every_m;
   }
   description << ", heading_source " << to_string(params.heading_source);
-  Explorer explorer(memory, params, input, description.str(),
-                    is_grid ? FrameOrder::kUnordered : FrameOrder::kStream);
-  Progress progress("explore", frame_count);
-  while (std::optional<io::Frame> frame = next()) {
+  Explorer explorer(memory, params, input.name, description.str(),
+                    input.is_grid ? FrameOrder::kUnordered : FrameOrder::kStream);
+  Progress progress("explore", input.frame_count);
+  while (std::optional<io::Frame> frame = input.next()) {
     if (!every_frame && params.every_m > 0.0 && !frame->truth) {
       // A distance travelled needs poses: without them every_m would do nothing.
       std::ostringstream message;
@@ -319,7 +318,7 @@ Run explore_frames(VisualMemory& memory, const ExplorationParams& params, const 
     }
     progress.advance();
   }
-  if (explorer.frames_seen() == 0) throw InputError(input + ": no frames");
+  if (explorer.frames_seen() == 0) throw InputError(input.name + ": no frames");
   return explorer.run();
 }
 

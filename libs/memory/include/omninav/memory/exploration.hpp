@@ -144,15 +144,23 @@ class Explorer {
   double compass_heading_rad_ = 0.0;  // the compass's heading of the latest frame (unwrapped)
 };
 
+// The frames `omninav explore` takes into a run.
+struct ExplorationInput {
+  std::string name;  // as the user gave it: the run's description and error messages
+  // A grid database (unordered, kUnordered): every frame is a place.
+  bool is_grid = false;
+  bool all_frames = false;      // every frame a place, whatever the exploration rules say
+  std::size_t frame_count = 0;  // for the progress line only (0: unknown)
+  std::function<std::optional<io::Frame>()> next;  // the next frame; nothing at the end
+};
+
 // What `omninav explore` does with an input, for the command and for `omninav evaluate`:
-// every frame `next` gives (nothing at the end) goes into a new run of `memory`; a grid database
-// (`is_grid`: unordered, kUnordered) or `all_frames` makes every frame a place, otherwise the
-// exploration rules of `params` decide. `frame_count` is for the progress line only. Returns
-// the run (frames read, places added, heading source). Throws InputError when the input had no
+// every frame of `input` goes into a new run of `memory`; a grid database or `all_frames`
+// makes every frame a place, otherwise the exploration rules of `params` decide. Returns the
+// run (frames read, places added, heading source). Throws InputError when the input had no
 // frames, and what Explorer::add throws.
-Run explore_frames(VisualMemory& memory, const ExplorationParams& params, const std::string& input,
-                   bool is_grid, bool all_frames, std::size_t frame_count,
-                   const std::function<std::optional<io::Frame>()>& next);
+Run explore_frames(VisualMemory& memory, const ExplorationParams& params,
+                   const ExplorationInput& input);
 
 // The thumbnail stored with a place: the panorama scaled to `width_px` wide, PNG-encoded.
 std::vector<std::uint8_t> make_thumbnail(const cv::Mat& panorama, int width_px);
