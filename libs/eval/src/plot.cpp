@@ -3,13 +3,13 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <opencv2/imgproc.hpp>
 #include <sstream>
 #include <string>
 
 #include "omninav/core/errors.hpp"
+#include "omninav/core/format.hpp"
 #include "omninav/eval/png.hpp"
 
 namespace omninav::eval {
@@ -85,15 +85,9 @@ void draw_vertical_text(cv::Mat& image, const std::string& text, cv::Point centr
 // A tick value printed with as many decimals as the step needs (steps are 1, 2 or 5 × 10^k).
 std::string format_tick(double value, double step) {
   if (std::abs(value) < step * 1e-9) value = 0.0;  // no "-0"
-  char buffer[64];
   const double magnitude = std::max(std::abs(value), step);
-  if (magnitude >= 1e6 || step < 1e-4) {
-    std::snprintf(buffer, sizeof buffer, "%.3g", value);
-  } else {
-    const int decimals = std::max(0, -static_cast<int>(std::floor(std::log10(step) + 1e-9)));
-    std::snprintf(buffer, sizeof buffer, "%.*f", decimals, value);
-  }
-  return buffer;
+  if (magnitude >= 1e6 || step < 1e-4) return general(value, 3);
+  return fixed(value, std::max(0, -static_cast<int>(std::floor(std::log10(step) + 1e-9))));
 }
 
 // The plot area in pixels and the data ranges it shows.
@@ -499,6 +493,17 @@ cv::Mat PointsPlot::render() const {
 
 void PointsPlot::save(const std::filesystem::path& path) const {
   save_png(render(), path);
+}
+
+cv::Point2d plot_point(const Eigen::Vector2d& position) {
+  return {position.x(), position.y()};
+}
+
+std::vector<cv::Point2d> plot_points(const std::vector<Eigen::Vector2d>& positions) {
+  std::vector<cv::Point2d> points;
+  points.reserve(positions.size());
+  for (const Eigen::Vector2d& position : positions) points.push_back(plot_point(position));
+  return points;
 }
 
 }  // namespace omninav::eval
