@@ -1,11 +1,12 @@
 #include "omninav/eval/plot.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
 #include <opencv2/imgproc.hpp>
-#include <sstream>
 #include <string>
 
 #include "omninav/core/errors.hpp"
@@ -233,10 +234,9 @@ TickStep nice_step(double range, int intervals) {
 std::vector<double> ticks_from(double first, double last, const TickStep& step) {
   constexpr double kMaxTicks = 1000.0;
   if (!(last - first <= kMaxTicks)) {
-    std::ostringstream message;
-    message << "an axis from " << first * step.value() << " to " << last * step.value()
-            << " would have more than " << kMaxTicks << " ticks";
-    throw UsageError(message.str());
+    throw UsageError(fmt::format("an axis from {} to {} would have more than {} ticks",
+                                 general(first * step.value()), general(last * step.value()),
+                                 general(kMaxTicks)));
   }
   std::vector<double> ticks;
   const int count = last >= first ? static_cast<int>(last - first) + 1 : 0;
@@ -264,9 +264,9 @@ cv::Scalar palette_colour(std::size_t index) {
 
 std::vector<double> nice_ticks(double low, double high, int target_count) {
   if (!std::isfinite(low) || !std::isfinite(high) || low > high) {
-    std::ostringstream message;  // %g: DBL_MAX in 12 characters, not 309 digits
-    message << "axis range [" << low << ", " << high << "] is not a finite interval";
-    throw UsageError(message.str());
+    // %g: DBL_MAX in 12 characters, not 309 digits
+    throw UsageError(
+        fmt::format("axis range [{}, {}] is not a finite interval", general(low), general(high)));
   }
   const double magnitude_of_bounds = std::max(std::abs(low), std::abs(high));
   if (high == low || high - low <= 1e-12 * magnitude_of_bounds) {
