@@ -20,7 +20,7 @@
 #include "omninav/io/image_file.hpp"
 #include "omninav/memory/map_store.hpp"
 #include "omninav/navigation/memory_places.hpp"
-#include "omninav/report/navigate_figures.hpp"
+#include "omninav/report/navigation_figures.hpp"
 #include "omninav/report/navigation_output.hpp"
 
 namespace omninav::cli {

@@ -26,13 +26,14 @@ TEST(FftwPlans, OnePlanPerShapeAlsoAcrossThreads) {
   EXPECT_NE(lines_c2r(shape), nullptr);
 }
 
-// Forward then backward gives the lines back times their length, in both precisions, with
-// spectra `stride` apart; the plans run on other Buffers than the ones they were made on.
+// Forward then backward gives the lines back times their length, with spectra `stride` apart;
+// single precision's forward transform gives double's spectra; the plans run on other Buffers
+// than the ones they were made on.
 TEST(FftwPlans, ForwardThenBackwardRecoversTheLines) {
   const int width = 12, lines = 2, stride = 8;
   Buffer<double> real(width * lines), back(width * lines);
   Buffer<fftw_complex> spectra(stride * lines);
-  Buffer<float> real_f(width * lines), back_f(width * lines);
+  Buffer<float> real_f(width * lines);
   Buffer<fftwf_complex> spectra_f(stride * lines);
   for (int i = 0; i < width * lines; ++i) {
     real.data()[i] = std::sin(0.7 * i) + i % 5;
@@ -50,17 +51,24 @@ TEST(FftwPlans, ForwardThenBackwardRecoversTheLines) {
       1e-9);
   fftw_execute_dft_c2r(lines_c2r(shape), spectra.data(), back.data());
   fftwf_execute_dft_r2c(lines_r2c_float(shape), real_f.data(), spectra_f.data());
-  fftwf_execute_dft_c2r(lines_c2r_float(shape), spectra_f.data(), back_f.data());
   for (int i = 0; i < width * lines; ++i) {
     EXPECT_NEAR(back.data()[i] / width, real.data()[i], 1e-12) << i;
-    EXPECT_NEAR(back_f.data()[i] / width, real_f.data()[i], 1e-4) << i;
+  }
+  for (int line = 0; line < lines; ++line) {
+    for (int k = 0; k <= width / 2; ++k) {
+      for (int part = 0; part < 2; ++part) {
+        EXPECT_NEAR(spectra_f.data()[line * stride + k][part],
+                    spectra.data()[line * stride + k][part], 1e-4)
+            << line << ' ' << k;
+      }
+    }
   }
 }
 
 TEST(FftwPlans, ImpossibleShapesAreErrors) {
   EXPECT_THROW(lines_r2c({0, 1, 0, Planning::kEstimate}), Error);
   EXPECT_THROW(lines_r2c({16, 0, 0, Planning::kEstimate}), Error);
-  EXPECT_THROW(lines_c2r_float({16, 2, 5, Planning::kEstimate}), Error);  // stride < 9 bins
+  EXPECT_THROW(lines_r2c_float({16, 2, 5, Planning::kEstimate}), Error);  // stride < 9 bins
 }
 
 }  // namespace

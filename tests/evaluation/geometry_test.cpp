@@ -19,8 +19,9 @@ sim::World floor_only(double size_x_m, double size_y_m) {
 }
 
 TEST(DistanceOutside, IsZeroInsideAndTheDistanceToTheNearestEdgeOutside) {
-  const std::vector<cv::Point2d> square = {{0, 0}, {1, 0}, {1, 1}, {0, 1}, {0.5, 0.5}};
-  const std::vector<cv::Point2d> hull = convex_hull(square);
+  const std::vector<Eigen::Vector2d> square = {
+      {0.0, 0.0}, {1.0, 0.0}, {1.0, 1.0}, {0.0, 1.0}, {0.5, 0.5}};
+  const std::vector<Eigen::Vector2d> hull = convex_hull(square);
   EXPECT_EQ(hull.size(), 4u);  // the middle point is not on the hull
   EXPECT_EQ(distance_outside(hull, {0.5, 0.5}), 0.0);
   EXPECT_EQ(distance_outside(hull, {0.0, 0.3}), 0.0);  // on an edge
@@ -29,17 +30,35 @@ TEST(DistanceOutside, IsZeroInsideAndTheDistanceToTheNearestEdgeOutside) {
   EXPECT_NEAR(distance_outside(hull, {2.0, 2.0}), std::sqrt(2.0), 1e-12);  // past a corner
 }
 
+// A grid of places, as evaluate maps: the hull is its four corners, counter-clockwise, none of
+// the points along its edges.
+TEST(ConvexHull, OfAGridIsItsCornersCounterClockwise) {
+  std::vector<Eigen::Vector2d> grid;
+  for (int y = 0; y < 3; ++y) {
+    for (int x = 0; x < 4; ++x) grid.emplace_back(0.3 * x, 0.3 * y);
+  }
+  const std::vector<Eigen::Vector2d> hull = convex_hull(grid);
+  ASSERT_EQ(hull.size(), 4u);
+  double twice_area = 0.0;  // positive when counter-clockwise
+  for (std::size_t i = 0; i < hull.size(); ++i) {
+    const Eigen::Vector2d& a = hull[i];
+    const Eigen::Vector2d& b = hull[(i + 1) % hull.size()];
+    twice_area += a.x() * b.y() - b.x() * a.y();
+  }
+  EXPECT_NEAR(twice_area, 2 * 0.9 * 0.6, 1e-12);
+}
+
 TEST(DistanceOutside, IsTheSameWhicheverWayTheHullTurns) {
-  const std::vector<cv::Point2d> clockwise = {{0, 0}, {0, 1}, {1, 1}, {1, 0}};
+  const std::vector<Eigen::Vector2d> clockwise = {{0.0, 0.0}, {0.0, 1.0}, {1.0, 1.0}, {1.0, 0.0}};
   EXPECT_EQ(distance_outside(clockwise, {0.2, 0.7}), 0.0);
   EXPECT_NEAR(distance_outside(clockwise, {-1.5, 0.5}), 1.5, 1e-12);
 }
 
 TEST(DistanceOutside, ALineOfPlacesIsASegmentAndOnePlaceAPoint) {
-  const std::vector<cv::Point2d> line = convex_hull({{0, 0}, {2, 0}});
+  const std::vector<Eigen::Vector2d> line = convex_hull({{0.0, 0.0}, {2.0, 0.0}});
   EXPECT_NEAR(distance_outside(line, {1.0, 0.5}), 0.5, 1e-12);
   EXPECT_NEAR(distance_outside(line, {3.0, 0.0}), 1.0, 1e-12);
-  EXPECT_NEAR(distance_outside(convex_hull({{1, 1}}), {4, 5}), 5.0, 1e-12);
+  EXPECT_NEAR(distance_outside(convex_hull({{1.0, 1.0}}), {4.0, 5.0}), 5.0, 1e-12);
 }
 
 TEST(PlanLayout, CentresTheGridOnTheFloorAndShrinksItToFit) {
@@ -48,10 +67,10 @@ TEST(PlanLayout, CentresTheGridOnTheFloorAndShrinksItToFit) {
   EXPECT_EQ(layout.nx, 10);
   // 2 m deep with a spacing's margin on each side: at most 1.4 m of grid, 5 rows of 0.3 m.
   EXPECT_EQ(layout.ny, 5);
-  EXPECT_NEAR(layout.x0 + (layout.nx - 1) * 0.3 / 2, 3.0, 1e-12);
-  EXPECT_NEAR(layout.y0 + (layout.ny - 1) * 0.3 / 2, 1.0, 1e-12);
-  EXPECT_GE(layout.y0, 0.3 - 1e-12);
-  EXPECT_LE(layout.y0 + (layout.ny - 1) * 0.3, 1.7 + 1e-12);
+  EXPECT_NEAR(layout.first_point.x() + (layout.nx - 1) * 0.3 / 2, 3.0, 1e-12);
+  EXPECT_NEAR(layout.first_point.y() + (layout.ny - 1) * 0.3 / 2, 1.0, 1e-12);
+  EXPECT_GE(layout.first_point.y(), 0.3 - 1e-12);
+  EXPECT_LE(layout.first_point.y() + (layout.ny - 1) * 0.3, 1.7 + 1e-12);
 }
 
 TEST(PlanLayout, TheCircleIsFreeOfObstaclesAndAsLargeAsAllowed) {
@@ -59,10 +78,11 @@ TEST(PlanLayout, TheCircleIsFreeOfObstaclesAndAsLargeAsAllowed) {
   world.obstacles.push_back({2.8, 2.8, 3.2, 3.2});  // a box in the middle
   const WorldLayout layout = plan_layout(world, 10, 8, 0.3, 1.0, 0.15);
   EXPECT_DOUBLE_EQ(layout.circle_radius_m, 1.0);
-  EXPECT_TRUE(world.is_free(layout.centre.x, layout.centre.y, 0.15));
+  EXPECT_TRUE(world.is_free(layout.centre.x(), layout.centre.y(), 0.15));
   for (int k = 0; k < 360; ++k) {
     const double angle = deg_to_rad(k);
-    EXPECT_TRUE(world.is_free(layout.centre.x + std::cos(angle), layout.centre.y + std::sin(angle)))
+    EXPECT_TRUE(
+        world.is_free(layout.centre.x() + std::cos(angle), layout.centre.y() + std::sin(angle)))
         << k;
   }
 }
@@ -84,7 +104,8 @@ TEST(PlanLayout, AFloorWithoutRoomForAGridIsAnInputError) {
 TEST(RandomFreePoses, AreSeededFreeAndInsideTheRectangle) {
   sim::World world = floor_only(6.0, 5.0);
   world.obstacles.push_back({2.0, 2.0, 3.0, 3.0});
-  const std::vector<CameraPose> poses = random_free_poses(world, 1.5, 1.5, 3.5, 3.5, 200, 7, 0.4);
+  const std::vector<CameraPose> poses =
+      random_free_poses(world, {1.5, 1.5}, {3.5, 3.5}, 200, 7, 0.4);
   ASSERT_EQ(poses.size(), 200u);
   double min_heading = kPi, max_heading = -kPi;
   for (const CameraPose& pose : poses) {
@@ -99,8 +120,10 @@ TEST(RandomFreePoses, AreSeededFreeAndInsideTheRectangle) {
   }
   EXPECT_LT(min_heading, -2.5);  // headings cover the circle
   EXPECT_GT(max_heading, 2.5);
-  const std::vector<CameraPose> again = random_free_poses(world, 1.5, 1.5, 3.5, 3.5, 200, 7, 0.4);
-  const std::vector<CameraPose> other = random_free_poses(world, 1.5, 1.5, 3.5, 3.5, 200, 8, 0.4);
+  const std::vector<CameraPose> again =
+      random_free_poses(world, {1.5, 1.5}, {3.5, 3.5}, 200, 7, 0.4);
+  const std::vector<CameraPose> other =
+      random_free_poses(world, {1.5, 1.5}, {3.5, 3.5}, 200, 8, 0.4);
   EXPECT_EQ(again.front().x_m, poses.front().x_m);
   EXPECT_EQ(again.back().heading_rad, poses.back().heading_rad);
   EXPECT_NE(other.front().x_m, poses.front().x_m);
@@ -111,11 +134,12 @@ TEST(RightRegionShare, CountsQueriesWhoseBestPlaceIsInTheirRegion) {
   world.regions = {{"room 1", {0.0, 0.0, 3.9, 4.0}}, {"room 2", {4.1, 0.0, 8.0, 4.0}}};
   // Three queries in room 1 (two found there, one in room 2), one in room 2 found there, one
   // in the doorway between (no region: left out).
-  const std::vector<std::pair<cv::Point2d, cv::Point2d>> localised = {{{1.0, 1.0}, {1.2, 1.1}},
-                                                                      {{2.0, 3.0}, {2.3, 3.0}},
-                                                                      {{3.5, 2.0}, {4.5, 2.0}},
-                                                                      {{6.0, 2.0}, {6.1, 2.2}},
-                                                                      {{4.0, 2.0}, {1.0, 1.0}}};
+  const std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> localised = {
+      {{1.0, 1.0}, {1.2, 1.1}},
+      {{2.0, 3.0}, {2.3, 3.0}},
+      {{3.5, 2.0}, {4.5, 2.0}},
+      {{6.0, 2.0}, {6.1, 2.2}},
+      {{4.0, 2.0}, {1.0, 1.0}}};
   const std::optional<double> share = right_region_share(world, localised);
   ASSERT_TRUE(share);
   EXPECT_DOUBLE_EQ(*share, 3.0 / 4.0);

@@ -80,5 +80,48 @@ TEST(NavigationFigures, RoutePictureDrawsTheRouteOnTheLatticeAndOverTheTruth) {
   EXPECT_LT(place_column(truth_panel), goal_column(truth_panel) - 50.0);
 }
 
+// A run along five of six places in a row on the lattice (east), whose true positions are the
+// lattice mirrored (x → −x): the robot starts at place 0 and stops at the goal, place 4. The
+// lattice panel adds the sets places, goal (palette colours 0, 1); the true-path panel, with
+// nothing of the scene but the map's truth, places (truth), goal place, start (0, 1, 2).
+TEST(NavigationFigures, PathPictureDrawsTheMatchesOnTheLatticeAndThePathOverTheTruth) {
+  std::vector<navigation::PlaceNode> places;
+  memory::VisualMemory memory;
+  for (int x = 0; x < 6; ++x) {
+    places.push_back({Eigen::Vector2d(x, 0.0), 0.0});
+    memory::Place place;
+    place.signature = {1, 1, 15, 32, std::vector<float>(15, 1.f), std::vector<float>(15, 0.f)};
+    place.truth = CameraPose{-1.0 * x, 0.0, 1.0, 0.0, 0.0, 0.0};
+    memory.add_place(std::move(place));
+  }
+  navigation::NavigationResult result;
+  for (int x = 0; x < 5; ++x) {
+    navigation::NavigationStep step;
+    step.index = x;
+    step.truth = CameraPose{-1.0 * x, 0.0, 1.0, 0.0, 0.0, 0.0};
+    step.match = memory::PlaceMatch{};
+    step.match->place = static_cast<memory::PlaceIndex>(x);
+    result.steps.push_back(step);
+  }
+  const int goal = 4;
+  const cv::Mat picture = navigation_path_figure(result, places, goal, memory, {});
+  ASSERT_EQ(picture.type(), CV_8UC3);
+  ASSERT_EQ(picture.cols % 2, 0);
+  const int width = picture.cols / 2;
+  const cv::Mat lattice_panel = picture.colRange(0, width);
+  const cv::Mat truth_panel = picture.colRange(width, 2 * width);
+  const auto column = [](const cv::Mat& panel, std::size_t set) {
+    const ColourPixels found = pixels_of(panel, eval::palette_colour(set));
+    EXPECT_GT(found.count, 0) << "set " << set;
+    return found.mean_column;
+  };
+  // On the lattice the goal (x = 4) lies east of the other places' mean (x = 2.2).
+  EXPECT_GT(column(lattice_panel, 1), column(lattice_panel, 0) + 50.0);
+  // Over the truth the goal place (x = −4) lies west of the start (x = 0).
+  EXPECT_LT(column(truth_panel, 1), column(truth_panel, 2) - 50.0);
+  // Nothing in a fourth colour: no grid images and no goal pose were given.
+  EXPECT_EQ(pixels_of(truth_panel, eval::palette_colour(3)).count, 0);
+}
+
 }  // namespace
 }  // namespace omninav::report

@@ -1,25 +1,25 @@
 #include "omninav/compass/visual_compass.hpp"
 
+#include <fmt/format.h>
+
 #include <cmath>
-#include <sstream>
 
 #include "omninav/core/angles.hpp"
 #include "omninav/core/errors.hpp"
+#include "omninav/core/format.hpp"
 #include "omninav/core/panorama.hpp"
 
 namespace omninav::compass {
 
 std::string describe(const SamplingParams& sampling) {
-  std::ostringstream text;
   if (sampling.policy == SamplingPolicy::kFixedSkip) {
-    text << "Fx " << sampling.fixed_skip_frames;
-  } else {
-    text << "Atm " << sampling.threshold_norm_amp;
-    if (sampling.max_reference_rotation_rad > 0.0) {
-      text << " cap " << rad_to_deg(sampling.max_reference_rotation_rad) << "°";
-    }
+    return fmt::format("Fx {}", sampling.fixed_skip_frames);
   }
-  return text.str();
+  std::string text = "Atm " + general(sampling.threshold_norm_amp);
+  if (sampling.max_reference_rotation_rad > 0.0) {
+    text += fmt::format(" cap {}°", general(rad_to_deg(sampling.max_reference_rotation_rad)));
+  }
+  return text;
 }
 
 VisualCompass::VisualCompass(const CompassParams& params, double initial_heading_rad)

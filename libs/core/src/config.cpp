@@ -12,6 +12,7 @@
 
 #include "omninav/core/angles.hpp"
 #include "omninav/core/errors.hpp"
+#include "omninav/core/format.hpp"
 
 namespace omninav {
 
@@ -22,12 +23,6 @@ struct ConfigReader::Shared {
 };
 
 namespace {
-
-std::string format_number(double value) {
-  std::ostringstream text;
-  text << value;
-  return text.str();
-}
 
 // Walks every key of `node`, calling `visit` with its dotted path; the maps of a list are named
 // by their index ("worlds[2].seeds"). Every key is text: the parse refused any other (KeyChecker).
@@ -180,11 +175,11 @@ double ConfigReader::number(const YAML::Node& node, const std::string& key, doub
                             double max) const {
   double parsed = 0.0;
   if (!node.IsScalar() || !YAML::convert<double>::decode(node, parsed) || !std::isfinite(parsed)) {
-    fail(key, "must be a number in [" + format_number(min) + ", " + format_number(max) + "]");
+    fail(key, "must be a number in [" + general(min) + ", " + general(max) + "]");
   }
   if (parsed < min || parsed > max) {
-    fail(key, "= " + format_number(parsed) + " is out of range [" + format_number(min) + ", " +
-                  format_number(max) + "]");
+    fail(key,
+         "= " + general(parsed) + " is out of range [" + general(min) + ", " + general(max) + "]");
   }
   return parsed;
 }

@@ -128,8 +128,4 @@ fftw_plan lines_c2r(const LinesShape& shape) {
   return cache<Double>().get(Direction::kC2r, shape);
 }
 
-fftwf_plan lines_c2r_float(const LinesShape& shape) {
-  return cache<Single>().get(Direction::kC2r, shape);
-}
-
 }  // namespace omninav::fftw

@@ -1,10 +1,12 @@
 #include "omninav/core/parse.hpp"
 
+#include <fmt/format.h>
+
 #include <charconv>
 #include <cmath>
-#include <sstream>
 
 #include "omninav/core/errors.hpp"
+#include "omninav/core/format.hpp"
 
 namespace omninav {
 
@@ -67,10 +69,8 @@ int parse_int_argument(std::string_view text, const std::string& where) {
 
 double check_coordinate_m(double value_m, const std::string& where) {
   if (!std::isfinite(value_m) || std::abs(value_m) > kMaxCoordinateM) {
-    std::ostringstream text;
-    text << where << ": " << value_m << " m is not a position (beyond ±" << kMaxCoordinateM
-         << " m)";
-    throw InputError(text.str());
+    throw InputError(fmt::format("{}: {} m is not a position (beyond ±{} m)", where,
+                                 general(value_m), general(kMaxCoordinateM)));
   }
   return value_m;
 }

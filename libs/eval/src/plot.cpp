@@ -1,15 +1,16 @@
 #include "omninav/eval/plot.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <opencv2/imgproc.hpp>
-#include <sstream>
 #include <string>
 
 #include "omninav/core/errors.hpp"
+#include "omninav/core/format.hpp"
 #include "omninav/eval/png.hpp"
 
 namespace omninav::eval {
@@ -85,15 +86,9 @@ void draw_vertical_text(cv::Mat& image, const std::string& text, cv::Point centr
 // A tick value printed with as many decimals as the step needs (steps are 1, 2 or 5 × 10^k).
 std::string format_tick(double value, double step) {
   if (std::abs(value) < step * 1e-9) value = 0.0;  // no "-0"
-  char buffer[64];
   const double magnitude = std::max(std::abs(value), step);
-  if (magnitude >= 1e6 || step < 1e-4) {
-    std::snprintf(buffer, sizeof buffer, "%.3g", value);
-  } else {
-    const int decimals = std::max(0, -static_cast<int>(std::floor(std::log10(step) + 1e-9)));
-    std::snprintf(buffer, sizeof buffer, "%.*f", decimals, value);
-  }
-  return buffer;
+  if (magnitude >= 1e6 || step < 1e-4) return general(value, 3);
+  return fixed(value, std::max(0, -static_cast<int>(std::floor(std::log10(step) + 1e-9))));
 }
 
 // The plot area in pixels and the data ranges it shows.
@@ -239,10 +234,9 @@ TickStep nice_step(double range, int intervals) {
 std::vector<double> ticks_from(double first, double last, const TickStep& step) {
   constexpr double kMaxTicks = 1000.0;
   if (!(last - first <= kMaxTicks)) {
-    std::ostringstream message;
-    message << "an axis from " << first * step.value() << " to " << last * step.value()
-            << " would have more than " << kMaxTicks << " ticks";
-    throw UsageError(message.str());
+    throw UsageError(fmt::format("an axis from {} to {} would have more than {} ticks",
+                                 general(first * step.value()), general(last * step.value()),
+                                 general(kMaxTicks)));
   }
   std::vector<double> ticks;
   const int count = last >= first ? static_cast<int>(last - first) + 1 : 0;
@@ -322,9 +316,9 @@ cv::Scalar palette_colour(std::size_t index) {
 
 std::vector<double> nice_ticks(double low, double high, int target_count) {
   if (!std::isfinite(low) || !std::isfinite(high) || low > high) {
-    std::ostringstream message;  // %g: DBL_MAX in 12 characters, not 309 digits
-    message << "axis range [" << low << ", " << high << "] is not a finite interval";
-    throw UsageError(message.str());
+    // %g: DBL_MAX in 12 characters, not 309 digits
+    throw UsageError(
+        fmt::format("axis range [{}, {}] is not a finite interval", general(low), general(high)));
   }
   const double magnitude_of_bounds = std::max(std::abs(low), std::abs(high));
   if (high == low || high - low <= 1e-12 * magnitude_of_bounds) {
@@ -507,6 +501,17 @@ cv::Mat PointsPlot::render() const {
 
 void PointsPlot::save(const std::filesystem::path& path) const {
   save_png(render(), path);
+}
+
+cv::Point2d plot_point(const Eigen::Vector2d& position) {
+  return {position.x(), position.y()};
+}
+
+std::vector<cv::Point2d> plot_points(const std::vector<Eigen::Vector2d>& positions) {
+  std::vector<cv::Point2d> points;
+  points.reserve(positions.size());
+  for (const Eigen::Vector2d& position : positions) points.push_back(plot_point(position));
+  return points;
 }
 
 }  // namespace omninav::eval

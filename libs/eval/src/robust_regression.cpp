@@ -181,26 +181,4 @@ LineFit theil_sen_fit(std::span<const double> x, std::span<const double> y,
   return fit;
 }
 
-LineFit least_squares_fit(std::span<const double> x, std::span<const double> y) {
-  require_line_data(x, y);
-  const double n = static_cast<double>(x.size());
-  const double mean_x = std::accumulate(x.begin(), x.end(), 0.0) / n;
-  const double mean_y = std::accumulate(y.begin(), y.end(), 0.0) / n;
-  double sxx = 0.0;
-  double sxy = 0.0;
-  for (std::size_t i = 0; i < x.size(); ++i) {
-    sxx += (x[i] - mean_x) * (x[i] - mean_x);
-    sxy += (x[i] - mean_x) * (y[i] - mean_y);
-  }
-  LineFit fit;
-  fit.slope = sxy / sxx;
-  fit.intercept = mean_y - fit.slope * mean_x;
-  return fit;
-}
-
-RegressionFits fit_line(std::span<const double> x, std::span<const double> y,
-                        const TheilSenParams& params) {
-  return {theil_sen_fit(x, y, params), least_squares_fit(x, y)};
-}
-
 }  // namespace omninav::eval

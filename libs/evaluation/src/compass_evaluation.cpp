@@ -1,11 +1,11 @@
 #include "omninav/evaluation/compass_evaluation.hpp"
 
 #include <cmath>
-#include <cstdio>
 #include <sstream>
 
 #include "omninav/core/angles.hpp"
 #include "omninav/core/errors.hpp"
+#include "omninav/core/format.hpp"
 #include "omninav/eval/robust_regression.hpp"
 
 namespace omninav::evaluation {
@@ -17,12 +17,6 @@ std::optional<double> robust_slope(const std::vector<double>& x, const std::vect
   for (std::size_t i = 1; i < x.size() && !distinct; ++i) distinct = x[i] != x.front();
   if (!distinct) return std::nullopt;
   return eval::theil_sen_fit(x, y).slope;
-}
-
-std::string number(double value, int decimals) {
-  char text[64];
-  std::snprintf(text, sizeof text, "%.*f", decimals, value);
-  return text;
 }
 
 }  // namespace
@@ -74,16 +68,16 @@ std::string format_compass_table(const std::string& dataset, const std::string& 
   table << "Dataset\tMethod\tNb (total)\tMax. (deg)\tMean (deg)\tStd. dev. (deg)\tSlope (deg/s)"
            "\tSlope (deg/m)\n";
   table << dataset << '\t' << method << '\t' << evaluation.reference_frames << " ("
-        << evaluation.total_frames << ")\t" << number(evaluation.error_deg.max_abs, 3) << '\t'
-        << number(evaluation.error_deg.mean, 3) << '\t'
-        << (std::isfinite(evaluation.error_deg.stddev) ? number(evaluation.error_deg.stddev, 3)
+        << evaluation.total_frames << ")\t" << fixed(evaluation.error_deg.max_abs, 3) << '\t'
+        << fixed(evaluation.error_deg.mean, 3) << '\t'
+        << (std::isfinite(evaluation.error_deg.stddev) ? fixed(evaluation.error_deg.stddev, 3)
                                                        : std::string("n/a"))
-        << '\t' << (evaluation.slope_deg_per_s ? number(*evaluation.slope_deg_per_s, 4) : "n/a")
-        << '\t' << (evaluation.slope_deg_per_m ? number(*evaluation.slope_deg_per_m, 3) : "n/a")
+        << '\t' << (evaluation.slope_deg_per_s ? fixed(*evaluation.slope_deg_per_s, 4) : "n/a")
+        << '\t' << (evaluation.slope_deg_per_m ? fixed(*evaluation.slope_deg_per_m, 3) : "n/a")
         << '\n';
   table << "Slopes: Theil-Sen robust regression of the error against time and distance "
            "travelled; final error "
-        << number(evaluation.final_error_deg, 3) << " deg\n";
+        << fixed(evaluation.final_error_deg, 3) << " deg\n";
   return table.str();
 }
 

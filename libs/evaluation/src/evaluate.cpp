@@ -6,14 +6,13 @@
 #include <chrono>
 #include <cmath>
 #include <fstream>
-#include <iomanip>
 #include <limits>
 #include <map>
-#include <opencv2/imgproc.hpp>
-#include <sstream>
+#include <opencv2/core.hpp>
 
 #include "omninav/compass/compass_run.hpp"
 #include "omninav/core/angles.hpp"
+#include "omninav/core/csv.hpp"
 #include "omninav/core/errors.hpp"
 #include "omninav/core/format.hpp"
 #include "omninav/core/log.hpp"
@@ -87,10 +86,11 @@ class WorldRun {
     renderer_ = std::make_unique<sim::Renderer>(world_, worlds_.render);
     layout_ = plan_layout(world_, suite_world_.grid_nx, suite_world_.grid_ny,
                           suite_world_.spacing_m, params_.circle_radius_m * scale_, clearance_m());
-    log_stage("layout: centre " + num(layout_.centre.x, 2) + ", " + num(layout_.centre.y, 2) +
+    log_stage("layout: centre " + num(layout_.centre.x(), 2) + ", " + num(layout_.centre.y(), 2) +
               " m; circle radius " + num(layout_.circle_radius_m, 2) + " m; grid " +
               std::to_string(layout_.nx) + " x " + std::to_string(layout_.ny) + " at " +
-              num(layout_.spacing_m) + " m from " + num(layout_.x0, 2) + ", " + num(layout_.y0, 2));
+              num(layout_.spacing_m) + " m from " + num(layout_.first_point.x(), 2) + ", " +
+              num(layout_.first_point.y(), 2));
     stage("compass", [this] { compass_routes(); });
     grid_map();
     zigzags();
@@ -226,13 +226,13 @@ class WorldRun {
 
   void compass_routes() {
     comment("compass: Tables 3-4 on four routes");
-    const std::string at = "x=" + num(layout_.centre.x) + ",y=" + num(layout_.centre.y);
+    const std::string at = "x=" + num(layout_.centre.x()) + ",y=" + num(layout_.centre.y());
     const std::string fps = ",fps=" + num(params_.fps);
     const double speed = params_.speed_m_s * scale_;
     compass_route("rotate", with_height("rotate:" + at + ",turns=" + num(params_.rotate_turns) +
                                         ",rate_deg_s=" + num(params_.rotate_rate_deg_s) + fps));
-    compass_route("circle", with_height("circle:cx=" + num(layout_.centre.x) +
-                                        ",cy=" + num(layout_.centre.y) +
+    compass_route("circle", with_height("circle:cx=" + num(layout_.centre.x()) +
+                                        ",cy=" + num(layout_.centre.y()) +
                                         ",radius_m=" + num(layout_.circle_radius_m) +
                                         ",speed_m_s=" + num(speed) + fps));
     const std::string wander = wander_spec(at, speed);
@@ -252,12 +252,16 @@ class WorldRun {
   double clearance_m() const { return config_.navigation.robot.radius_m * scale_; }
 
   std::string grid_spec() const {
-    return with_height("grid:x0=" + num(layout_.x0) + ",y0=" + num(layout_.y0) +
-                       ",nx=" + std::to_string(layout_.nx) + ",ny=" + std::to_string(layout_.ny) +
+    return with_height("grid:x0=" + num(layout_.first_point.x()) +
+                       ",y0=" + num(layout_.first_point.y()) + ",nx=" + std::to_string(layout_.nx) +
+                       ",ny=" + std::to_string(layout_.ny) +
                        ",spacing_m=" + num(layout_.spacing_m));
   }
-  double grid_x1() const { return layout_.x0 + (layout_.nx - 1) * layout_.spacing_m; }
-  double grid_y1() const { return layout_.y0 + (layout_.ny - 1) * layout_.spacing_m; }
+  // The grid's last point (greatest x and y).
+  Eigen::Vector2d grid_last_point() const {
+    return layout_.first_point +
+           Eigen::Vector2d(layout_.nx - 1, layout_.ny - 1) * layout_.spacing_m;
+  }
 
   // `omninav explore` of a database into a new map; every_m > 0: a place every every_m metres
   // (and no other rule).
@@ -350,15 +354,15 @@ class WorldRun {
   void localise(const fs::path& map_file) {
     comment("memory: queries at random free poses and headings in the grid's rectangle");
     const std::vector<CameraPose> poses =
-        random_free_poses(world_, layout_.x0, layout_.y0, grid_x1(), grid_y1(), params_.queries,
+        random_free_poses(world_, layout_.first_point, grid_last_point(), params_.queries,
                           suite_world_.seed, suite_world_.camera_height_m);
     const fs::path poses_csv = dir_ / "queries.csv";
     {
       std::ofstream csv(poses_csv);
-      csv << "x_m,y_m,heading_deg,z_m\n" << std::setprecision(10);
+      write_csv_line(csv, {"x_m", "y_m", "heading_deg", "z_m"});
       for (const CameraPose& pose : poses) {
-        csv << pose.x_m << ',' << pose.y_m << ',' << rad_to_deg(pose.heading_rad) << ',' << pose.z_m
-            << '\n';
+        write_csv_line(csv, {general(pose.x_m, 10), general(pose.y_m, 10),
+                             general(rad_to_deg(pose.heading_rad), 10), general(pose.z_m, 10)});
       }
       if (!csv) throw InputError(poses_csv.string() + ": cannot be written");
     }
@@ -368,7 +372,7 @@ class WorldRun {
     const memory::Localiser localiser(map, config_.memory.localisation);
     signature::SignatureExtractor extractor(map.parameters().signature);
     LocalisationScore score(map);
-    std::vector<std::pair<cv::Point2d, cv::Point2d>> localised;
+    std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> localised;
     std::unique_ptr<io::SequenceReader> reader = io::open_sequence(queries);
     while (std::optional<io::Frame> frame = reader->next()) {
       const signature::Signature signature = extractor.compute(frame->image, frame->source);
@@ -376,7 +380,7 @@ class WorldRun {
       const LocalisationScore::Query q = score.add(result, *frame->truth);
       if (q.outside || result.best.empty()) continue;
       const CameraPose& best = *map.place(result.best.front().place).truth;
-      localised.push_back({{frame->truth->x_m, frame->truth->y_m}, {best.x_m, best.y_m}});
+      localised.emplace_back(frame->truth->floor_position(), best.floor_position());
     }
     command({"localise", map_file.string(), queries.string(), "--format", "csv"});
     if (score.queries() == 0) throw InputError("no query lay within the grid: none scored");
@@ -416,15 +420,15 @@ class WorldRun {
     const MapTrials trials =
         run_map_trials(memory, setup, {world_, renderer, navigation.robot}, navigation.trials);
     const TrialSummary summary = summarise(trials.outcomes);
-    std::vector<cv::Point2d> mapped;
+    std::vector<Eigen::Vector2d> mapped;
     for (std::size_t i = 0; i < memory.place_count(); ++i) {
-      mapped.emplace_back(memory.place(i).truth->x_m, memory.place(i).truth->y_m);
+      mapped.push_back(memory.place(i).truth->floor_position());
     }
-    const std::vector<cv::Point2d> hull = convex_hull(mapped);
+    const std::vector<Eigen::Vector2d> hull = convex_hull(std::move(mapped));
     double outside_m = 0.0;
     for (const TrialOutcome& outcome : trials.outcomes) {
       for (const navigation::NavigationStep& step : outcome.result.steps) {
-        outside_m = std::max(outside_m, distance_outside(hull, {step.truth.x_m, step.truth.y_m}));
+        outside_m = std::max(outside_m, distance_outside(hull, step.truth.floor_position()));
       }
     }
     set("navigation_reached", summary.reached_share);
@@ -443,12 +447,12 @@ class WorldRun {
       const std::string key = spacings == 1 ? "zigzag30" : "zigzag60";
       stage("lattice", [&] {
         const int rows = (layout_.ny - 1) / spacings + 1;
-        const double y1 = layout_.y0 + (rows - 1) * spacings * layout_.spacing_m;
-        const fs::path zigzag =
-            render(key, with_height("zigzag:x0=" + num(layout_.x0) + ",y0=" + num(layout_.y0) +
-                                    ",x1=" + num(grid_x1()) + ",y1=" + num(y1) +
-                                    ",rows=" + std::to_string(rows) + ",speed_m_s=" +
-                                    num(params_.speed_m_s * scale_) + ",fps=" + num(params_.fps)));
+        const double y1 = layout_.first_point.y() + (rows - 1) * spacings * layout_.spacing_m;
+        const fs::path zigzag = render(
+            key, with_height("zigzag:x0=" + num(layout_.first_point.x()) + ",y0=" +
+                             num(layout_.first_point.y()) + ",x1=" + num(grid_last_point().x()) +
+                             ",y1=" + num(y1) + ",rows=" + std::to_string(rows) + ",speed_m_s=" +
+                             num(params_.speed_m_s * scale_) + ",fps=" + num(params_.fps)));
         const fs::path map_file = explore(zigzag, key, spacings * layout_.spacing_m);
         organise(map_file, key, 0.0);
       });
@@ -488,8 +492,8 @@ WorldLayout plan_layout(const sim::World& world, int nx, int ny, double spacing_
                         double circle_radius_m, double clearance_m) {
   const sim::FloorBox& floor = world.floor;
   const double width = floor.max_x_m - floor.min_x_m, depth = floor.max_y_m - floor.min_y_m;
-  const cv::Point2d middle((floor.min_x_m + floor.max_x_m) / 2,
-                           (floor.min_y_m + floor.max_y_m) / 2);
+  const Eigen::Vector2d middle((floor.min_x_m + floor.max_x_m) / 2,
+                               (floor.min_y_m + floor.max_y_m) / 2);
   WorldLayout layout;
   layout.spacing_m = spacing_m;
   // The grid: at most nx x ny, a spacing's margin from the floor's edges, centred.
@@ -499,12 +503,12 @@ WorldLayout plan_layout(const sim::World& world, int nx, int ny, double spacing_
     throw InputError(world.name + ": the floor (" + num(width, 2) + " x " + num(depth, 2) +
                      " m) has no room for a grid at " + num(spacing_m) + " m");
   }
-  layout.x0 = middle.x - (layout.nx - 1) * spacing_m / 2;
-  layout.y0 = middle.y - (layout.ny - 1) * spacing_m / 2;
+  layout.first_point = {middle.x() - (layout.nx - 1) * spacing_m / 2,
+                        middle.y() - (layout.ny - 1) * spacing_m / 2};
 
   // Candidate centres: a lattice of free points, nearest the middle first.
   const double step = spacing_m / 2;
-  std::vector<cv::Point2d> candidates;
+  std::vector<Eigen::Vector2d> candidates;
   for (double x = floor.min_x_m + step; x < floor.max_x_m; x += step) {
     for (double y = floor.min_y_m + step; y < floor.max_y_m; y += step) {
       if (world.is_free(x, y, clearance_m)) candidates.emplace_back(x, y);
@@ -514,14 +518,14 @@ WorldLayout plan_layout(const sim::World& world, int nx, int ny, double spacing_
     throw InputError(world.name + ": no free point with " + num(clearance_m, 2) + " m clearance");
   }
   std::stable_sort(candidates.begin(), candidates.end(),
-                   [&](const cv::Point2d& a, const cv::Point2d& b) {
-                     return cv::norm(a - middle) < cv::norm(b - middle);
+                   [&](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+                     return (a - middle).norm() < (b - middle).norm();
                    });
-  const auto circle_free = [&](const cv::Point2d& centre, double radius) {
+  const auto circle_free = [&](const Eigen::Vector2d& centre, double radius) {
     for (int k = 0; k < 72; ++k) {
       const double angle = 2 * kPi * k / 72;
-      if (!world.is_free(centre.x + radius * std::cos(angle), centre.y + radius * std::sin(angle),
-                         clearance_m)) {
+      if (!world.is_free(centre.x() + radius * std::cos(angle),
+                         centre.y() + radius * std::sin(angle), clearance_m)) {
         return false;
       }
     }
@@ -546,15 +550,16 @@ WorldLayout plan_layout(const sim::World& world, int nx, int ny, double spacing_
   return layout;
 }
 
-std::vector<CameraPose> random_free_poses(const sim::World& world, double x0, double y0, double x1,
-                                          double y1, int count, std::uint32_t seed, double z_m) {
+std::vector<CameraPose> random_free_poses(const sim::World& world, const Eigen::Vector2d& min,
+                                          const Eigen::Vector2d& max, int count, std::uint32_t seed,
+                                          double z_m) {
   cv::RNG rng(seed);
   std::vector<CameraPose> poses;
   constexpr int kDrawsPerPose = 10000;
   for (int i = 0; i < count; ++i) {
     bool found = false;
     for (int draw = 0; draw < kDrawsPerPose && !found; ++draw) {
-      const double x = rng.uniform(x0, x1), y = rng.uniform(y0, y1);
+      const double x = rng.uniform(min.x(), max.x()), y = rng.uniform(min.y(), max.y());
       if (!world.is_free(x, y, 0.05)) continue;
       poses.push_back({x, y, z_m, rng.uniform(-kPi, kPi), 0.0, 0.0});
       found = true;
@@ -564,33 +569,49 @@ std::vector<CameraPose> random_free_poses(const sim::World& world, double x0, do
   return poses;
 }
 
-std::vector<cv::Point2d> convex_hull(const std::vector<cv::Point2d>& points) {
+std::vector<Eigen::Vector2d> convex_hull(std::vector<Eigen::Vector2d> points) {
   if (points.size() < 3) return points;
-  std::vector<cv::Point2d> hull;
-  std::vector<cv::Point2f> as_float(points.begin(), points.end());
-  std::vector<int> indices;
-  cv::convexHull(as_float, indices, false, false);
-  for (const int i : indices) hull.push_back(points[i]);
+  // Andrew's monotone chain: the lower then the upper chain of the points sorted by x, then y,
+  // dropping every point that does not turn left.
+  std::sort(points.begin(), points.end(), [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+    return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
+  });
+  const auto turn = [](const Eigen::Vector2d& o, const Eigen::Vector2d& a,
+                       const Eigen::Vector2d& b) {
+    return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
+  };
+  std::vector<Eigen::Vector2d> hull(2 * points.size());
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < points.size(); ++i) {  // lower chain
+    while (k >= 2 && turn(hull[k - 2], hull[k - 1], points[i]) <= 0) --k;
+    hull[k++] = points[i];
+  }
+  for (std::size_t i = points.size() - 1, lower = k + 1; i-- > 0;) {  // upper chain
+    while (k >= lower && turn(hull[k - 2], hull[k - 1], points[i]) <= 0) --k;
+    hull[k++] = points[i];
+  }
+  hull.resize(k - 1);  // the last point is the first
   return hull;
 }
 
-double distance_outside(const std::vector<cv::Point2d>& hull, const cv::Point2d& p) {
+double distance_outside(const std::vector<Eigen::Vector2d>& hull, const Eigen::Vector2d& p) {
   if (hull.empty()) return std::numeric_limits<double>::infinity();
-  const auto segment_distance = [&](const cv::Point2d& a, const cv::Point2d& b) {
-    const cv::Point2d ab = b - a;
+  const auto segment_distance = [&](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+    const Eigen::Vector2d ab = b - a;
     const double length2 = ab.dot(ab);
     const double t = length2 > 0 ? std::clamp((p - a).dot(ab) / length2, 0.0, 1.0) : 0.0;
-    return cv::norm(p - (a + t * ab));
+    return (p - (a + t * ab)).norm();
   };
-  if (hull.size() == 1) return cv::norm(p - hull.front());
+  if (hull.size() == 1) return (p - hull.front()).norm();
   if (hull.size() == 2) return segment_distance(hull[0], hull[1]);
   // Inside when on the same side of every edge (either orientation).
   bool any_left = false, any_right = false;
   double nearest = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < hull.size(); ++i) {
-    const cv::Point2d& a = hull[i];
-    const cv::Point2d& b = hull[(i + 1) % hull.size()];
-    const double cross = (b - a).cross(p - a);
+    const Eigen::Vector2d& a = hull[i];
+    const Eigen::Vector2d& b = hull[(i + 1) % hull.size()];
+    const Eigen::Vector2d ab = b - a, ap = p - a;
+    const double cross = ab.x() * ap.y() - ab.y() * ap.x();
     any_left = any_left || cross > 1e-12;
     any_right = any_right || cross < -1e-12;
     nearest = std::min(nearest, segment_distance(a, b));
@@ -599,13 +620,14 @@ double distance_outside(const std::vector<cv::Point2d>& hull, const cv::Point2d&
 }
 
 std::optional<double> right_region_share(
-    const sim::World& world, const std::vector<std::pair<cv::Point2d, cv::Point2d>>& localised) {
+    const sim::World& world,
+    const std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>>& localised) {
   int in_regions = 0, right = 0;
   for (const auto& [truth, found] : localised) {
-    const sim::Region* region = world.region_at(truth.x, truth.y);
+    const sim::Region* region = world.region_at(truth.x(), truth.y());
     if (region == nullptr) continue;
     ++in_regions;
-    right += world.region_at(found.x, found.y) == region ? 1 : 0;
+    right += world.region_at(found.x(), found.y()) == region ? 1 : 0;
   }
   if (in_regions == 0) return std::nullopt;
   return double(right) / in_regions;

@@ -1,10 +1,12 @@
 #include "omninav/evaluation/lattice_score.hpp"
 
+#include <fmt/format.h>
+
 #include <map>
 #include <opencv2/imgproc.hpp>
-#include <sstream>
 #include <utility>
 
+#include "omninav/core/format.hpp"
 #include "omninav/core/log.hpp"
 #include "omninav/core/pose.hpp"
 #include "omninav/memory/localisation.hpp"
@@ -91,11 +93,10 @@ std::optional<LatticeScore> score_lattice(const memory::VisualMemory& memory,
   for (std::size_t i = 0; i < memory.place_count(); ++i) {
     const CameraPose& pose = *memory.place(i).truth;
     if (!plausible_position(pose)) {
-      std::ostringstream message;
-      message << "place " << i << "'s true position (" << pose.x_m << ", " << pose.y_m
-              << ") m is not finite or farther than " << kMaxCoordinateM / 1000
-              << " km from the origin: the lattice is not compared with the truth";
-      log_warning(message.str());
+      log_warning(fmt::format(
+          "place {}'s true position ({}, {}) m is not finite or farther than {} km from the "
+          "origin: the lattice is not compared with the truth",
+          i, general(pose.x_m), general(pose.y_m), general(kMaxCoordinateM / 1000)));
       return std::nullopt;
     }
     truth.push_back(pose.floor_position());

@@ -2,12 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <iomanip>
 #include <limits>
 #include <sstream>
 
 #include "omninav/core/angles.hpp"
 #include "omninav/core/errors.hpp"
+#include "omninav/core/format.hpp"
 #include "omninav/core/statistics.hpp"
 
 namespace omninav::evaluation {
@@ -104,15 +104,12 @@ std::optional<double> LocalisationScore::median_heading_error_rad() const {
 
 std::string LocalisationScore::summary(const std::vector<int>& levels) const {
   std::ostringstream text;
-  text.setf(std::ios::fixed);
-  text.precision(1);
   text << "localised " << queries_ << (queries_ == 1 ? " query" : " queries") << ": "
-       << 100.0 * within_spacing_share() << "% within one grid spacing (" << std::setprecision(2)
-       << spacing_m_ << " m) of the truth, " << std::setprecision(1) << 100.0 * nearest_share()
-       << "% at the nearest place, mean error " << std::setprecision(3) << mean_error_m() << " m"
-       << std::setprecision(1);
+       << fixed(100.0 * within_spacing_share(), 1) << "% within one grid spacing ("
+       << fixed(spacing_m_, 2) << " m) of the truth, " << fixed(100.0 * nearest_share(), 1)
+       << "% at the nearest place, mean error " << fixed(mean_error_m(), 3) << " m";
   if (const auto heading = median_heading_error_rad()) {
-    text << ", median heading error " << rad_to_deg(*heading) << " deg";
+    text << ", median heading error " << fixed(rad_to_deg(*heading), 1) << " deg";
   }
   if (outside_ > 0) {
     text << " (" << outside_ << " more off the grid, farther than half a cell diagonal from "
@@ -123,8 +120,8 @@ std::string LocalisationScore::summary(const std::vector<int>& levels) const {
   const std::vector<double> sizes = level_mean_size();
   for (std::size_t l = 0; l < contains.size(); ++l) {
     text << "  level m=" << (l < levels.size() ? levels[l] : 0) << ": candidate set holds the "
-         << "nearest place in " << 100.0 * contains[l] << "% of queries, " << sizes[l]
-         << " places on average (of " << places_.size() << ")\n";
+         << "nearest place in " << fixed(100.0 * contains[l], 1) << "% of queries, "
+         << fixed(sizes[l], 1) << " places on average (of " << places_.size() << ")\n";
   }
   return text.str();
 }

@@ -3,13 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
-#include <iomanip>
 #include <limits>
-#include <sstream>
 
 #include "omninav/core/angles.hpp"
 #include "omninav/core/config.hpp"
 #include "omninav/core/errors.hpp"
+#include "omninav/core/format.hpp"
 #include "omninav/core/progress.hpp"
 #include "omninav/core/statistics.hpp"
 #include "omninav/evaluation/robot_worlds.hpp"
@@ -146,13 +145,10 @@ TrialSummary summarise(const std::vector<TrialOutcome>& outcomes) {
 }
 
 std::string TrialSummary::text() const {
-  std::ostringstream text;
-  text << std::fixed << std::setprecision(1) << "reached " << reached << " of " << trials
-       << " goals (" << 100.0 * reached_share
-       << "%); path / straight line over those reached: " << std::setprecision(2) << "mean "
-       << mean_path_ratio << ", median " << median_path_ratio << "; mean " << std::setprecision(1)
-       << mean_steps << " steps";
-  return text.str();
+  return "reached " + std::to_string(reached) + " of " + std::to_string(trials) + " goals (" +
+         fixed(100.0 * reached_share, 1) + "%); path / straight line over those reached: mean " +
+         fixed(mean_path_ratio, 2) + ", median " + fixed(median_path_ratio, 2) + "; mean " +
+         fixed(mean_steps, 1) + " steps";
 }
 
 }  // namespace omninav::evaluation

@@ -5,35 +5,25 @@
 #include <cmath>
 #include <limits>
 #include <optional>
-#include <sstream>
 
 #include "omninav/core/angles.hpp"
+#include "omninav/core/csv.hpp"
+#include "omninav/core/format.hpp"
 
 namespace omninav::memory {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-// Shortest text that reads back to the same double; empty for a missing value.
+// Ten significant digits; empty for a missing value.
 std::string number(std::optional<double> value) {
   if (!value || !std::isfinite(*value)) return "";
-  std::ostringstream text;
-  text.precision(10);
-  text << *value;
-  return text.str();
+  return general(*value, 10);
 }
 
 std::optional<double> degrees(std::optional<double> radians) {
   if (!radians) return std::nullopt;
   return rad_to_deg(*radians);
-}
-
-// A CSV field, quoted when it holds a comma, a quote or a line break.
-std::string field(const std::string& text) {
-  if (text.find_first_of(",\"\n\r") == std::string::npos) return text;
-  std::string quoted = "\"";
-  for (char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return quoted + "\"";
 }
 
 }  // namespace
@@ -43,7 +33,7 @@ void write_places_csv(const VisualMemory& memory, std::ostream& out) {
          "truth_y_m,truth_z_m,truth_heading_deg,lattice_x,lattice_y\n";
   for (PlaceIndex i = 0; i < memory.place_count(); ++i) {
     const Place& p = memory.place(i);
-    out << i << ',' << p.run << ',' << field(p.source) << ',' << p.frame_index << ','
+    out << i << ',' << p.run << ',' << csv_field(p.source) << ',' << p.frame_index << ','
         << number(p.time_s) << ',' << number(degrees(p.heading_rad)) << ','
         << to_string(p.heading_source) << ',';
     if (p.truth) {

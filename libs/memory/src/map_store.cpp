@@ -7,13 +7,13 @@
 
 #include <algorithm>
 #include <bit>
-#include <charconv>
 #include <cmath>
 #include <cstring>
 #include <fstream>
 #include <map>
 
 #include "omninav/core/errors.hpp"
+#include "omninav/core/format.hpp"
 #include "omninav/core/output_file.hpp"
 #include "omninav/core/parse.hpp"
 #include "sqlite_db.hpp"
@@ -150,13 +150,6 @@ double position(double value, const std::filesystem::path& file, const std::stri
 // written before it was typed, who read it under this name too).
 constexpr const char* kExplorationSpacingKey = "exploration.every_m";
 
-// The shortest text that reads back as the same number.
-std::string exact_text(double value) {
-  char text[32];
-  const auto end = std::to_chars(text, text + sizeof text, value).ptr;
-  return std::string(text, end);
-}
-
 std::map<std::string, std::string> parameter_rows(const VisualMemory& memory) {
   const MapParameters& p = memory.parameters();
   std::map<std::string, std::string> rows;
@@ -166,7 +159,7 @@ std::map<std::string, std::string> parameter_rows(const VisualMemory& memory) {
   rows["signature.weights"] = signature::to_string(p.weights);
   rows["signature.panorama_rows"] = std::to_string(p.panorama_rows);
   if (memory.exploration_spacing_m()) {
-    rows[kExplorationSpacingKey] = exact_text(*memory.exploration_spacing_m());
+    rows[kExplorationSpacingKey] = shortest(*memory.exploration_spacing_m());
   }
   return rows;
 }

@@ -1,11 +1,10 @@
 #include "omninav/navigation/memory_places.hpp"
 
 #include <algorithm>
-#include <iomanip>
 #include <limits>
-#include <sstream>
 
 #include "omninav/core/errors.hpp"
+#include "omninav/core/format.hpp"
 #include "omninav/core/log.hpp"
 #include "omninav/core/panorama.hpp"
 #include "omninav/core/statistics.hpp"
@@ -47,13 +46,11 @@ std::optional<std::string> no_match_reason(const memory::Localisation& localisat
   if (localisation.best.empty()) return "matches no place of the map (no candidate)";
   const memory::PlaceMatch& match = localisation.best.front();
   if (!(match.dissimilarity_per_value <= limit)) {
-    std::ostringstream message;
-    message << "matches no place of the map (the nearest, place " << match.place << ", differs by "
-            << std::fixed << std::setprecision(2) << match.dissimilarity_per_value
-            << " grey levels per compared value, more than " << limit
-            << ": navigation.yaml route.match_dissimilarity_ratio times the map's "
-            << "typical difference between neighbouring places)";
-    return message.str();
+    return "matches no place of the map (the nearest, place " + std::to_string(match.place) +
+           ", differs by " + fixed(match.dissimilarity_per_value, 2) +
+           " grey levels per compared value, more than " + fixed(limit, 2) +
+           ": navigation.yaml route.match_dissimilarity_ratio times the map's typical difference "
+           "between neighbouring places)";
   }
   return std::nullopt;
 }

@@ -1,14 +1,16 @@
 #include "omninav/navigation/navigator.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <optional>
-#include <sstream>
 
 #include "omninav/core/angles.hpp"
 #include "omninav/core/config.hpp"
 #include "omninav/core/errors.hpp"
+#include "omninav/core/format.hpp"
 
 namespace omninav::navigation {
 namespace {
@@ -74,12 +76,11 @@ void load_navigator_params(const ConfigReader& section, NavigatorParams& params)
   // The last sidestep turns farthest: past 180° it would repeat an earlier direction.
   const double widest_deg = std::abs(sidestep_turn(params.sidesteps, params.sidestep_deg));
   if (widest_deg > 180.0) {
-    std::ostringstream message;
-    message << section.source_name() << ": keys 'navigator.sidesteps' (" << params.sidesteps
-            << ") and 'navigator.sidestep_deg' (" << params.sidestep_deg
-            << ") turn the last sidestep " << widest_deg
-            << " degrees from the plan, more than 180: give fewer sidesteps or smaller ones";
-    throw ConfigError(message.str());
+    throw ConfigError(fmt::format(
+        "{}: keys 'navigator.sidesteps' ({}) and 'navigator.sidestep_deg' ({}) turn the last "
+        "sidestep {} degrees from the plan, more than 180: give fewer sidesteps or smaller ones",
+        section.source_name(), params.sidesteps, general(params.sidestep_deg),
+        general(widest_deg)));
   }
 }
 

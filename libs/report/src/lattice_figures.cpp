@@ -9,16 +9,12 @@
 namespace omninav::report {
 namespace {
 
-cv::Point2d point(const Eigen::Vector2d& p) {
-  return {p.x(), p.y()};
-}
-
 // The lattice, its springs shaded by stiffness.
 cv::Mat springs_panel(const memory::VisualMemory& memory,
                       const lattice::OrganiseResult& organised) {
   std::vector<cv::Point2d> places;
   for (std::size_t i = 0; i < memory.place_count(); ++i) {
-    places.push_back(point(*memory.place(i).lattice_position));
+    places.push_back(eval::plot_point(*memory.place(i).lattice_position));
   }
   eval::PointsPlot plot("Lattice: springs shaded by stiffness (dark = stiff)", "x (m)", "y (m)");
   // Weak springs first, so that the stiff ones are drawn on top.
@@ -42,8 +38,8 @@ cv::Mat truth_panel(const memory::VisualMemory& memory, const LatticeOverTruth& 
   eval::PointsPlot plot("Truth and the aligned lattice", "x (m)", "y (m)");
   std::vector<cv::Point2d> true_points, aligned_points;
   for (std::size_t i = 0; i < memory.place_count(); ++i) {
-    true_points.push_back(point(memory.place(i).truth->floor_position()));
-    aligned_points.push_back(point(truth.aligned[i]));
+    true_points.push_back(eval::plot_point(memory.place(i).truth->floor_position()));
+    aligned_points.push_back(eval::plot_point(truth.aligned[i]));
     plot.add_segment({true_points.back(), aligned_points.back(), 0.5, 0.8});
   }
   plot.add_points("truth", true_points);

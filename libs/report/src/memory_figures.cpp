@@ -2,13 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
-#include <iomanip>
 #include <map>
 #include <numeric>
 #include <opencv2/imgproc.hpp>
 #include <sstream>
 
+#include "omninav/core/csv.hpp"
 #include "omninav/core/errors.hpp"
+#include "omninav/core/format.hpp"
 #include "omninav/core/output_file.hpp"
 #include "omninav/core/pose.hpp"
 #include "omninav/core/statistics.hpp"
@@ -212,12 +213,6 @@ double prefix(const std::vector<double>& terms, int m) {
                          0.0);
 }
 
-std::string fixed(double value, int digits) {
-  std::ostringstream text;
-  text << std::fixed << std::setprecision(digits) << value;
-  return text.str();
-}
-
 // One point per distance of `distance` (ascending): the mean of `value` over the places at that
 // distance (within 1 µm). Each step takes at least one place, whatever the numbers.
 std::pair<std::vector<double>, std::vector<double>> mean_per_distance(
@@ -241,11 +236,10 @@ std::vector<Eigen::Vector2d> true_positions(const VisualMemory& memory) {
   for (PlaceIndex i = 0; i < memory.place_count(); ++i) {
     const CameraPose& truth = *memory.place(i).truth;
     if (!plausible_position(truth)) {
-      std::ostringstream message;  // %g: 1e+160, not 161 digits
-      message << "place " << i << " has a true position of (" << truth.x_m << ", " << truth.y_m
-              << ") m: not finite or farther than " << kMaxCoordinateM / 1000
-              << " km from the origin";
-      throw InputError(message.str());
+      throw InputError("place " + std::to_string(i) + " has a true position of (" +
+                       general(truth.x_m) + ", " + general(truth.y_m) +
+                       ") m: not finite or farther than " + general(kMaxCoordinateM / 1000) +
+                       " km from the origin");
     }
     positions.push_back(truth.floor_position());
   }
@@ -327,14 +321,14 @@ void spectrum_figure(const FigureInputs& in, FigureFolder& folder, std::ostream&
   const int row = s.rows / 2;
   std::vector<double> k, middle_row, mean_rows;
   std::ostringstream csv;
-  csv << "k,magnitude_row_" << row << ",magnitude_mean_over_rows\n";
+  write_csv_line(csv, {"k", "magnitude_row_" + std::to_string(row), "magnitude_mean_over_rows"});
   for (int c = 0; c < std::min(30, half); ++c) {
     double mean = 0.0;
     for (int y = 0; y < s.rows; ++y) mean += s.at<float>(y, c) / s.rows;
     k.push_back(c);
     middle_row.push_back(s.at<float>(row, c));
     mean_rows.push_back(mean);
-    csv << c << ',' << s.at<float>(row, c) << ',' << mean << '\n';
+    write_csv_line(csv, {std::to_string(c), general(s.at<float>(row, c)), general(mean)});
   }
   double low = 0.0, all = 0.0;
   for (int y = 0; y < s.rows; ++y) {
@@ -370,10 +364,10 @@ void components_figure(const FigureInputs& in, FigureFolder& folder) {
       "Fig. 6: similarity of place " + std::to_string(middle) + " to its neighbours, by m",
       "distance to the input place, m", "similarity (Eq. 3 over these places), mean");
   std::ostringstream csv;
-  csv << "place,distance_m";
   const std::vector<int> ms{2, 5, 15, 50, half};
-  for (int m : ms) csv << ",similarity_m" << m;
-  csv << '\n';
+  std::vector<std::string> header{"place", "distance_m"};
+  for (int m : ms) header.push_back("similarity_m" + std::to_string(m));
+  write_csv_line(csv, header);
   std::vector<std::vector<double>> sims;
   std::vector<double> distance;
   for (std::size_t j : near) distance.push_back(in.distance(j, middle));
@@ -387,9 +381,9 @@ void components_figure(const FigureInputs& in, FigureFolder& folder) {
                     x, y, eval::SeriesStyle::kLineAndPoints);
   }
   for (std::size_t r = 0; r < near.size(); ++r) {
-    csv << near[r] << ',' << distance[r];
-    for (const auto& s : sims) csv << ',' << s[r];
-    csv << '\n';
+    std::vector<std::string> fields{std::to_string(near[r]), general(distance[r])};
+    for (const auto& s : sims) fields.push_back(general(s[r]));
+    write_csv_line(csv, fields);
   }
   folder.csv("fig6_components.csv", csv.str());
   folder.plot(plot, "fig6_components.png");
@@ -405,7 +399,7 @@ void localisation_rate_figure(const FigureInputs& in, FigureFolder& folder, std:
   ms.push_back(half);
   std::vector<double> x, rate_lum, rate_col;
   std::ostringstream csv;
-  csv << "m,leave_one_out_rate_luminance,leave_one_out_rate_per_channel\n";
+  write_csv_line(csv, {"m", "leave_one_out_rate_luminance", "leave_one_out_rate_per_channel"});
   for (int m : ms) {
     int ok_lum = 0, ok_col = 0;
     for (std::size_t i = 0; i < n; ++i) {
@@ -424,7 +418,7 @@ void localisation_rate_figure(const FigureInputs& in, FigureFolder& folder, std:
     x.push_back(m);
     rate_lum.push_back(100.0 * ok_lum / n);
     rate_col.push_back(100.0 * ok_col / n);
-    csv << m << ',' << rate_lum.back() << ',' << rate_col.back() << '\n';
+    write_csv_line(csv, {std::to_string(m), general(rate_lum.back()), general(rate_col.back())});
   }
   folder.csv("fig6_localisation_rate.csv", csv.str());
   eval::LinePlot plot("Fig. 6 measured: leave-one-out localisation by number of components",
@@ -466,7 +460,7 @@ void dissimilarity_distance_figure(const FigureInputs& in, FigureFolder& folder,
                       "distance between the two places, m", "Dis / (rows x m), grey levels");
   const double norm = static_cast<double>(in.luminance.lines) * m;
   std::ostringstream csv;
-  csv << "reference_place,other_place,distance_m,dissimilarity_per_value\n";
+  write_csv_line(csv, {"reference_place", "other_place", "distance_m", "dissimilarity_per_value"});
   for (std::size_t r : reference_places(in)) {
     std::vector<std::pair<double, double>> curve;
     for (std::size_t j = 0; j < n; ++j) {
@@ -474,7 +468,7 @@ void dissimilarity_distance_figure(const FigureInputs& in, FigureFolder& folder,
       const double d = in.distance(j, r);
       const double dis = in.luminance_terms.dissimilarity(r, j, m) / norm;
       curve.emplace_back(d, dis);
-      csv << r << ',' << j << ',' << d << ',' << dis << '\n';
+      write_csv_line(csv, {std::to_string(r), std::to_string(j), general(d), general(dis)});
     }
     std::sort(curve.begin(), curve.end());
     std::vector<double> distances, values;

@@ -4,13 +4,13 @@
 
 #include "omninav/core/angles.hpp"
 #include "omninav/eval/plot.hpp"
+#include "omninav/report/floor_plan.hpp"
 
 namespace omninav::report {
 namespace {
 
-cv::Point2d point(const Eigen::Vector2d& position) {
-  return {position.x(), position.y()};
-}
+using eval::plot_point;
+using eval::plot_points;
 
 // An arrow as three segments: the shaft and two barbs 25° off it.
 void add_arrow(eval::PointsPlot& plot, const Eigen::Vector2d& from, double direction_rad,
@@ -18,24 +18,79 @@ void add_arrow(eval::PointsPlot& plot, const Eigen::Vector2d& from, double direc
   const auto along = [](double angle) { return Eigen::Vector2d(std::cos(angle), std::sin(angle)); };
   const Eigen::Vector2d tip = from + length * along(direction_rad);
   const double barb_rad = deg_to_rad(25.0);
-  plot.add_segment({point(from), point(tip), 0.55, 1.0});
+  plot.add_segment({plot_point(from), plot_point(tip), 0.55, 1.0});
   for (const double side : {-1.0, 1.0}) {
     const Eigen::Vector2d barb = tip - 0.35 * length * along(direction_rad + side * barb_rad);
-    plot.add_segment({point(tip), point(barb), 0.55, 1.0});
+    plot.add_segment({plot_point(tip), plot_point(barb), 0.55, 1.0});
   }
 }
 
 void add_route(eval::PointsPlot& plot, const std::vector<Eigen::Vector2d>& positions,
                const std::vector<int>& route, int start, int goal) {
-  for (std::size_t i = 1; i < route.size(); ++i)
-    plot.add_segment({point(positions[route[i - 1]]), point(positions[route[i]]), 0.0, 1.0});
-  std::vector<cv::Point2d> all, on_route;
-  for (const Eigen::Vector2d& position : positions) all.push_back(point(position));
-  for (const int place : route) on_route.push_back(point(positions[place]));
-  plot.add_points("places", all);
+  for (std::size_t i = 1; i < route.size(); ++i) {
+    plot.add_segment(
+        {plot_point(positions[route[i - 1]]), plot_point(positions[route[i]]), 0.0, 1.0});
+  }
+  std::vector<cv::Point2d> on_route;
+  for (const int place : route) on_route.push_back(plot_point(positions[place]));
+  plot.add_points("places", plot_points(positions));
   plot.add_points("route", on_route);
-  plot.add_points("start", {point(positions[start])});
-  plot.add_points("goal", {point(positions[goal])});
+  plot.add_points("start", {plot_point(positions[start])});
+  plot.add_points("goal", {plot_point(positions[goal])});
+}
+
+std::vector<Eigen::Vector2d> lattice_positions(const std::vector<navigation::PlaceNode>& places) {
+  std::vector<Eigen::Vector2d> positions;
+  for (const navigation::PlaceNode& place : places) positions.push_back(place.position_m);
+  return positions;
+}
+
+// A polyline as segments of grey level `grey`.
+void add_path(eval::PointsPlot& plot, const std::vector<cv::Point2d>& path, double grey) {
+  for (std::size_t i = 1; i < path.size(); ++i) plot.add_segment({path[i - 1], path[i], grey, 1.0});
+}
+
+// The places the run matched, in order, over the lattice.
+cv::Mat matched_path_panel(const navigation::NavigationResult& result,
+                           const std::vector<navigation::PlaceNode>& places, int goal) {
+  const std::vector<cv::Point2d> lattice = plot_points(lattice_positions(places));
+  std::vector<cv::Point2d> matched;
+  for (const navigation::NavigationStep& step : result.steps) {
+    if (step.match) matched.push_back(lattice[step.match->place]);
+  }
+  eval::PointsPlot plot("The route over the lattice (places matched, in order)", "x", "y");
+  add_path(plot, matched, 0.2);
+  plot.add_points("places", lattice);
+  plot.add_points("goal", {lattice[goal]});
+  return plot.render();
+}
+
+// The robot's true path over the scene and the places' true positions.
+cv::Mat true_path_panel(const navigation::NavigationResult& result, int goal,
+                        const memory::VisualMemory& memory, const NavigationScene& scene) {
+  std::vector<cv::Point2d> path;
+  for (const navigation::NavigationStep& step : result.steps) {
+    path.emplace_back(step.truth.x_m, step.truth.y_m);
+  }
+  eval::PointsPlot plot("The robot's true path", "x (m)", "y (m)");
+  add_floor_boxes(plot, scene.obstacles, 0.3);
+  add_path(plot, path, 0.1);
+  if (!scene.grid_world_positions.empty()) {
+    plot.add_points("grid images", plot_points(scene.grid_world_positions));
+  }
+  if (memory.all_have_truth()) {
+    std::vector<cv::Point2d> true_places;
+    for (std::size_t i = 0; i < memory.place_count(); ++i) {
+      true_places.push_back(plot_point(memory.place(i).truth->floor_position()));
+    }
+    plot.add_points("places (truth)", true_places);
+    plot.add_points("goal place", {true_places[goal]});
+  }
+  plot.add_points("start", {path.front()});
+  if (scene.goal_world_position) {
+    plot.add_points("goal pose", {plot_point(*scene.goal_world_position)});
+  }
+  return plot.render();
 }
 
 }  // namespace
@@ -44,8 +99,6 @@ cv::Mat route_figure(const std::vector<navigation::PlaceNode>& places,
                      const navigation::RoutePlan& plan, int start,
                      const std::optional<std::vector<Eigen::Vector2d>>& truth_m) {
   const std::vector<int> route = plan.route_from(start);
-  std::vector<Eigen::Vector2d> lattice;
-  for (const navigation::PlaceNode& place : places) lattice.push_back(place.position_m);
   eval::PointsPlot lattice_plot("Route on the lattice: each place's direction to the goal",
                                 "lattice x", "lattice y");
   const double arrow = 0.45 * navigation::lattice_spacing(places);
@@ -53,13 +106,22 @@ cv::Mat route_figure(const std::vector<navigation::PlaceNode>& places,
     if (plan.next[place] >= 0)
       add_arrow(lattice_plot, places[place].position_m, plan.direction_rad[place], arrow);
   }
-  add_route(lattice_plot, lattice, route, start, plan.goal);
+  add_route(lattice_plot, lattice_positions(places), route, start, plan.goal);
   cv::Mat picture = lattice_plot.render();
   if (truth_m) {
     eval::PointsPlot truth_plot("The route over the places' true positions", "x (m)", "y (m)");
     add_route(truth_plot, *truth_m, route, start, plan.goal);
     cv::hconcat(picture, truth_plot.render(), picture);
   }
+  return picture;
+}
+
+cv::Mat navigation_path_figure(const navigation::NavigationResult& result,
+                               const std::vector<navigation::PlaceNode>& places, int goal,
+                               const memory::VisualMemory& memory, const NavigationScene& scene) {
+  cv::Mat picture;
+  cv::hconcat(matched_path_panel(result, places, goal),
+              true_path_panel(result, goal, memory, scene), picture);
   return picture;
 }
 

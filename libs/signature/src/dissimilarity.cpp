@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 
 #include "omninav/core/errors.hpp"
+#include "omninav/core/format.hpp"
 #include "omninav/core/parse.hpp"
 
 namespace omninav::signature {
@@ -12,13 +12,6 @@ namespace omninav::signature {
 double ComponentWeights::operator[](int k) const {
   if (alpha.empty()) return 1.0;
   return alpha[std::min<std::size_t>(static_cast<std::size_t>(k), alpha.size() - 1)];
-}
-
-bool ComponentWeights::all_ones(int components) const {
-  for (int k = 0; k < components; ++k) {
-    if ((*this)[k] != 1.0) return false;
-  }
-  return true;
 }
 
 ComponentWeights parse_component_weights(const std::string& text, const std::string& where) {
@@ -41,12 +34,12 @@ ComponentWeights parse_component_weights(const std::string& text, const std::str
 }
 
 std::string to_string(const ComponentWeights& weights) {
-  std::ostringstream text;
-  text.precision(17);
+  std::string text;
   for (std::size_t i = 0; i < weights.alpha.size(); ++i) {
-    text << (i > 0 ? "," : "") << weights.alpha[i];
+    if (i > 0) text += ',';
+    text += general(weights.alpha[i], 17);
   }
-  return text.str();
+  return text;
 }
 
 double dissimilarity(const Signature& a, const Signature& b, int components,

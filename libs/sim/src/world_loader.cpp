@@ -1,23 +1,23 @@
 #include "omninav/sim/world_loader.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <filesystem>
-#include <sstream>
 
 #include "omninav/core/config.hpp"
 #include "omninav/core/errors.hpp"
+#include "omninav/core/format.hpp"
 #include "omninav/core/parse.hpp"
 
 namespace omninav::sim {
 namespace {
 
-// "[min, max]" (through a stream: GCC 12 warns falsely on some chains of string +).
+// "[min, max]".
 std::string range_text(double min, double max) {
-  std::ostringstream text;
-  text << '[' << min << ", " << max << ']';
-  return text.str();
+  return fmt::format("[{}, {}]", general(min), general(max));
 }
 
 std::string joined(const std::vector<std::string>& names) {

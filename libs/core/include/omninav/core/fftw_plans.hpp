@@ -94,6 +94,5 @@ fftwf_plan lines_r2c_float(const LinesShape& shape);
 fftwf_plan lines_forward_float(const LinesShape& shape);
 // Spectra → real lines (the backward transform, unnormalised: × width). Overwrites its input.
 fftw_plan lines_c2r(const LinesShape& shape);
-fftwf_plan lines_c2r_float(const LinesShape& shape);
 
 }  // namespace omninav::fftw

@@ -5,6 +5,7 @@
 // and text, so they are drawn here with cv::line / cv::putText (cv::FONT_HERSHEY_SIMPLEX,
 // anti-aliased with cv::LINE_AA). Images are BGR, CV_8UC3.
 
+#include <Eigen/Core>
 #include <cstddef>
 #include <filesystem>
 #include <opencv2/core.hpp>
@@ -57,6 +58,10 @@ class LinePlot {
   std::vector<Series> series_;
   bool zero_line_ = false;
 };
+
+// Positions (Eigen, the libraries' type) as the plots' points.
+cv::Point2d plot_point(const Eigen::Vector2d& position);
+std::vector<cv::Point2d> plot_points(const std::vector<Eigen::Vector2d>& positions);
 
 // A segment under the points: grey level 0 (black) to 1 (white), alpha 0 (invisible) to 1
 // (opaque), e.g. a spring drawn darker the stiffer it is.

@@ -10,8 +10,7 @@
 // be arbitrarily wrong, e.g. a jump of the compass, without moving the slope far), it needs
 // no tuning constant or scale estimate (unlike Huber/bisquare M-estimators), it is exact on
 // noiseless data and it is deterministic. Our slopes may therefore differ from the paper's
-// in the last digits on the same data. Ordinary least squares is returned beside it, so a
-// report can show how much the outliers pulled.
+// in the last digits on the same data.
 
 #include <cstddef>
 #include <span>
@@ -40,17 +39,5 @@ struct TheilSenParams {
 // sizes differ, a value is not finite, or all x are equal (no slope at all).
 LineFit theil_sen_fit(std::span<const double> x, std::span<const double> y,
                       const TheilSenParams& params = {});
-
-// Ordinary least squares. Same errors as theil_sen_fit.
-LineFit least_squares_fit(std::span<const double> x, std::span<const double> y);
-
-struct RegressionFits {
-  LineFit theil_sen;      // the robust fit: report this one
-  LineFit least_squares;  // for comparison
-};
-
-// Both fits of the same data.
-RegressionFits fit_line(std::span<const double> x, std::span<const double> y,
-                        const TheilSenParams& params = {});
 
 }  // namespace omninav::eval

@@ -22,10 +22,10 @@
 //     largest distance from a true position of the robot (at any step of any trial) to the
 //     convex hull of the places' true positions, in metres and in spacings.
 
+#include <Eigen/Core>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
-#include <opencv2/core.hpp>
 #include <optional>
 #include <string>
 #include <vector>
@@ -52,10 +52,10 @@ ConfigFolder load_config_folder(const std::filesystem::path& dir);
 
 // Where a world's trajectories go.
 struct WorldLayout {
-  cv::Point2d centre;      // a free point near the floor's centre: rotation, circle, wander
+  Eigen::Vector2d centre;  // a free point near the floor's centre: rotation, circle, wander
   double circle_radius_m;  // the largest free circle round `centre` up to the suite's radius
-  // The grid: x0, y0 its first point, nx x ny points `spacing_m` apart.
-  double x0 = 0.0, y0 = 0.0;
+  // The grid: nx x ny points `spacing_m` apart from `first_point` (its least x and y).
+  Eigen::Vector2d first_point = Eigen::Vector2d::Zero();
   int nx = 0, ny = 0;
   double spacing_m = 0.3;
 };
@@ -66,23 +66,26 @@ struct WorldLayout {
 WorldLayout plan_layout(const sim::World& world, int nx, int ny, double spacing_m,
                         double circle_radius_m, double clearance_m);
 
-// `count` seeded poses uniform over the rectangle [x0, x1] x [y0, y1] where `world` is free
-// (5 cm clearance, as grid points), headings uniform, at height z_m.
-std::vector<CameraPose> random_free_poses(const sim::World& world, double x0, double y0, double x1,
-                                          double y1, int count, std::uint32_t seed, double z_m);
+// `count` seeded poses uniform over the rectangle from `min` to `max` (its corners of least and
+// greatest x and y) where `world` is free (5 cm clearance, as grid points), headings uniform, at
+// height z_m.
+std::vector<CameraPose> random_free_poses(const sim::World& world, const Eigen::Vector2d& min,
+                                          const Eigen::Vector2d& max, int count, std::uint32_t seed,
+                                          double z_m);
 
 // The convex hull of `points` (counter-clockwise).
-std::vector<cv::Point2d> convex_hull(const std::vector<cv::Point2d>& points);
+std::vector<Eigen::Vector2d> convex_hull(std::vector<Eigen::Vector2d> points);
 // How far `p` lies outside the convex polygon `hull` (0 inside or on it); a hull of one or two
 // points is a point or a segment.
-double distance_outside(const std::vector<cv::Point2d>& hull, const cv::Point2d& p);
+double distance_outside(const std::vector<Eigen::Vector2d>& hull, const Eigen::Vector2d& p);
 
 // "Localised in the right room": of the queries standing in a region of `world` (a house's
 // room or corridor; those in a doorway or wall are left out), the share whose best place
 // stands in the same region. Each pair is (query's true position, best place's true position).
 // Nothing when no query stands in a region (a world without regions).
 std::optional<double> right_region_share(
-    const sim::World& world, const std::vector<std::pair<cv::Point2d, cv::Point2d>>& localised);
+    const sim::World& world,
+    const std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>>& localised);
 
 struct WorldEvaluation {
   Row row;

@@ -1,14 +1,16 @@
 #pragma once
-// Pictures of a route plan, like Fig. 18 of 001_5bb151a4e28490b4.txt: (a) the places on the
-// lattice with the direction each must take towards the goal, (b) the same route over the
-// places' true positions when the map has ground truth.
+// Pictures of navigation: a route plan, like Fig. 18 of 001_5bb151a4e28490b4.txt (`omninav
+// route`), and one navigation run (path.png and trial_<i>.png of `omninav navigate`).
 
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
 #include <optional>
 #include <vector>
 
+#include "omninav/memory/visual_memory.hpp"
+#include "omninav/navigation/navigator.hpp"
 #include "omninav/navigation/route_planner.hpp"
+#include "omninav/sim/world.hpp"
 
 namespace omninav::report {
 
@@ -19,5 +21,19 @@ namespace omninav::report {
 cv::Mat route_figure(const std::vector<navigation::PlaceNode>& places,
                      const navigation::RoutePlan& plan, int start,
                      const std::optional<std::vector<Eigen::Vector2d>>& truth_m);
+
+// Where the run took place, beside the map: drawn under the robot's true path.
+struct NavigationScene {
+  std::vector<sim::FloorBox> obstacles;                // a rendered world's furniture
+  std::vector<Eigen::Vector2d> grid_world_positions;   // a grid database's images
+  std::optional<Eigen::Vector2d> goal_world_position;  // the goal pose, when known (trials)
+};
+
+// Two panels: the places matched, in order, over the lattice (with the goal place `goal`);
+// and the robot's true path over the scene, with the places' true positions when the map has
+// them. BGR, CV_8UC3.
+cv::Mat navigation_path_figure(const navigation::NavigationResult& result,
+                               const std::vector<navigation::PlaceNode>& places, int goal,
+                               const memory::VisualMemory& memory, const NavigationScene& scene);
 
 }  // namespace omninav::report

@@ -33,7 +33,6 @@ struct ComponentWeights {
   std::vector<double> alpha{1.0};
 
   double operator[](int k) const;
-  bool all_ones(int components) const;
 };
 
 // Parses "1, 1, 0.5" (comma-separated, each 0..1e6). Throws ConfigError naming `where`.
