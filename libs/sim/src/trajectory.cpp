@@ -1,5 +1,6 @@
 #include "omninav/sim/trajectory.hpp"
 
+#include <Eigen/Core>
 #include <array>
 #include <cmath>
 #include <map>
@@ -98,23 +99,23 @@ void require_positive(double value, const std::string& key, const std::string& s
 // Along the polyline at speed_m_s, facing along each leg; at each corner the robot turns on the
 // spot at turn_rate_rad_s at most (frames keep coming while it turns, so that a visual compass
 // can follow), or at once when the rate is 0.
-void walk_polyline(const std::vector<cv::Point2d>& points, double speed_m_s, double fps,
+void walk_polyline(const std::vector<Eigen::Vector2d>& points, double speed_m_s, double fps,
                    double turn_rate_rad_s, const std::string& spec, std::vector<TimedPose>& poses) {
   const double step_m = speed_m_s / fps;
   double time_s = 0.0;
-  const auto add = [&](const cv::Point2d& at, double heading) {
+  const auto add = [&](const Eigen::Vector2d& at, double heading) {
     TimedPose pose;
     pose.time_s = time_s;
-    pose.pose.x_m = at.x;
-    pose.pose.y_m = at.y;
+    pose.pose.x_m = at.x();
+    pose.pose.y_m = at.y();
     pose.pose.heading_rad = heading;
     poses.push_back(pose);
     time_s += 1.0 / fps;
   };
   for (std::size_t leg = 0; leg + 1 < points.size(); ++leg) {
-    const cv::Point2d from = points[leg], to = points[leg + 1];
-    const double length = cv::norm(to - from);
-    const double heading = std::atan2(to.y - from.y, to.x - from.x);
+    const Eigen::Vector2d from = points[leg], to = points[leg + 1];
+    const double length = (to - from).norm();
+    const double heading = std::atan2(to.y() - from.y(), to.x() - from.x());
     if (leg > 0 && turn_rate_rad_s > 0.0) {
       const double previous = poses.back().pose.heading_rad;
       const double turn = signed_difference(heading, previous);
@@ -371,7 +372,7 @@ std::vector<TimedPose> KindContext::polyline_poses(TrajectoryKind kind) const {
   const double turn_rate = deg_to_rad(args.number("turn_rate_deg_s", 90.0));
   if (turn_rate < 0.0)
     throw UsageError("trajectory '" + spec + "': turn_rate_deg_s must not be negative");
-  std::vector<cv::Point2d> points{{x0, y0}, {x1, y1}};
+  std::vector<Eigen::Vector2d> points{{x0, y0}, {x1, y1}};
   if (kind == TrajectoryKind::kZigzag) {
     const int rows = pose_count(args.whole("rows", 4), spec);
     if (rows < 2) throw UsageError("trajectory '" + spec + "': rows must be at least 2");
@@ -382,7 +383,7 @@ std::vector<TimedPose> KindContext::polyline_poses(TrajectoryKind kind) const {
       points.emplace_back(row % 2 == 0 ? x1 : x0, y);
     }
   }
-  if (cv::norm(points.back() - points.front()) == 0.0 && points.size() == 2) {
+  if ((points.back() - points.front()).norm() == 0.0 && points.size() == 2) {
     throw UsageError("trajectory '" + spec + "': the line has zero length");
   }
   walk_polyline(points, speed, fps, turn_rate, spec, poses);
