@@ -24,12 +24,6 @@ TEST(WrapAngle, DegreesMatchRadians) {
   EXPECT_DOUBLE_EQ(wrap_angle_deg(540.0), 180.0);
 }
 
-TEST(WrapAngle, PositiveRangeIsZeroToTwoPi) {
-  EXPECT_DOUBLE_EQ(wrap_angle_positive(-0.5), kTwoPi - 0.5);
-  EXPECT_DOUBLE_EQ(wrap_angle_positive(kTwoPi), 0.0);
-  EXPECT_DOUBLE_EQ(wrap_angle_positive(1.0), 1.0);
-}
-
 TEST(SignedDifference, CrossesTheSeamTheShortWay) {
   // 179° to -179° is a 2° counter-clockwise turn, not -358°.
   EXPECT_NEAR(signed_difference_deg(-179.0, 179.0), 2.0, 1e-12);

@@ -34,13 +34,6 @@ inline double wrap_angle_deg(double deg) {
   return wrapped;
 }
 
-// Wraps to [0, 2π).
-inline double wrap_angle_positive(double rad) {
-  double wrapped = std::fmod(rad, kTwoPi);
-  if (wrapped < 0.0) wrapped += kTwoPi;
-  return wrapped >= kTwoPi ? 0.0 : wrapped;
-}
-
 // The signed angle that takes `from` to `to`, in (-π, π]: to ≈ from + signed_difference(to, from).
 inline double signed_difference(double to, double from) {
   return wrap_angle(to - from);
