@@ -1,12 +1,11 @@
 // omninav organise: the spring-model lattice of a visual memory (Ceres), stored in the map.
 #include <cmath>
-#include <iomanip>
 #include <iostream>
-#include <sstream>
 
 #include "app_config.hpp"
 #include "cli.hpp"
 #include "omninav/core/errors.hpp"
+#include "omninav/core/format.hpp"
 #include "omninav/core/output_file.hpp"
 #include "omninav/eval/png.hpp"
 #include "omninav/evaluation/organised_map.hpp"
@@ -37,38 +36,33 @@ void run_organise(const GlobalOptions& global, const OrganiseOptions& options) {
   const lattice::OrganiseResult& organised = result.organised;
 
   const lattice::DistanceCalibration& calibration = organised.calibration;
-  summary(global) << std::fixed << std::setprecision(3) << "organised " << memory.place_count()
-                  << " places of " << options.map.string() << "\n"
-                  << "  scale:    " << calibration.step_m << " m between consecutive places ("
+  summary(global) << "organised " << memory.place_count() << " places of " << options.map.string()
+                  << "\n"
+                  << "  scale:    " << fixed(calibration.step_m, 3)
+                  << " m between consecutive places ("
                   << lattice::to_string(calibration.step_source) << "), dissimilarity "
-                  << calibration.step_dissimilarity
+                  << fixed(calibration.step_dissimilarity, 3)
                   << " per step (median of the places' own), plateau "
-                  << calibration.plateau_dissimilarity << "\n"
+                  << fixed(calibration.plateau_dissimilarity, 3) << "\n"
                   << "  springs:  " << organised.lattice.springs_kept << " kept of "
                   << organised.lattice.springs_given << " offered, of "
                   << organised.lattice.place_pairs
-                  << " pairs of places (x1 = " << calibration.correlation_range_m
-                  << " m; weaker than K = " << params.lattice.min_stiffness << " dropped), "
-                  << organised.lattice.motion_constraints
+                  << " pairs of places (x1 = " << fixed(calibration.correlation_range_m, 3)
+                  << " m; weaker than K = " << fixed(params.lattice.min_stiffness, 3)
+                  << " dropped), " << organised.lattice.motion_constraints
                   << " motions (directions from the phases)\n"
                   << "  solver:   " << organised.lattice.summary << "\n";
   const std::optional<evaluation::LatticeScore>& evaluation = result.score;
   if (evaluation) {
     // An RMSE over no places (a map without interior places) is NaN: said in words.
     const auto rmse = [](double value, const char* places) {
-      std::ostringstream text;
-      text << std::fixed << std::setprecision(3);
-      if (std::isnan(value)) {
-        text << "no " << places << " places";
-      } else {
-        text << value << ' ' << places;
-      }
-      return text.str();
+      return std::isnan(value) ? "no " + std::string(places) + " places"
+                               : fixed(value, 3) + " " + places;
     };
-    summary(global) << "  vs truth: RMSE after Procrustes " << evaluation->rmse.all << " spacings ("
-                    << rmse(evaluation->rmse.interior, "interior") << ", "
+    summary(global) << "  vs truth: RMSE after Procrustes " << fixed(evaluation->rmse.all, 3)
+                    << " spacings (" << rmse(evaluation->rmse.interior, "interior") << ", "
                     << rmse(evaluation->rmse.boundary, "boundary") << "; spacing "
-                    << evaluation->spacing_m << " m)\n"
+                    << fixed(evaluation->spacing_m, 3) << " m)\n"
                     << "  folds:    " << evaluation->folded.size() << " of "
                     << evaluation->neighbour_triangles
                     << " triangles of true neighbours turned over in the lattice\n";
