@@ -81,6 +81,8 @@ void run_explore(const GlobalOptions& global, const ExploreOptions& options) {
                                                   .all_frames = options.all_frames,
                                                   .frame_count = input.size(),
                                                   .next = [&input] { return input.next(); }});
+  // A camera's dropped frames and stop by Ctrl-C stay with the run they shaped.
+  memory.add_run_note(memory.runs().size() - 1, input.notes());
   store.save(memory, {.overwrite = options.overwrite, .after_place = {}});
   const std::size_t added = memory.place_count() - places_before;
   summary(global) << "explored " << run.frames << " frames of " << options.input.string()

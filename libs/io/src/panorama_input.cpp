@@ -1,6 +1,7 @@
 #include "omninav/io/panorama_input.hpp"
 
 #include "omninav/core/errors.hpp"
+#include "omninav/io/camera_sequence.hpp"
 #include "omninav/io/image_file.hpp"
 
 namespace omninav::io {
@@ -10,7 +11,9 @@ PanoramaInput::PanoramaInput(const std::filesystem::path& input,
                              PanoramaInputOptions options)
     : unwrap_params_(std::move(unwrap_params)), options_(options) {
   std::error_code error;
-  if (std::filesystem::is_regular_file(input, error) && is_image_file_name(input)) {
+  if (const std::optional<std::string> device = camera_device(input.string())) {
+    reader_ = std::make_unique<CameraSequence>(*device);
+  } else if (std::filesystem::is_regular_file(input, error) && is_image_file_name(input)) {
     single_ = input;
   } else {
     reader_ = open_sequence(input);
@@ -52,6 +55,10 @@ std::size_t PanoramaInput::size() const {
 std::string PanoramaInput::describe() const {
   return (single_ ? "image " + single_->string() : reader_->describe()) +
          (unwrap_ ? " (unwrapped with camera.yaml)" : "");
+}
+
+std::string PanoramaInput::notes() const {
+  return reader_ ? reader_->notes() : std::string();
 }
 
 bool PanoramaInput::is_grid() const {

@@ -88,6 +88,10 @@ void VisualMemory::set_run_heading_source(std::size_t run_index, HeadingSource s
   run(run_index).heading_source = source;
 }
 
+void VisualMemory::add_run_note(std::size_t run_index, const std::string& note) {
+  if (!note.empty()) run(run_index).description += "; " + note;
+}
+
 PlaceIndex VisualMemory::add_place(Place place) {
   const signature::Signature& s = place.signature;
   const int channels = parameters_.signature.colour == signature::ColourMode::kLuminance ? 1 : 3;

@@ -1,8 +1,8 @@
 #pragma once
 // The frames of an input as panoramas, for every command that reads images: any input
-// open_sequence reads, or a single image file, with raw omnidirectional images unwrapped on
-// the fly (omni::Unwrapper, DESIGN.md's Data formats) when the input says it needs it (a BoB
-// database with needsUnwrapping) or the caller asks.
+// open_sequence reads, a camera ("camera:0", camera_sequence.hpp), or a single image file, with raw
+// omnidirectional images unwrapped on the fly (omni::Unwrapper, DESIGN.md's Data formats) when the
+// input says it needs it (a BoB database with needsUnwrapping) or the caller asks.
 
 #include <cstddef>
 #include <filesystem>
@@ -39,6 +39,8 @@ class PanoramaInput {
   // What is read, e.g. "BoB database grid/ (80 images, with poses) (unwrapped with camera.yaml)".
   std::string describe() const;
   bool is_grid() const;
+  // What the reading adds to the results (SequenceReader::notes); empty when nothing.
+  std::string notes() const;
   bool unwraps() const { return unwrap_; }
 
  private:

@@ -34,6 +34,10 @@ class SequenceReader {
   virtual bool is_grid() const { return false; }
   // Whether the frames come from a video file (they have no file names of their own).
   virtual bool is_video() const { return false; }
+  // What the reading itself adds to the results, for a command's log and a map's run: e.g. a
+  // camera's frames dropped when the processing fell behind, or its stop by Ctrl-C. Empty when
+  // nothing.
+  virtual std::string notes() const { return {}; }
 };
 
 // Opens `path` as whichever kind it is:
@@ -41,6 +45,7 @@ class SequenceReader {
 //   - any other folder: its images (is_image_file_name), natural sort;
 //   - a .csv file: rows of `file, x_m, y_m, heading_deg` (files relative to the CSV);
 //   - any other file: a video, read with cv::VideoCapture.
+// (A camera, "camera:0", opens through PanoramaInput: camera_sequence.hpp.)
 std::unique_ptr<SequenceReader> open_sequence(const std::filesystem::path& path);
 
 // Reads every frame (convenience for small sequences and tests).

@@ -127,6 +127,9 @@ class VisualMemory {
   // UsageError for an index beyond the runs.
   void record_run_progress(std::size_t run_index, int frames, int places);
   void set_run_heading_source(std::size_t run_index, HeadingSource source);
+  // Appends "; <note>" to a run's description: what the input adds to it, e.g. a camera's frames
+  // dropped or its stop by Ctrl-C. An empty note changes nothing.
+  void add_run_note(std::size_t run_index, const std::string& note);
 
   // Whether every place has a ground-truth pose / a lattice position.
   bool all_have_truth() const;
