@@ -266,9 +266,11 @@ void add_compass_command(CLI::App& app, const GlobalOptions& global) {
       "  omninav compass --input rotate_db --truth --out headings.csv --plot headings.png\n"
       "  omninav compass --input route_db --method fx:3 --width 1080 --out -");
   command
-      ->add_option("-i,--input", options->input,
-                   "Panoramas: a folder of images, a video, a BoB image database folder, or a CSV "
-                   "of file,x_m,y_m,heading_deg (DESIGN.md, Data formats)")
+      ->add_option(
+          "-i,--input", options->input,
+          "Panoramas: a folder of images, a video, a BoB image database folder, or a CSV "
+          "of file,x_m,y_m,heading_deg (DESIGN.md, Data formats); or a camera, camera:0 (V4L2), "
+          "read until Ctrl-C")
       ->type_name("PATH")
       ->required();
   command

@@ -106,8 +106,10 @@ void add_explore_command(CLI::App& app, const GlobalOptions& global) {
       "into an existing map extends it. Every image of a BoB grid database becomes a place; "
       "otherwise memory.yaml's exploration rules (or the options below) decide.");
   command
-      ->add_option("--input", options->input,
-                   "Images: a folder, a video, a BoB database or a CSV of file,x_m,y_m,heading_deg")
+      ->add_option(
+          "--input", options->input,
+          "Images: a folder, a video, a BoB database or a CSV of file,x_m,y_m,heading_deg; or "
+          "a camera, camera:0 (V4L2), explored until Ctrl-C")
       ->required();
   command->add_option("--out", options->out, "The map to write or extend, e.g. maps/room.vmem")
       ->required();

@@ -63,7 +63,7 @@ CameraSequence::CameraSequence(const std::string& device, CameraOptions options)
   }
   if (options_.queue_frames == 0) throw UsageError("a camera's queue must hold a frame at least");
   std::error_code error;
-  is_file_ = std::filesystem::is_regular_file(device, error);
+  is_file_ = !all_digits(device) && std::filesystem::is_regular_file(device, error);
   name_ = is_file_ ? device : "camera " + device;
   bool opened = false;
   cv::Mat first;
@@ -92,6 +92,7 @@ CameraSequence::CameraSequence(const std::string& device, CameraOptions options)
     const double count = capture_.get(cv::CAP_PROP_FRAME_COUNT);
     if (std::isfinite(count) && count > 0.0) declared_frames_ = static_cast<std::size_t>(count);
   }
+  first_size_ = first.size();
   signal_guard_ = std::make_unique<SignalGuard>();
   push({next_capture_index_++, first, capture_time_s()});
   grabber_ = std::thread([this] { grab_loop(); });
@@ -134,7 +135,12 @@ void CameraSequence::grab_loop() {
       if (stopping_ || g_interrupted.load()) break;
     }
     cv::Mat image;  // a fresh Mat each time: the queued ones must not be overwritten
-    if (!capture_.read(image) || image.empty()) break;
+    if (!capture_.read(image) || image.empty()) {
+      const std::lock_guard lock(mutex_);
+      // A file ends; a device that stops delivering (unplugged, failed) is worth saying.
+      device_lost_ = !is_file_ && !stopping_ && !g_interrupted.load();
+      break;
+    }
     Captured captured{next_capture_index_++, image, capture_time_s()};
     if (is_file_ && options_.pace_file && captured.time_s) {
       std::unique_lock lock(mutex_);
@@ -196,8 +202,7 @@ std::string CameraSequence::describe() const {
     if (fps_) text << (declared_frames_ > 0 ? " " : "") << "at " << *fps_ << " fps";
     text << (options_.pace_file ? ", delivered at its pace" : ", delivered as read");
   } else {
-    text << name_ << " (V4L2, " << capture_.get(cv::CAP_PROP_FRAME_WIDTH) << "x"
-         << capture_.get(cv::CAP_PROP_FRAME_HEIGHT);
+    text << name_ << " (V4L2, " << first_size_.width << "x" << first_size_.height;
     if (fps_) text << " at " << *fps_ << " fps";
   }
   text << "; a queue of " << options_.queue_frames
@@ -213,6 +218,7 @@ std::string CameraSequence::notes() const {
     text << ", stopped by Ctrl-C";
     if (unprocessed_ > 0) text << " (" << plural(unprocessed_, "captured frame") << " left)";
   }
+  if (device_lost_) text << ", then the camera stopped delivering frames";
   text << "; " << plural(dropped_, "frame") << " dropped";
   if (dropped_ > 0) {
     text << " (the processing fell behind the camera: its queue of " << options_.queue_frames
@@ -242,14 +248,14 @@ void CameraSequence::wait_for_capture_end() {
 }
 
 void CameraSequence::report_end() {
-  bool dropped = false;
+  bool warn = false;
   {
     const std::lock_guard lock(mutex_);
     if (reported_) return;
     reported_ = true;
-    dropped = dropped_ > 0;
+    warn = dropped_ > 0 || device_lost_;
   }
-  if (dropped) {
+  if (warn) {
     log_warning(notes());
   } else {
     log_info(notes());

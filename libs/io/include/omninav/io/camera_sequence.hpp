@@ -94,6 +94,7 @@ class CameraSequence : public SequenceReader {
   cv::VideoCapture capture_;
   std::optional<double> fps_;
   std::size_t declared_frames_ = 0;
+  cv::Size first_size_;  // describe() must not ask the capture, which the grabber is using
   std::optional<double> first_time_ms_;
   int next_capture_index_ = 0;
   ImageSizeCheck size_check_;
@@ -105,6 +106,7 @@ class CameraSequence : public SequenceReader {
   bool capture_ended_ = false;
   bool stopping_ = false;
   bool interrupted_ = false;
+  bool device_lost_ = false;  // a device's read failed before anyone stopped it
   bool reported_ = false;
   std::size_t dropped_ = 0;
   std::size_t delivered_ = 0;
