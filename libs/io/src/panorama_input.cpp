@@ -1,6 +1,7 @@
 #include "omninav/io/panorama_input.hpp"
 
 #include "omninav/core/errors.hpp"
+#include "omninav/io/bag_sequence.hpp"
 #include "omninav/io/image_file.hpp"
 
 namespace omninav::io {
@@ -10,8 +11,14 @@ PanoramaInput::PanoramaInput(const std::filesystem::path& input,
                              PanoramaInputOptions options)
     : unwrap_params_(std::move(unwrap_params)), options_(options) {
   std::error_code error;
+  if (!is_bag(input) && (!options.topic.empty() || !options.pose_topic.empty())) {
+    throw UsageError(input.string() + ": --topic and --pose-topic are for bags (.bag, .mcap, " +
+                     ".db3, or a ROS 2 bag folder)");
+  }
   if (std::filesystem::is_regular_file(input, error) && is_image_file_name(input)) {
     single_ = input;
+  } else if (is_bag(input)) {
+    reader_ = open_bag(input, {.topic = options.topic, .pose_topic = options.pose_topic});
   } else {
     reader_ = open_sequence(input);
   }
