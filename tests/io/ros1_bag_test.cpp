@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <opencv2/imgproc.hpp>
+
 #include "bag_test_support.hpp"
 #include "omninav/core/errors.hpp"
 #include "omninav/io/panorama_input.hpp"
@@ -90,6 +92,35 @@ TEST(Ros1Bag, TruncatedBagSaysHowToRecoverAndReindexedKeepsTheFramesBefore) {
   std::vector<Frame> posed(frames.begin(), frames.begin() + 4);
   expect_route(posed, Pixels::kColour, true, 4);
   EXPECT_FALSE(frames[4].truth.has_value());
+}
+
+TEST(Ros1Bag, BayerImagesAreDemosaicedWithTheirColoursInPlace) {
+  const TempDir dir;
+  const std::vector<Frame> frames = read_bag(write_bag(dir, "--encoding bayer_rggb8"), {});
+  const std::vector<Frame> route = testing::route_frames();
+  ASSERT_EQ(frames.size(), route.size());
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    ASSERT_EQ(frames[i].image.type(), CV_8UC3);
+    // Demosaicing interpolates two of every three samples: close to the database, and much
+    // closer than with red and blue swapped (a pattern read the wrong way round).
+    cv::Mat swapped;
+    cv::cvtColor(route[i].image, swapped, cv::COLOR_BGR2RGB);
+    const double error = cv::norm(frames[i].image, route[i].image, cv::NORM_L1) /
+                         static_cast<double>(route[i].image.total() * 3);
+    const double swapped_error = cv::norm(frames[i].image, swapped, cv::NORM_L1) /
+                                 static_cast<double>(route[i].image.total() * 3);
+    EXPECT_LT(error, 8.0) << "frame " << i;                  // measured 4.8-6.2
+    EXPECT_GT(swapped_error, 3.0 * error) << "frame " << i;  // measured 22-28
+    // Where the mosaic sampled a colour, it is kept: red on even rows and columns, blue on odd.
+    for (int row = 1; row + 1 < route[i].image.rows; ++row) {
+      for (int col = 1; col + 1 < route[i].image.cols; ++col) {
+        const int channel = row % 2 == 0 && col % 2 == 0 ? 2 : row % 2 == 1 && col % 2 == 1 ? 0 : 1;
+        ASSERT_EQ(frames[i].image.at<cv::Vec3b>(row, col)[channel],
+                  route[i].image.at<cv::Vec3b>(row, col)[channel])
+            << "frame " << i << " row " << row << " col " << col;
+      }
+    }
+  }
 }
 
 }  // namespace

@@ -74,6 +74,11 @@ def encode(rows, encoding):
                  for r in rows]
     elif encoding == "mono8":
         lines = [grey(r) for r in rows]
+    elif encoding == "bayer_rggb8":
+        # R G R G ... on even rows, G B G B ... on odd rows.
+        lines = [bytes(r[3 * c + (0 if row % 2 == 0 and c % 2 == 0 else
+                                  2 if row % 2 == 1 and c % 2 == 1 else 1)]
+                       for c in range(len(r) // 3)) for row, r in enumerate(rows)]
     elif encoding == "mono16":
         lines = [b"".join(struct.pack("<H", 257 * g) for g in grey(r)) for r in rows]
     else:

@@ -2,8 +2,8 @@
 independent of omninav's C++ reader, for the io tests (run by them at test time).
 
   /usr/bin/python3 write_ros1_bag.py DATABASE OUT.bag [--encoding rgb8|bgr8|rgba8|bgra8|mono8|
-      mono16|png] [--poses odometry|pose_stamped] [--second-camera] [--truncate-bytes N]
-      [--compression none|bz2|lz4] [--chunk-bytes N]
+      mono16|bayer_rggb8|png] [--poses odometry|pose_stamped] [--second-camera]
+      [--truncate-bytes N] [--compression none|bz2|lz4] [--chunk-bytes N]
 
 Images on /camera/image_raw (sensor_msgs/Image) or, with --encoding png,
 /camera/image_raw/compressed (sensor_msgs/CompressedImage, the PNG files' bytes); poses on /odom
