@@ -6,6 +6,7 @@
 #include <lz4frame.h>
 #include <zstd.h>
 
+#include <algorithm>
 #include <fstream>
 #include <map>
 #include <memory>
@@ -19,6 +20,9 @@ namespace {
 
 constexpr char kMagic[] = "\x89MCAP0\r\n";
 constexpr std::size_t kMagicBytes = 8;
+// rosbag2 writes chunks of 768 kB by default; a larger limit than any recorder's, so that a
+// damaged size cannot make the reader allocate without bound.
+constexpr std::uint64_t kMaxChunkBytes = std::uint64_t{256} << 20;
 
 enum Opcode : std::uint8_t {
   kHeader = 0x01,
@@ -92,6 +96,8 @@ class Cursor {
       throw InputError(file.string() + ": not an MCAP file (no MCAP magic at its start)");
     }
     position_ = kMagicBytes;
+    std::error_code error;
+    file_size_ = std::filesystem::file_size(file, error);
   }
 
   // The next message, or false at the end of the data. Throws InputError at damage.
@@ -119,7 +125,7 @@ class Cursor {
         ended_ = true;
         return false;
       }
-      if (length > (std::uint64_t{1} << 40)) throw truncated();
+      if (length > file_size_ - std::min(file_size_, position_ + 9)) throw truncated();
       std::vector<std::uint8_t> content(length);
       stream_.read(reinterpret_cast<char*>(content.data()), static_cast<std::streamsize>(length));
       if (static_cast<std::uint64_t>(stream_.gcount()) != length) throw truncated();
@@ -200,7 +206,10 @@ class Cursor {
     const std::string compression = fields.string();
     const std::uint64_t compressed_size = fields.u64();
     if (compressed_size > fields.left()) throw InputError(where + " is cut short");
-    if (size > (std::uint64_t{1} << 36)) throw InputError(where + ": an absurd size");
+    if (size > kMaxChunkBytes) {
+      throw InputError(where + ": " + std::to_string(size) + " bytes uncompressed, more than " +
+                       std::to_string(kMaxChunkBytes) + " (not a recording's chunk)");
+    }
     const std::uint8_t* compressed = fields.here();
     std::vector<std::uint8_t> records(size);
     if (compression.empty()) {
@@ -245,6 +254,7 @@ class Cursor {
   std::filesystem::path file_;
   std::ifstream stream_;
   std::uint64_t position_ = 0;
+  std::uint64_t file_size_ = 0;
   bool ended_ = false;
   std::vector<std::uint8_t> chunk_;
   std::size_t chunk_offset_ = 0;

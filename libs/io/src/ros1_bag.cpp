@@ -148,6 +148,17 @@ cv::Mat decode_raw_image(RawImage image, const std::string& where) {
                      std::to_string(image.height) + " rows of " + std::to_string(image.step) +
                      " bytes");
   }
+  std::uint64_t row_bytes = 0;
+  try {
+    row_bytes = static_cast<std::uint64_t>(image.width) * encodings::numChannels(image.encoding) *
+                (encodings::bitDepth(image.encoding) / 8);
+  } catch (const std::exception&) {
+    throw InputError(where + ": unknown image encoding '" + image.encoding + "'");
+  }
+  if (row_bytes == 0 || image.step < row_bytes) {
+    throw InputError(where + ": rows of " + std::to_string(image.step) + " bytes (step) for " +
+                     std::to_string(image.width) + " pixels of '" + image.encoding + "'");
+  }
   sensor_msgs::Image message;
   message.height = image.height;
   message.width = image.width;
