@@ -64,6 +64,14 @@ TEST(IsBag, ByExtensionOrRos2Folder) {
   EXPECT_TRUE(is_bag(dir.path()));
 }
 
+TEST(OpenSequence, TopicsForAnInputThatIsNoBagAreAUsageError) {
+  const testing::TempDir dir;
+  testing::write_image(dir / "0.png", testing::make_image(0));
+  EXPECT_THROW(open_sequence(dir.path(), {.topic = "/camera", .pose_topic = ""}), UsageError);
+  EXPECT_THROW(open_sequence(dir.path(), {.topic = "", .pose_topic = "/odom"}), UsageError);
+  EXPECT_EQ(open_sequence(dir.path(), {})->size(), 1u);
+}
+
 TEST(OpenBag, FilesThatAreNotBagsAreClearErrors) {
   const testing::TempDir dir;
   const std::vector<std::pair<std::string, std::string>> cases = {

@@ -76,6 +76,29 @@ TEST(McapBag, Ros2BagFolderThroughPanoramaInput) {
       << frames[2].source;
 }
 
+TEST(McapBag, RawOmnidirectionalFramesAreUnwrappedAsAnyInputs) {
+  omni::UnwrapParams camera;  // a small mirror in the route's 48 x 12 frames
+  camera.units = omni::LengthUnits::kPixels;
+  camera.centre_x = 24.0;
+  camera.centre_y = 6.0;
+  camera.inner_radius = 1.0;
+  camera.outer_radius = 5.5;
+  camera.width_px = 36;
+  camera.height_px = 4;
+  PanoramaInput input(kBagData / "route_raw.mcap", [&camera] { return camera; },
+                      {.force_unwrap = true});
+  const std::vector<Frame> route = testing::route_frames();
+  const omni::Unwrapper unwrapper = omni::make_unwrapper(camera, route[0].image);
+  std::size_t count = 0;
+  while (std::optional<Frame> frame = input.next()) {
+    ASSERT_LT(count, route.size());
+    EXPECT_TRUE(testing::same_pixels(frame->image, unwrapper.unwrap(route[count].image)))
+        << frame->source;
+    ++count;
+  }
+  EXPECT_EQ(count, route.size());
+}
+
 TEST(McapBag, ReadingSlowlyGivesTheSameFrames) {
   // Nothing in the reading depends on the wall clock: frames read with pauses between them
   // (a slow consumer) are the frames read at full speed.

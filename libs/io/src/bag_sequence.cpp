@@ -208,6 +208,16 @@ std::unique_ptr<SequenceReader> open_bag(const std::filesystem::path& path,
   return std::make_unique<BagSequence>(path, std::move(backend), options);
 }
 
+std::unique_ptr<SequenceReader> open_sequence(const std::filesystem::path& path,
+                                              const BagOptions& options) {
+  if (is_bag(path)) return open_bag(path, options);
+  if (!options.topic.empty() || !options.pose_topic.empty()) {
+    throw UsageError(path.string() + ": --topic and --pose-topic are for bags (.bag, .mcap, " +
+                     ".db3, or a ROS 2 bag folder)");
+  }
+  return open_sequence(path);
+}
+
 std::optional<CameraPose> interpolate_pose(const std::vector<StampedPose>& poses, double stamp_s) {
   if (poses.empty() || stamp_s < poses.front().stamp_s || stamp_s > poses.back().stamp_s) {
     return std::nullopt;

@@ -11,16 +11,12 @@ PanoramaInput::PanoramaInput(const std::filesystem::path& input,
                              PanoramaInputOptions options)
     : unwrap_params_(std::move(unwrap_params)), options_(options) {
   std::error_code error;
-  if (!is_bag(input) && (!options.topic.empty() || !options.pose_topic.empty())) {
-    throw UsageError(input.string() + ": --topic and --pose-topic are for bags (.bag, .mcap, " +
-                     ".db3, or a ROS 2 bag folder)");
-  }
-  if (std::filesystem::is_regular_file(input, error) && is_image_file_name(input)) {
+  const BagOptions bag{.topic = options.topic, .pose_topic = options.pose_topic};
+  if (std::filesystem::is_regular_file(input, error) && is_image_file_name(input) &&
+      bag.topic.empty() && bag.pose_topic.empty()) {
     single_ = input;
-  } else if (is_bag(input)) {
-    reader_ = open_bag(input, {.topic = options.topic, .pose_topic = options.pose_topic});
   } else {
-    reader_ = open_sequence(input);
+    reader_ = open_sequence(input, bag);  // with a topic, an image file is the UsageError
   }
   unwrap_ = options.force_unwrap || (reader_ && reader_->needs_unwrapping());
 }

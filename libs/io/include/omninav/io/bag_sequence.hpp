@@ -36,6 +36,11 @@ bool is_bag(const std::filesystem::path& path);
 std::unique_ptr<SequenceReader> open_bag(const std::filesystem::path& path,
                                          const BagOptions& options);
 
+// open_sequence(path), a bag opened with `options`; throws UsageError when `options` names a
+// topic and `path` is not a bag.
+std::unique_ptr<SequenceReader> open_sequence(const std::filesystem::path& path,
+                                              const BagOptions& options);
+
 // A pose at a stamp, from a pose topic: position and unit quaternion (x, y, z, w).
 struct StampedPose {
   double stamp_s = 0.0;
