@@ -4,8 +4,9 @@
 // The files are committed, so that neither the tests nor CI need node or npm. Remade with:
 //
 //   mkdir -p /tmp/mcap-writer && cd /tmp/mcap-writer && npm init -y >/dev/null &&
-//   npm install @mcap/core@2.2.2 @foxglove/rosmsg2-serialization@3 @foxglove/rosmsg-msgs-common@3 \
-//     @foxglove/rosmsg@5 @foxglove/wasm-zstd@1 lz4js@0.2 &&
+//   npm install @mcap/core@2.2.2 @foxglove/rosmsg2-serialization@3.1.0 \
+//     @foxglove/rosmsg-msgs-common@3.2.3 @foxglove/rosmsg@5.0.5 @foxglove/wasm-zstd@1.0.1 \
+//     lz4js@0.2.0 &&
 //   NODE_PATH=/tmp/mcap-writer/node_modules node <repo>/tests/io/bags/write_mcap.mjs <repo>/tests/io/bags
 //
 // route_raw.mcap   uncompressed chunks: sensor_msgs/msg/Image rgb8 on /camera/image_raw,
