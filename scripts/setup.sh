@@ -27,6 +27,11 @@ packages=(
   libopencv-dev libfftw3-dev libeigen3-dev libceres-dev libboost-graph-dev
   libsqlite3-dev libyaml-cpp-dev libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev
   libembree-dev libtinyobjloader-dev libfmt-dev nlohmann-json3-dev
+  # bags: ROS 1 through librosbag and cv_bridge; ROS 2's MCAP chunks through zstd and lz4; the
+  # Python ROS 1 packages write the test bags
+  librosbag-dev libsensor-msgs-dev libnav-msgs-dev libgeometry-msgs-dev libcv-bridge-dev
+  liblz4-dev libzstd-dev python3-rosbag python3-sensor-msgs python3-nav-msgs
+  python3-geometry-msgs
 )
 
 # clang and libFuzzer only for the fuzz action (and CI's test, which runs it).

@@ -2,9 +2,11 @@
 // The configuration folder's loaders live in libs/evaluation (config_folder.hpp), because
 // `omninav evaluate` loads the same files as the commands; the commands name them unqualified.
 
+#include <CLI/CLI.hpp>
 #include <filesystem>
 
 #include "omninav/evaluation/config_folder.hpp"
+#include "omninav/io/bag_sequence.hpp"
 #include "omninav/io/panorama_input.hpp"
 
 namespace omninav::cli {
@@ -26,6 +28,16 @@ inline io::PanoramaInput open_panoramas(const std::filesystem::path& input,
                                         io::PanoramaInputOptions options = {}) {
   return io::PanoramaInput(
       input, [config_dir] { return load_camera_config(config_dir).unwrap; }, options);
+}
+
+// --topic and --pose-topic, for the commands that read a sequence that may be a bag.
+inline void add_bag_options(CLI::App* command, io::BagOptions& bag) {
+  command->add_option("--topic", bag.topic,
+                      "A bag's image topic (sensor_msgs/Image or CompressedImage); needed only "
+                      "when the bag has several (docs/bags.md)");
+  command->add_option("--pose-topic", bag.pose_topic,
+                      "A bag's pose topic (nav_msgs/Odometry or geometry_msgs/PoseStamped): the "
+                      "frames' poses, interpolated at their stamps");
 }
 
 // The help of a --world option, the same in every command that renders.

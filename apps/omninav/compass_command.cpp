@@ -42,6 +42,7 @@ struct CompassOptions {
   fs::path plot;
   fs::path stats;
   std::string label;
+  io::BagOptions bag;
 };
 
 // --method: the sampling policy, and for exhaustive|fft|phase the minimiser too.
@@ -112,9 +113,11 @@ struct CompassRows {
 CompassRows run_over_input(const GlobalOptions& global, const CompassOptions& options,
                            const CompassSetup& setup) {
   // Sources as the input names them: the CSV's source column.
-  io::PanoramaInput reader =
-      open_panoramas(options.input, global.config_dir,
-                     {.force_unwrap = options.unwrap, .absolute_sources = false});
+  io::PanoramaInput reader = open_panoramas(options.input, global.config_dir,
+                                            {.force_unwrap = options.unwrap,
+                                             .absolute_sources = false,
+                                             .topic = options.bag.topic,
+                                             .pose_topic = options.bag.pose_topic});
   log_info("reading " + reader.describe());
 
   CompassRows result;
@@ -266,11 +269,10 @@ void add_compass_command(CLI::App& app, const GlobalOptions& global) {
       "  omninav compass --input rotate_db --truth --out headings.csv --plot headings.png\n"
       "  omninav compass --input route_db --method fx:3 --width 1080 --out -");
   command
-      ->add_option(
-          "-i,--input", options->input,
-          "Panoramas: a folder of images, a video, a BoB image database folder, or a CSV "
-          "of file,x_m,y_m,heading_deg (DESIGN.md, Data formats); or a camera, camera:0 (V4L2), "
-          "read until Ctrl-C")
+      ->add_option("-i,--input", options->input,
+                   "Panoramas: a folder of images, a video, a BoB image database folder, a CSV "
+                   "of file,x_m,y_m,heading_deg (DESIGN.md, Data formats), a ROS bag (.bag, "
+                   ".mcap, .db3; docs/bags.md); or a camera, camera:0 (V4L2), read until Ctrl-C")
       ->type_name("PATH")
       ->required();
   command
@@ -305,6 +307,7 @@ void add_compass_command(CLI::App& app, const GlobalOptions& global) {
   command->add_flag("--unwrap", options->unwrap,
                     "The input is raw omnidirectional images: unwrap them with camera.yaml "
                     "(automatic for BoB databases marked needsUnwrapping)");
+  add_bag_options(command, options->bag);
   command
       ->add_option(
           "-o,--out", options->out,

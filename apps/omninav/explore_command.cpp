@@ -24,6 +24,7 @@ struct ExploreOptions {
   bool all_frames = false;
   bool unwrap = false;
   bool overwrite = false;
+  io::BagOptions bag;
 };
 
 void run_explore(const GlobalOptions& global, const ExploreOptions& options) {
@@ -66,8 +67,10 @@ void run_explore(const GlobalOptions& global, const ExploreOptions& options) {
   }
   const std::size_t places_before = memory.place_count();
 
-  io::PanoramaInput input =
-      open_panoramas(options.input, global.config_dir, {.force_unwrap = options.unwrap});
+  io::PanoramaInput input = open_panoramas(options.input, global.config_dir,
+                                           {.force_unwrap = options.unwrap,
+                                            .topic = options.bag.topic,
+                                            .pose_topic = options.bag.pose_topic});
   const bool every_frame = options.all_frames || input.is_grid();
   log_info("exploring " + input.describe() + (extending ? " into " : " into a new map ") +
            options.out.string() +
@@ -106,10 +109,10 @@ void add_explore_command(CLI::App& app, const GlobalOptions& global) {
       "into an existing map extends it. Every image of a BoB grid database becomes a place; "
       "otherwise memory.yaml's exploration rules (or the options below) decide.");
   command
-      ->add_option(
-          "--input", options->input,
-          "Images: a folder, a video, a BoB database or a CSV of file,x_m,y_m,heading_deg; or "
-          "a camera, camera:0 (V4L2), explored until Ctrl-C")
+      ->add_option("--input", options->input,
+                   "Images: a folder, a video, a BoB database, a CSV of "
+                   "file,x_m,y_m,heading_deg, a ROS bag (.bag, .mcap, .db3); or a camera, "
+                   "camera:0 (V4L2), explored until Ctrl-C")
       ->required();
   command->add_option("--out", options->out, "The map to write or extend, e.g. maps/room.vmem")
       ->required();
@@ -152,6 +155,7 @@ void add_explore_command(CLI::App& app, const GlobalOptions& global) {
                     "The images are raw omnidirectional images: unwrap them with camera.yaml");
   command->add_flag("--overwrite", options->overwrite,
                     "Replace the map at --out instead of extending it");
+  add_bag_options(command, options->bag);
   command->callback([&global, options] { run_explore(global, *options); });
 }
 

@@ -30,6 +30,7 @@ struct LocaliseOptions {
   std::filesystem::path plot;
   bool exhaustive = false;
   bool unwrap = false;
+  io::BagOptions bag;
 };
 
 // The figure of query `index`: <stem>_<index><ext> next to --plot. A single query's figure is
@@ -70,8 +71,10 @@ void run_localise(const GlobalOptions& global, const LocaliseOptions& options) {
   std::vector<evaluation::QueryLocalisation> results;
   cv::Mat first_figure;  // --plot: the first query's, written once the count is known
   for (const std::filesystem::path& query : options.queries) {
-    io::PanoramaInput input =
-        open_panoramas(query, global.config_dir, {.force_unwrap = options.unwrap});
+    io::PanoramaInput input = open_panoramas(query, global.config_dir,
+                                             {.force_unwrap = options.unwrap,
+                                              .topic = options.bag.topic,
+                                              .pose_topic = options.bag.pose_topic});
     while (std::optional<io::Frame> frame = input.next()) {
       const signature::Signature signature = extractor.compute(frame->image, frame->source);
       if (signature.rows != map.parameters().panorama_rows) {
@@ -177,6 +180,7 @@ void add_localise_command(CLI::App& app, const GlobalOptions& global) {
                     "Compare every place at every level (no pruning; for comparison)");
   command->add_flag("--unwrap", options->unwrap,
                     "The queries are raw omnidirectional images: unwrap them with camera.yaml");
+  add_bag_options(command, options->bag);
   command->callback([&global, options] { run_localise(global, *options); });
 }
 

@@ -20,6 +20,7 @@
 #include "omninav/core/panorama.hpp"
 #include "omninav/core/progress.hpp"
 #include "omninav/eval/png.hpp"
+#include "omninav/io/bag_sequence.hpp"
 #include "omninav/io/sequence.hpp"
 #include "omninav/omni/unwrap.hpp"
 
@@ -45,6 +46,7 @@ struct UnwrapOptions {
   bool flip = false;
   bool no_flip = false;
   bool force = false;
+  io::BagOptions bag;
   // Which of the options above the user gave (the others keep camera.yaml's values).
   CLI::Option* centre_x_option = nullptr;
   CLI::Option* centre_y_option = nullptr;
@@ -104,7 +106,7 @@ void run_unwrap(const UnwrapOptions& options, const GlobalOptions& global) {
   const omni::UnwrapParams from_file = load_camera_config(global.config_dir).unwrap;
   check_output_folder(options.out, options.force, options.input);
 
-  std::unique_ptr<io::SequenceReader> reader = io::open_sequence(options.input);
+  std::unique_ptr<io::SequenceReader> reader = io::open_sequence(options.input, options.bag);
   log_info("reading " + reader->describe());
   std::optional<io::Frame> frame = reader->next();
   if (!frame) throw InputError(options.input.string() + ": holds no images");
@@ -124,7 +126,8 @@ void run_unwrap(const UnwrapOptions& options, const GlobalOptions& global) {
   if (error) {
     throw UsageError(options.out.string() + ": cannot create the folder: " + error.message());
   }
-  const bool video = reader->is_video();
+  // Frames of a video or a bag have no file names of their own: they are numbered.
+  const bool video = reader->is_video() || io::is_bag(options.input);
   std::set<std::string> used_names;
   std::size_t written = 0;
   {
@@ -239,6 +242,7 @@ void add_unwrap_command(CLI::App& app, const GlobalOptions& global) {
           ->check(NumberRange(-360.0, 360.0));
   command->add_flag("--force", options->force,
                     "Write into a non-empty output folder (files of the same name are replaced)");
+  add_bag_options(command, options->bag);
   command->callback([options, &global] { run_unwrap(*options, global); });
 }
 

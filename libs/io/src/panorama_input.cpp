@@ -1,6 +1,7 @@
 #include "omninav/io/panorama_input.hpp"
 
 #include "omninav/core/errors.hpp"
+#include "omninav/io/bag_sequence.hpp"
 #include "omninav/io/camera_sequence.hpp"
 #include "omninav/io/image_file.hpp"
 
@@ -11,12 +12,17 @@ PanoramaInput::PanoramaInput(const std::filesystem::path& input,
                              PanoramaInputOptions options)
     : unwrap_params_(std::move(unwrap_params)), options_(options) {
   std::error_code error;
-  if (const std::optional<std::string> device = camera_device(input.string())) {
+  const BagOptions bag{.topic = options.topic, .pose_topic = options.pose_topic};
+  // With a topic, every input but a bag is open_sequence's UsageError.
+  const bool has_topics = !bag.topic.empty() || !bag.pose_topic.empty();
+  const std::optional<std::string> device = camera_device(input.string());
+  if (device && !has_topics) {
     reader_ = std::make_unique<CameraSequence>(*device);
-  } else if (std::filesystem::is_regular_file(input, error) && is_image_file_name(input)) {
+  } else if (std::filesystem::is_regular_file(input, error) && is_image_file_name(input) &&
+             !has_topics) {
     single_ = input;
   } else {
-    reader_ = open_sequence(input);
+    reader_ = open_sequence(input, bag);
   }
   unwrap_ = options.force_unwrap || (reader_ && reader_->needs_unwrapping());
 }

@@ -4,6 +4,7 @@
 #include <cctype>
 
 #include "omninav/core/errors.hpp"
+#include "omninav/io/bag_sequence.hpp"
 #include "omninav/io/bob_database.hpp"
 #include "omninav/io/csv_sequence.hpp"
 #include "omninav/io/folder_sequence.hpp"
@@ -26,6 +27,7 @@ std::unique_ptr<SequenceReader> open_sequence(const std::filesystem::path& path)
   if (!std::filesystem::exists(path, error)) {
     throw InputError(path.string() + ": no such file or folder");
   }
+  if (is_bag(path)) return open_bag(path, {});
   if (std::filesystem::is_directory(path, error)) {
     if (std::filesystem::exists(path / kBobEntriesFile, error)) {
       return std::make_unique<BobDatabaseReader>(path);

@@ -23,6 +23,9 @@ struct PanoramaInputOptions {
   // Sources that are files as absolute paths, so that a map can find its images again from
   // any working directory; else as the input names them.
   bool absolute_sources = true;
+  // A bag's image topic and pose topic (bag_sequence.hpp); only for a bag.
+  std::string topic = {};
+  std::string pose_topic = {};
 };
 
 class PanoramaInput {

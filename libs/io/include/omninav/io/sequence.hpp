@@ -43,6 +43,8 @@ class SequenceReader {
 // Opens `path` as whichever kind it is:
 //   - a folder holding database_entries.csv: a BoB robotics image database;
 //   - any other folder: its images (is_image_file_name), natural sort;
+//   - a bag (bag_sequence.hpp: .bag, .mcap, .db3, a folder holding metadata.yaml), its only
+//     image topic, no poses (open_bag chooses topics);
 //   - a .csv file: rows of `file, x_m, y_m, heading_deg` (files relative to the CSV);
 //   - any other file: a video, read with cv::VideoCapture.
 // (A camera, "camera:0", opens through PanoramaInput: camera_sequence.hpp.)

@@ -1,0 +1,199 @@
+// ROS 1 bags through Debian's librosbag (rosbag_storage) and cv_bridge. Compiled as C++17: the
+// generated ROS 1 message headers use std::allocator<void>::rebind, which C++20 removed.
+
+#include <cv_bridge/cv_bridge.h>
+#include <geometry_msgs/PoseStamped.h>
+#include <nav_msgs/Odometry.h>
+#include <rosbag/bag.h>
+#include <rosbag/exceptions.h>
+#include <rosbag/view.h>
+#include <sensor_msgs/CompressedImage.h>
+#include <sensor_msgs/Image.h>
+#include <sensor_msgs/image_encodings.h>
+
+#include <map>
+#include <opencv2/imgcodecs.hpp>
+
+#include "bag_backend.hpp"
+#include "omninav/core/errors.hpp"
+
+namespace omninav::io::detail {
+namespace {
+
+template <typename Pose>
+StampedPose stamped(const std_msgs::Header& header, const Pose& pose) {
+  StampedPose result;
+  result.stamp_s = header.stamp.toSec();
+  result.x_m = pose.position.x;
+  result.y_m = pose.position.y;
+  result.z_m = pose.position.z;
+  result.qx = pose.orientation.x;
+  result.qy = pose.orientation.y;
+  result.qz = pose.orientation.z;
+  result.qw = pose.orientation.w;
+  return result;
+}
+
+std::string reindex_advice(const std::filesystem::path& file) {
+  return "`rosbag reindex " + file.filename().string() +
+         "` (Debian's python3-rosbag) recovers the messages before the damage";
+}
+
+class Ros1Bag : public BagBackend {
+ public:
+  explicit Ros1Bag(const std::filesystem::path& file) : file_(file) {
+    try {
+      bag_.open(file.string(), rosbag::bagmode::Read);
+    } catch (const rosbag::BagUnindexedException&) {
+      throw InputError(file.string() + ": the ROS 1 bag has no index (a recording cut short); " +
+                       reindex_advice(file));
+    } catch (const rosbag::BagIOException& error) {
+      // The index is at the end: a file cut short loses it, and librosbag reads nothing.
+      throw InputError(file.string() + ": the ROS 1 bag ends before its index (" + error.what() +
+                       "): a truncated file; " + reindex_advice(file));
+    } catch (const std::exception& error) {
+      throw InputError(file.string() + ": cannot read as a ROS 1 bag (" + error.what() + ")");
+    }
+  }
+
+  std::string kind() const override { return "ROS 1 bag"; }
+
+  std::vector<BagTopic> topics() override {
+    std::map<std::string, BagTopic> by_name;
+    rosbag::View view(bag_);
+    for (const rosbag::ConnectionInfo* connection : view.getConnections()) {
+      BagTopic& topic = by_name[connection->topic];
+      topic.name = connection->topic;
+      topic.type = connection->datatype;
+    }
+    for (auto& [name, topic] : by_name) {
+      topic.count = rosbag::View(bag_, rosbag::TopicQuery(name)).size();
+    }
+    std::vector<BagTopic> result;
+    for (auto& entry : by_name) result.push_back(entry.second);
+    return result;
+  }
+
+  std::vector<StampedPose> poses(const std::string& topic) override {
+    std::vector<StampedPose> result;
+    try {
+      for (const rosbag::MessageInstance& message : rosbag::View(bag_, rosbag::TopicQuery(topic))) {
+        if (const auto odometry = message.instantiate<nav_msgs::Odometry>()) {
+          result.push_back(stamped(odometry->header, odometry->pose.pose));
+        } else if (const auto pose = message.instantiate<geometry_msgs::PoseStamped>()) {
+          result.push_back(stamped(pose->header, pose->pose));
+        }
+      }
+    } catch (const std::exception&) {
+      // The poses before the damage; reading the images reports it.
+    }
+    return result;
+  }
+
+  void start_images(const std::string& topic) override {
+    topic_ = topic;
+    view_ = std::make_unique<rosbag::View>(bag_, rosbag::TopicQuery(topic));
+    at_ = view_->begin();
+    index_ = 0;
+  }
+
+  std::optional<BagImage> next_image() override {
+    const std::string where = file_.string() + "#" + topic_ + " message " + std::to_string(index_);
+    try {
+      if (at_ == view_->end()) return std::nullopt;
+      const rosbag::MessageInstance& message = *at_;
+      BagImage result;
+      if (const auto image = message.instantiate<sensor_msgs::Image>()) {
+        result.stamp_s = image->header.stamp.toSec();
+        RawImage raw;
+        raw.height = image->height;
+        raw.width = image->width;
+        raw.encoding = image->encoding;
+        raw.is_bigendian = image->is_bigendian != 0;
+        raw.step = image->step;
+        raw.data = image->data;
+        result.image = decode_raw_image(std::move(raw), where);
+      } else if (const auto compressed = message.instantiate<sensor_msgs::CompressedImage>()) {
+        result.stamp_s = compressed->header.stamp.toSec();
+        result.image = decode_compressed_image(compressed->data, compressed->format, where);
+      } else {
+        throw InputError(where + ": a " + message.getDataType() + ", not an image");
+      }
+      ++at_;
+      ++index_;
+      return result;
+    } catch (const InputError&) {
+      throw;
+    } catch (const std::exception& error) {
+      throw InputError(where + ": cannot read (" + error.what() + ")");
+    }
+  }
+
+ private:
+  std::filesystem::path file_;
+  rosbag::Bag bag_;
+  std::string topic_;
+  std::unique_ptr<rosbag::View> view_;
+  rosbag::View::iterator at_;
+  std::size_t index_ = 0;
+};
+
+}  // namespace
+
+cv::Mat decode_raw_image(RawImage image, const std::string& where) {
+  namespace encodings = sensor_msgs::image_encodings;
+  if (image.width == 0 || image.height == 0) throw InputError(where + ": an empty image");
+  if (static_cast<std::uint64_t>(image.step) * image.height > image.data.size()) {
+    throw InputError(where + ": " + std::to_string(image.data.size()) + " bytes of data for " +
+                     std::to_string(image.height) + " rows of " + std::to_string(image.step) +
+                     " bytes");
+  }
+  std::uint64_t row_bytes = 0;
+  try {
+    row_bytes = static_cast<std::uint64_t>(image.width) * encodings::numChannels(image.encoding) *
+                (encodings::bitDepth(image.encoding) / 8);
+  } catch (const std::exception&) {
+    throw InputError(where + ": unknown image encoding '" + image.encoding + "'");
+  }
+  if (row_bytes == 0 || image.step < row_bytes) {
+    throw InputError(where + ": rows of " + std::to_string(image.step) + " bytes (step) for " +
+                     std::to_string(image.width) + " pixels of '" + image.encoding + "'");
+  }
+  sensor_msgs::Image message;
+  message.height = image.height;
+  message.width = image.width;
+  message.encoding = image.encoding;
+  message.is_bigendian = image.is_bigendian ? 1 : 0;
+  message.step = image.step;
+  message.data = std::move(image.data);
+  try {
+    const bool grey = !encodings::isBayer(image.encoding) && !encodings::isColor(image.encoding) &&
+                      encodings::numChannels(image.encoding) == 1;
+    return cv_bridge::toCvCopy(message, grey ? encodings::MONO8 : encodings::BGR8)->image;
+  } catch (const std::exception& error) {
+    throw InputError(where + ": image encoding '" + image.encoding + "' (" + error.what() + ")");
+  }
+}
+
+cv::Mat decode_compressed_image(const std::vector<std::uint8_t>& data, const std::string& format,
+                                const std::string& where) {
+  if (format.find("compressedDepth") != std::string::npos) {
+    throw InputError(where + ": a compressed depth image ('" + format + "'), not a picture");
+  }
+  cv::Mat image;
+  try {
+    image = cv::imdecode(data, cv::IMREAD_ANYCOLOR);
+  } catch (const cv::Exception&) {
+    image = cv::Mat();
+  }
+  if (image.empty()) {
+    throw InputError(where + ": cannot decode the compressed image ('" + format + "')");
+  }
+  return image;
+}
+
+std::unique_ptr<BagBackend> open_ros1_bag(const std::filesystem::path& file) {
+  return std::make_unique<Ros1Bag>(file);
+}
+
+}  // namespace omninav::io::detail
