@@ -36,9 +36,12 @@ list(JOIN OMNINAV_PC_LIBS " " OMNINAV_PC_LIBS)
 # INTERFACE_LINK_LIBRARIES; SuiteSparse and BLAS/LAPACK through their Debian names).
 set(OMNINAV_PC_CERES "-lceres -lglog -lgflags -lspqr -lcholmod -lamd -lcamd -lccolamd -lcolamd \
 -lsuitesparseconfig -lcxsparse -llapack -lblas -lf77blas -latlas")
+# ROS 1's libraries, which omninav_io links (libs/io/CMakeLists.txt), have no pkg-config files.
+list(TRANSFORM OMNINAV_ROS1_LIBRARY_NAMES PREPEND "-l" OUTPUT_VARIABLE OMNINAV_PC_ROS1)
+list(JOIN OMNINAV_PC_ROS1 " " OMNINAV_PC_ROS1)
 # Relocatable: the prefix is found from where the file lies (pkg-config's pcfiledir), so that
 # `cmake --install --prefix P` may choose any P.
-file(RELATIVE_PATH OMNINAV_PC_PREFIX /root/${CMAKE_INSTALL_LIBDIR}/pkgconfig /root)
+file(RELATIVE_PATH OMNINAV_PC_PREFIX /prefix/${CMAKE_INSTALL_LIBDIR}/pkgconfig /prefix)
 string(REGEX REPLACE "/$" "" OMNINAV_PC_PREFIX "${OMNINAV_PC_PREFIX}")
 configure_file(cmake/omninav.pc.in ${CMAKE_CURRENT_BINARY_DIR}/omninav.pc @ONLY)
 install(FILES ${CMAKE_CURRENT_BINARY_DIR}/omninav.pc
