@@ -27,6 +27,7 @@ packages=(
   libopencv-dev libfftw3-dev libeigen3-dev libceres-dev libboost-graph-dev
   libsqlite3-dev libyaml-cpp-dev libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev
   libembree-dev libtinyobjloader-dev libfmt-dev nlohmann-json3-dev
+  pybind11-dev python3-dev python3-numpy python3-pytest python3-matplotlib
 )
 
 # clang and libFuzzer only for the fuzz action (and CI's test, which runs it).
