@@ -27,11 +27,13 @@ from ._omninav import (  # noqa: F401 (re-exported)
     Error,
     ExplorationParams,
     Frame,
+    GoalRun,
     InputError,
     Localisation,
     LocalisationParams,
     Localiser,
     Map,
+    NavigationStep,
     MemoryConfig,
     MinimiserParams,
     PairMatch,
@@ -58,6 +60,7 @@ from ._omninav import (  # noqa: F401 (re-exported)
     open_sequence,
     read_image,
     roll_columns,
+    set_log_level,
     similarities,
 )
 

@@ -2,7 +2,7 @@
 # type checker checks. Images are numpy arrays: H x W x 3 uint8 BGR, or H x W grey.
 from os import PathLike
 from pathlib import Path
-from typing import Iterable, Iterator, Optional, Sequence as _Seq, Union
+from typing import Iterable, Iterator, Optional, Protocol, Sequence as _Seq, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -16,6 +16,7 @@ class InputError(Error): ...
 class UsageError(Error): ...
 
 def default_config_dir() -> Path: ...
+def set_log_level(level: str) -> None: ...  # "error" | "warning" | "info" | "debug"
 def azimuth_of_column(column: float, width_px: int) -> float: ...
 def column_of_azimuth(azimuth_rad: float, width_px: int) -> float: ...
 def roll_columns(panorama: Image, shift_px: int) -> Image: ...
@@ -267,7 +268,8 @@ class Map:
     def explore(self, input: Union[PathArg, Iterable[Union[Frame, Image]]],
                 config: Optional[MemoryConfig] = None, config_dir: Optional[PathArg] = None,
                 all_frames: bool = False, unwrap: bool = False) -> Run: ...
-    def organise(self, config_dir: Optional[PathArg] = None) -> None: ...
+    def organise(self, step_m: float = 0.0, motion_constraints: bool = True,
+                 config_dir: Optional[PathArg] = None) -> None: ...
     def plan_route(self, goal: int, config_dir: Optional[PathArg] = None) -> RoutePlan: ...
     def __len__(self) -> int: ...
     @property
@@ -283,6 +285,35 @@ class Map:
     def signature_params(self) -> SignatureParams: ...
     @property
     def file(self) -> Optional[Path]: ...
+    def navigate_to_image(self, robot: Robot, goal_image: Image,
+                          config_dir: Optional[PathArg] = None,
+                          max_steps: int = 0) -> GoalRun: ...
+
+class Robot(Protocol):
+    """What the navigator drives: your robot or simulator."""
+    def view(self, step: int) -> Image: ...
+    def move(self, turn_rad: float, distance_m: float) -> float: ...
+    def truth(self) -> CameraPose: ...
+
+class NavigationStep:
+    index: int
+    truth: CameraPose
+    match: Optional[PlaceMatch]
+    heading_estimate_rad: float
+    turn_rad: float
+    jump: bool
+
+class GoalRun:
+    goal: PlaceMatch
+    plan: RoutePlan
+    reached: bool
+    steps: list[NavigationStep]
+    path_length_m: float
+    jumps: int
+    sidesteps: int
+    replans: int
+    loops: int
+    homing_steps: int
 
 class Localiser:
     def __init__(self, map: Map, config: Optional[MemoryConfig] = None,
@@ -291,6 +322,9 @@ class Localiser:
                  what: str = "query") -> Localisation: ...
     def localise_signature(self, signature: Signature,
                            exhaustive: bool = False) -> Localisation: ...
+    @property
+    def match_limit(self) -> float: ...
+    def no_match_reason(self, localisation: Localisation) -> Optional[str]: ...
 
 # The renderer.
 class World:

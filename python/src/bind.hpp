@@ -11,6 +11,9 @@
 #include <optional>
 #include <string>
 
+#include "omninav/memory/map_store.hpp"
+#include "omninav/memory/visual_memory.hpp"
+
 namespace omninav::io {
 class PanoramaInput;
 }
@@ -41,6 +44,12 @@ std::unique_ptr<io::PanoramaInput> open_panoramas(const std::filesystem::path& i
                                                   const std::optional<std::filesystem::path>& dir,
                                                   bool absolute_sources);
 
+// A map as Python holds it: the visual memory and, once opened or saved, the file that keeps it.
+struct Map {
+  memory::VisualMemory memory;
+  std::optional<memory::MapStore> store;
+};
+
 void bind_errors(py::module_& m);
 void bind_core(py::module_& m);
 void bind_config(py::module_& m);
@@ -49,5 +58,7 @@ void bind_compass(py::module_& m);
 void bind_signature(py::module_& m);
 void bind_memory(py::module_& m);
 void bind_sim(py::module_& m);
+// Adds the navigator to the module and Map.navigate_to_image (bind_memory calls it).
+void bind_navigation(py::module_& m, py::class_<Map>& map);
 
 }  // namespace omninav::python

@@ -3,10 +3,12 @@
 #include <pybind11/stl/filesystem.h>
 
 #include <cstdlib>
+#include <map>
 #include <vector>
 
 #include "bind.hpp"
 #include "omninav/core/errors.hpp"
+#include "omninav/core/log.hpp"
 #include "omninav/core/panorama.hpp"
 #include "omninav/core/pose.hpp"
 
@@ -138,6 +140,22 @@ void bind_core(py::module_& m) {
       py::arg("panorama"), py::arg("shift_px"),
       "The panorama the robot sees after turning counter-clockwise by shift_px*2*pi/W on the "
       "spot: columns rolled circularly by shift_px.");
+  m.def(
+      "set_log_level",
+      [](const std::string& level) {
+        static const std::map<std::string, LogLevel> levels{{"error", LogLevel::kError},
+                                                            {"warning", LogLevel::kWarning},
+                                                            {"info", LogLevel::kInfo},
+                                                            {"debug", LogLevel::kDebug}};
+        const auto found = levels.find(level);
+        if (found == levels.end()) {
+          throw UsageError("log level " + level + ": expected error, warning, info or debug");
+        }
+        set_log_level(found->second);
+      },
+      py::arg("level"),
+      "How much the library writes to stderr: error, warning, info (the default) or debug "
+      "(the command line's --quiet is error).");
   m.def(
       "default_config_dir", [] { return config_dir_or_default(std::nullopt); },
       "The configuration folder used when none is given: $OMNINAV_CONFIG_DIR, else the "

@@ -17,6 +17,10 @@ void bind_errors(py::module_& m) {
       "message names it.";
   py::register_exception<UsageError>(m, "UsageError", error).attr("__doc__") =
       "The arguments ask for something that cannot be done.";
+  // Named as the package exports them: omninav.InputError, not omninav._omninav.InputError.
+  for (const char* name : {"Error", "ConfigError", "InputError", "UsageError"}) {
+    m.attr(name).attr("__module__") = "omninav";
+  }
 }
 
 }  // namespace omninav::python

@@ -23,12 +23,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// A visual memory and, once opened or saved, the file that keeps it.
-struct Map {
-  memory::VisualMemory memory;
-  std::optional<memory::MapStore> store;
-};
-
 memory::MemoryConfig memory_config(const std::optional<memory::MemoryConfig>& config,
                                    const std::optional<fs::path>& config_dir) {
   if (config) return *config;
@@ -233,16 +227,16 @@ void bind_memory(py::module_& m) {
         return memory::to_string(r.heading_source);
       });
 
-  py::class_<Map>(m, "Map",
-                  "A visual memory: places (signatures of reference panoramas) and edges. "
-                  "Map(config) makes an empty one with memory.yaml's signature parameters; "
-                  "Map.open(file) reads a .vmem map.")
-      .def(py::init(
-               [](std::optional<memory::MemoryConfig> config, std::optional<fs::path> config_dir) {
-                 return std::make_unique<Map>(Map{
-                     memory::VisualMemory(memory_config(config, config_dir).map), std::nullopt});
-               }),
-           py::arg("config") = py::none(), py::arg("config_dir") = py::none())
+  py::class_<Map> map(m, "Map",
+                      "A visual memory: places (signatures of reference panoramas) and edges. "
+                      "Map(config) makes an empty one with memory.yaml's signature parameters; "
+                      "Map.open(file) reads a .vmem map.");
+  map.def(py::init(
+              [](std::optional<memory::MemoryConfig> config, std::optional<fs::path> config_dir) {
+                return std::make_unique<Map>(
+                    Map{memory::VisualMemory(memory_config(config, config_dir).map), std::nullopt});
+              }),
+          py::arg("config") = py::none(), py::arg("config_dir") = py::none())
       .def_static(
           "open",
           [](const fs::path& file) {
@@ -314,15 +308,19 @@ void bind_memory(py::module_& m) {
           "every frame). Returns the Run.")
       .def(
           "organise",
-          [](Map& map, std::optional<fs::path> config_dir) {
-            const lattice::OrganiseParams params =
+          [](Map& map, double step_m, bool motion_constraints, std::optional<fs::path> config_dir) {
+            lattice::OrganiseParams params =
                 evaluation::load_lattice_config(config_dir_or_default(config_dir));
+            if (step_m > 0.0) params.step_m = step_m;
+            if (!motion_constraints) params.motion_constraints = false;
             py::gil_scoped_release release;
             lattice::organise(map.memory, params);
           },
+          py::arg("step_m") = 0.0, py::arg("motion_constraints") = true,
           py::arg("config_dir") = py::none(),
           "Places the places on the spring-model lattice (lattice.yaml), as `omninav organise` "
-          "does; their lattice_position is then set.")
+          "does; their lattice_position is then set. step_m > 0: the distance between "
+          "consecutive places (--step-m), needed when the exploration did not measure it.")
       .def(
           "plan_route",
           [](const Map& map, int goal, std::optional<fs::path> config_dir) {
@@ -367,6 +365,7 @@ void bind_memory(py::module_& m) {
 
   bind_localisation(m);
   bind_route(m);
+  bind_navigation(m, map);
 }
 
 }  // namespace omninav::python

@@ -11,6 +11,8 @@ import pytest
 # The panoramas of every test: small, so that the whole suite stays well under a minute.
 WIDTH_PX = 120
 HEIGHT_PX = 24
+# A small room whose routes below stay clear of its furniture.
+WORLD = "room:seed=6,boxes=6"
 
 
 def omninav_program():
@@ -34,7 +36,7 @@ def run_omninav(*args, **kwargs):
     return result.stdout
 
 
-def render(out, trajectory, world="room:seed=6,boxes=6"):
+def render(out, trajectory, world=WORLD):
     run_omninav(
         "render",
         "--world", world,
