@@ -13,6 +13,7 @@ WIDTH_PX = 120
 HEIGHT_PX = 24
 # A small room whose routes below stay clear of its furniture.
 WORLD = "room:seed=6,boxes=6"
+ROUTE = "circle:cx=3,cy=2.5,radius_m=0.8,turns=0.5,speed_m_s=0.25,fps=8"
 
 
 def omninav_program():
@@ -53,7 +54,7 @@ def render(out, trajectory, world=WORLD):
 def route_db(tmp_path_factory):
     """Half a circle in a small room: some 80 panoramas with their true poses."""
     folder = tmp_path_factory.mktemp("route") / "db"
-    return render(folder, "circle:cx=3,cy=2.5,radius_m=0.8,turns=0.5,speed_m_s=0.25,fps=8")
+    return render(folder, ROUTE)
 
 
 @pytest.fixture(scope="session")
