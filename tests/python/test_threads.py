@@ -42,7 +42,7 @@ def test_rendering_lets_another_thread_run():
 
 
 def test_exploring_lets_another_thread_run():
-    world = omninav.World("room:seed=6,boxes=6", width_px=720, height_px=90, rays_per_pixel=1)
+    world = omninav.World("room:seed=6,boxes=6", width_px=360, height_px=45, rays_per_pixel=1)
     renderer = omninav.Renderer(world)
     frames = [omninav.Frame(renderer.render(pose), index=i, truth=pose)
               for i, (_, pose) in enumerate(world.trajectory("line:x0=2,y0=2,x1=4,y1=2.6"))]
