@@ -6,6 +6,7 @@ import io
 import math
 
 import numpy as np
+import pytest
 
 import omninav
 from conftest import run_omninav
@@ -44,13 +45,17 @@ def test_headings_follow_the_true_poses():
     assert max(errors) < math.radians(10), f"max error {math.degrees(max(errors)):.1f} deg"
 
 
-def test_a_pair_turned_on_the_spot_gives_the_turn():
+@pytest.mark.parametrize("minimiser", ["local_scan", "exhaustive", "fft", "phase"])
+def test_a_pair_turned_on_the_spot_gives_the_turn(minimiser):
     world = omninav.World("room:seed=6,boxes=6", width_px=180, height_px=24, rays_per_pixel=1)
     renderer = omninav.Renderer(world)
     turn_rad = math.radians(17)
     first = renderer.render(omninav.CameraPose(3.0, 2.5, 1.0, heading_rad=0.3))
     second = renderer.render(omninav.CameraPose(3.0, 2.5, 1.0, heading_rad=0.3 + turn_rad))
-    match = omninav.PairMatcher().match(first, second)
+    config = omninav.CompassConfig.load()
+    config.minimiser.kind = minimiser
+    match = omninav.PairMatcher(config).match(first, second)
+    # 180 columns: 2 degrees each; the sub-pixel fit does better than one column.
     assert abs(match.rotation_rad - turn_rad) < math.radians(1)
     assert match.amplitude_norm > 0.5 and match.ok
 
