@@ -54,3 +54,20 @@ def test_a_query_at_a_place_finds_the_nearest_place(route_db):
         best = places[localiser.localise(frame.image).best[0].place]
         distance = math.hypot(best.truth.x_m - frame.truth.x_m, best.truth.y_m - frame.truth.y_m)
         assert distance < 0.3, f"{frame.source}: best place {distance:.2f} m away"
+
+
+def test_coarse_to_fine_keeps_fewer_candidates_and_the_oracles_best(route_map, query_db):
+    memory = omninav.Map.open(route_map)
+    localiser = omninav.Localiser(memory)
+    config = omninav.MemoryConfig.load()
+    for frame in omninav.open_sequence(query_db):
+        pruned = localiser.localise(frame.image)
+        oracle = localiser.localise(frame.image, exhaustive=True)
+        levels = pruned.candidates_per_level
+        assert len(levels) == len(config.localisation.levels) == 3
+        assert all(len(finer) <= len(coarser) for coarser, finer in zip(levels, levels[1:]))
+        assert set(levels[-1]) <= set(levels[0])
+        assert pruned.best[0].place == oracle.best[0].place
+        assert pruned.position_frame == "truth"  # the map's places have ground truth
+        place = memory.place(pruned.best[0].place).truth
+        assert pruned.position == (place.x_m, place.y_m)
