@@ -91,6 +91,33 @@ class MemoryConfig:
     exploration: ExplorationParams
     localisation: LocalisationParams
 
+class RouteParams:
+    neighbour_spacings: float
+    match_dissimilarity_ratio: float
+
+class NavigatorParams:
+    step_m: float
+    max_steps: int
+    goal_similarity: float
+    goal_confirmations: int
+    unstick_turn_deg: float
+    look_ahead_links: int
+    look_ahead_tolerance_spacings: float
+    sidesteps: int
+    sidestep_deg: float
+    loop_entries: int
+    home_on_goal_image: bool
+    homing_step_m: float
+    homing_stop_m: float
+    homing_max_steps: int
+
+class NavigationConfig:
+    def __init__(self) -> None: ...
+    @staticmethod
+    def load(config_dir: Optional[PathArg] = None) -> NavigationConfig: ...
+    route: RouteParams
+    navigator: NavigatorParams
+
 # Reading sequences.
 class Frame:
     index: int
@@ -270,7 +297,8 @@ class Map:
                 all_frames: bool = False, unwrap: bool = False) -> Run: ...
     def organise(self, step_m: float = 0.0, motion_constraints: bool = True,
                  config_dir: Optional[PathArg] = None) -> None: ...
-    def plan_route(self, goal: int, config_dir: Optional[PathArg] = None) -> RoutePlan: ...
+    def plan_route(self, goal: int, config: Optional[NavigationConfig] = None,
+                   config_dir: Optional[PathArg] = None) -> RoutePlan: ...
     def __len__(self) -> int: ...
     @property
     def place_count(self) -> int: ...
@@ -286,6 +314,7 @@ class Map:
     @property
     def file(self) -> Optional[Path]: ...
     def navigate_to_image(self, robot: Robot, goal_image: Image,
+                          config: Optional[NavigationConfig] = None,
                           config_dir: Optional[PathArg] = None,
                           max_steps: int = 0) -> GoalRun: ...
 
@@ -317,7 +346,8 @@ class GoalRun:
 
 class Localiser:
     def __init__(self, map: Map, config: Optional[MemoryConfig] = None,
-                 config_dir: Optional[PathArg] = None) -> None: ...
+                 config_dir: Optional[PathArg] = None,
+                 navigation: Optional[NavigationConfig] = None) -> None: ...
     def localise(self, panorama: Image, exhaustive: bool = False,
                  what: str = "query") -> Localisation: ...
     def localise_signature(self, signature: Signature,

@@ -11,6 +11,7 @@
 #include <optional>
 #include <string>
 
+#include "omninav/evaluation/config_folder.hpp"
 #include "omninav/memory/map_store.hpp"
 #include "omninav/memory/visual_memory.hpp"
 
@@ -49,6 +50,11 @@ struct Map {
   memory::VisualMemory memory;
   std::optional<memory::MapStore> store;
 };
+
+// `config`, else navigation.yaml of `config_dir` (or the default folder).
+evaluation::NavigationConfig navigation_config(
+    const std::optional<evaluation::NavigationConfig>& config,
+    const std::optional<std::filesystem::path>& config_dir);
 
 void bind_errors(py::module_& m);
 void bind_core(py::module_& m);

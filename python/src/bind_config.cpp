@@ -152,11 +152,59 @@ void bind_memory_config(py::module_& m) {
       .def_readwrite("localisation", &memory::MemoryConfig::localisation);
 }
 
+void bind_navigation_config(py::module_& m) {
+  using navigation::RouteParams;
+  py::class_<RouteParams>(m, "RouteParams", "navigation.yaml's route section.")
+      .def_readwrite("neighbour_spacings", &RouteParams::neighbour_spacings)
+      .def_readwrite("match_dissimilarity_ratio", &RouteParams::match_dissimilarity_ratio);
+
+  using navigation::NavigatorParams;
+  py::class_<NavigatorParams>(m, "NavigatorParams", "navigation.yaml's navigator section.")
+      .def_readwrite("step_m", &NavigatorParams::step_m)
+      .def_readwrite("max_steps", &NavigatorParams::max_steps)
+      .def_readwrite("goal_similarity", &NavigatorParams::goal_similarity)
+      .def_readwrite("goal_confirmations", &NavigatorParams::goal_confirmations)
+      .def_readwrite("unstick_turn_deg", &NavigatorParams::unstick_turn_deg)
+      .def_readwrite("look_ahead_links", &NavigatorParams::look_ahead_links)
+      .def_readwrite("look_ahead_tolerance_spacings",
+                     &NavigatorParams::look_ahead_tolerance_spacings)
+      .def_readwrite("sidesteps", &NavigatorParams::sidesteps)
+      .def_readwrite("sidestep_deg", &NavigatorParams::sidestep_deg)
+      .def_readwrite("loop_entries", &NavigatorParams::loop_entries)
+      .def_readwrite("home_on_goal_image", &NavigatorParams::home_on_goal_image)
+      .def_readwrite("homing_step_m", &NavigatorParams::homing_step_m)
+      .def_readwrite("homing_stop_m", &NavigatorParams::homing_stop_m)
+      .def_readwrite("homing_max_steps", &NavigatorParams::homing_max_steps);
+
+  using evaluation::NavigationConfig;
+  py::class_<NavigationConfig>(
+      m, "NavigationConfig",
+      "config/navigation.yaml's route and navigator sections, read as `omninav route` and "
+      "`omninav navigate` read them (its robot and trials sections are the simulator's).")
+      .def(py::init<>())
+      .def_static(
+          "load",
+          [](const std::optional<std::filesystem::path>& config_dir) {
+            return evaluation::load_navigation_config(config_dir_or_default(config_dir));
+          },
+          py::arg("config_dir") = py::none(),
+          "Reads <config_dir>/navigation.yaml. Raises ConfigError naming the file and key.")
+      .def_readwrite("route", &NavigationConfig::route)
+      .def_readwrite("navigator", &NavigationConfig::navigator);
+}
+
 }  // namespace
+
+evaluation::NavigationConfig navigation_config(
+    const std::optional<evaluation::NavigationConfig>& config,
+    const std::optional<std::filesystem::path>& config_dir) {
+  return config ? *config : evaluation::load_navigation_config(config_dir_or_default(config_dir));
+}
 
 void bind_config(py::module_& m) {
   bind_compass_config(m);
   bind_memory_config(m);
+  bind_navigation_config(m);
 }
 
 }  // namespace omninav::python

@@ -143,19 +143,19 @@ void bind_localisation(py::module_& m) {
                         "Localises queries in a map coarse to fine (memory.yaml's localisation "
                         "section, or `config`). The map must not gain places meanwhile.")
       .def(py::init([](const Map& map, std::optional<memory::MemoryConfig> config,
-                       std::optional<fs::path> config_dir) {
+                       std::optional<fs::path> config_dir,
+                       std::optional<evaluation::NavigationConfig> navigation) {
              if (map.memory.place_count() == 0) throw InputError("the map has no places");
              const memory::LocalisationParams params =
                  memory_config(config, config_dir).localisation;
-             const navigation::RouteParams route =
-                 evaluation::load_navigation_config(config_dir_or_default(config_dir)).route;
+             const navigation::RouteParams route = navigation_config(navigation, config_dir).route;
              return std::make_unique<Localiser>(
                  Localiser{memory::Localiser(map.memory, params),
                            signature::SignatureExtractor(map.memory.parameters().signature),
                            navigation::match_limit(map.memory, route)});
            }),
            py::arg("map"), py::arg("config") = py::none(), py::arg("config_dir") = py::none(),
-           py::keep_alive<1, 2>())
+           py::arg("navigation") = py::none(), py::keep_alive<1, 2>())
       .def(
           "localise",
           [](Localiser& l, const py::array& panorama, bool exhaustive, const std::string& what) {
@@ -323,13 +323,13 @@ void bind_memory(py::module_& m) {
           "consecutive places (--step-m), needed when the exploration did not measure it.")
       .def(
           "plan_route",
-          [](const Map& map, int goal, std::optional<fs::path> config_dir) {
-            const navigation::RouteParams params =
-                evaluation::load_navigation_config(config_dir_or_default(config_dir)).route;
+          [](const Map& map, int goal, std::optional<evaluation::NavigationConfig> config,
+             std::optional<fs::path> config_dir) {
+            const navigation::RouteParams params = navigation_config(config, config_dir).route;
             return navigation::plan_over_lattice(navigation::places_from_memory(map.memory), params,
                                                  goal);
           },
-          py::arg("goal"), py::arg("config_dir") = py::none(),
+          py::arg("goal"), py::arg("config") = py::none(), py::arg("config_dir") = py::none(),
           "Directions from every place to place `goal` over the lattice (needs organise()).")
       .def("__len__", [](const Map& map) { return map.memory.place_count(); })
       .def_property_readonly("place_count", [](const Map& map) { return map.memory.place_count(); })

@@ -77,11 +77,12 @@ void bind_navigation(py::module_& m, py::class_<Map>& map) {
   map.def(
       "navigate_to_image",
       [](const Map& map, py::object robot, const py::array& goal_image,
-         std::optional<fs::path> config_dir, int max_steps) {
+         std::optional<evaluation::NavigationConfig> config, std::optional<fs::path> config_dir,
+         int max_steps) {
         const memory::VisualMemory& memory = map.memory;
         const fs::path dir = config_dir_or_default(config_dir);
         const memory::MemoryConfig memory_config = evaluation::load_memory_config(dir);
-        evaluation::NavigationConfig navigation = evaluation::load_navigation_config(dir);
+        evaluation::NavigationConfig navigation = navigation_config(config, config_dir);
         if (max_steps > 0) navigation.navigator.max_steps = max_steps;
         py::object keep;
         const cv::Mat goal = array_to_mat(goal_image, "goal image", keep);
@@ -94,12 +95,13 @@ void bind_navigation(py::module_& m, py::class_<Map>& map) {
             navigation.navigator);
         return navigation::navigate_to_image(body, goal, "goal image", setup);
       },
-      py::arg("robot"), py::arg("goal_image"), py::arg("config_dir") = py::none(),
-      py::arg("max_steps") = 0,
+      py::arg("robot"), py::arg("goal_image"), py::arg("config") = py::none(),
+      py::arg("config_dir") = py::none(), py::arg("max_steps") = 0,
       "Drives `robot` to where `goal_image` was taken, as `omninav navigate` does: the goal "
       "matched to a place, the route planned over the lattice (needs organise()), then view, "
       "localise, turn and step until the goal's place is recognised, homing on the goal image "
-      "at the end (navigation.yaml; max_steps > 0 overrides navigator.max_steps). `robot` has "
+      "at the end (`config`, a NavigationConfig, else navigation.yaml; max_steps > 0 overrides "
+      "navigator.max_steps). `robot` has "
       "view(step) -> panorama, move(turn_rad, distance_m) -> metres driven, truth() -> "
       "CameraPose (for the step log only: the navigator never reads it).");
 }

@@ -90,3 +90,16 @@ def test_the_navigator_drives_a_python_robot_to_the_goal_image(organised_grid):
     assert distance_m(robot.pose, goal_pose) < 0.3, "stopped more than a grid spacing away"
     assert 0 < len(run.steps) <= 60 and run.path_length_m > 0.5
     assert run.steps[0].match is not None
+
+
+def test_the_navigation_config_governs_the_run(organised_grid):
+    world = omninav.World(WORLD, width_px=WIDTH_PX, height_px=HEIGHT_PX, rays_per_pixel=1)
+    renderer = omninav.Renderer(world)
+    places = organised_grid.places()
+    start, goal_pose = places[0].truth, places[-1].truth
+    config = omninav.NavigationConfig.load()
+    config.navigator.max_steps = 3  # 1.5 m to go in steps of navigator.step_m: too few
+    robot = RenderedRobot(renderer, start)
+    run = organised_grid.navigate_to_image(robot, renderer.render(goal_pose), config=config)
+    assert not run.reached and len(run.steps) <= 3
+    assert run.path_length_m <= 3 * config.navigator.step_m + 1e-9
