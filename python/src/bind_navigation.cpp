@@ -1,0 +1,109 @@
+// The reactive navigator (Menegatti et al. 2004, §3.5, with omninav's additions) driving a robot
+// of the caller's: any Python object with view(step) -> panorama, move(turn_rad, distance_m) ->
+// metres driven, and truth() -> CameraPose (for the step log only). So a user drives their own
+// robot or simulator from Python, the navigator deciding each turn and step from the panoramas.
+#include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
+
+#include "bind.hpp"
+#include "omninav/evaluation/config_folder.hpp"
+#include "omninav/memory/localisation.hpp"
+#include "omninav/navigation/goal_navigation.hpp"
+#include "omninav/navigation/memory_places.hpp"
+
+namespace omninav::python {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The navigator's world, calling the Python robot with the GIL held (the navigator runs
+// without it).
+class PythonRobot : public navigation::NavigationWorld {
+ public:
+  explicit PythonRobot(py::object robot) : robot_(std::move(robot)) {}
+
+  cv::Mat view(int step) override {
+    py::gil_scoped_acquire acquire;
+    py::object keep;
+    const py::array panorama = robot_.attr("view")(step);
+    return array_to_mat(panorama, "robot.view(" + std::to_string(step) + ")", keep).clone();
+  }
+  double move(double turn_rad, double distance_m) override {
+    py::gil_scoped_acquire acquire;
+    return robot_.attr("move")(turn_rad, distance_m).cast<double>();
+  }
+  CameraPose truth() const override {
+    py::gil_scoped_acquire acquire;
+    return robot_.attr("truth")().cast<CameraPose>();
+  }
+
+ private:
+  py::object robot_;
+};
+
+}  // namespace
+
+void bind_navigation(py::module_& m, py::class_<Map>& map) {
+  using navigation::NavigationStep;
+  py::class_<NavigationStep>(m, "NavigationStep",
+                             "One step of a navigation: the best place matched (None when "
+                             "nothing was recognised), the heading estimate in the lattice "
+                             "frame, the turn commanded, and whether localisation jumped.")
+      .def_readonly("index", &NavigationStep::index)
+      .def_readonly("truth", &NavigationStep::truth)
+      .def_readonly("match", &NavigationStep::match)
+      .def_readonly("heading_estimate_rad", &NavigationStep::heading_estimate_rad)
+      .def_readonly("turn_rad", &NavigationStep::turn_rad)
+      .def_readonly("jump", &NavigationStep::jump);
+
+  using navigation::GoalRun;
+  py::class_<GoalRun>(m, "GoalRun",
+                      "A navigation to a goal image: the goal's place, the route plan, and the "
+                      "run (reached, steps, path_length_m, jumps, sidesteps, replans, loops, "
+                      "homing_steps).")
+      .def_readonly("goal", &GoalRun::goal)
+      .def_readonly("plan", &GoalRun::plan)
+      .def_property_readonly("reached", [](const GoalRun& r) { return r.result.reached; })
+      .def_property_readonly("steps", [](const GoalRun& r) { return r.result.steps; })
+      .def_property_readonly("path_length_m",
+                             [](const GoalRun& r) { return r.result.path_length_m; })
+      .def_property_readonly("jumps", [](const GoalRun& r) { return r.result.jumps; })
+      .def_property_readonly("sidesteps", [](const GoalRun& r) { return r.result.sidesteps; })
+      .def_property_readonly("replans", [](const GoalRun& r) { return r.result.replans; })
+      .def_property_readonly("loops", [](const GoalRun& r) { return r.result.loops; })
+      .def_property_readonly("homing_steps",
+                             [](const GoalRun& r) { return r.result.homing_steps; });
+
+  map.def(
+      "navigate_to_image",
+      [](const Map& map, py::object robot, const py::array& goal_image,
+         std::optional<evaluation::NavigationConfig> config, std::optional<fs::path> config_dir,
+         int max_steps) {
+        const memory::VisualMemory& memory = map.memory;
+        const fs::path dir = config_dir_or_default(config_dir);
+        const memory::MemoryConfig memory_config = evaluation::load_memory_config(dir);
+        evaluation::NavigationConfig navigation = navigation_config(config, config_dir);
+        if (max_steps > 0) navigation.navigator.max_steps = max_steps;
+        py::object keep;
+        const cv::Mat goal = array_to_mat(goal_image, "goal image", keep);
+        PythonRobot body(std::move(robot));  // released after the GIL is taken back
+        py::gil_scoped_release release;
+        const memory::Localiser localiser(memory, memory_config.localisation);
+        signature::SignatureExtractor extractor(memory.parameters().signature);
+        const navigation::GoalNavigationSetup setup = navigation::goal_navigation_setup(
+            memory, navigation::memory_localiser(localiser, extractor), navigation.route,
+            navigation.navigator);
+        return navigation::navigate_to_image(body, goal, "goal image", setup);
+      },
+      py::arg("robot"), py::arg("goal_image"), py::arg("config") = py::none(),
+      py::arg("config_dir") = py::none(), py::arg("max_steps") = 0,
+      "Drives `robot` to where `goal_image` was taken, as `omninav navigate` does: the goal "
+      "matched to a place, the route planned over the lattice (needs organise()), then view, "
+      "localise, turn and step until the goal's place is recognised, homing on the goal image "
+      "at the end (`config`, a NavigationConfig, else navigation.yaml; max_steps > 0 overrides "
+      "navigator.max_steps). `robot` has "
+      "view(step) -> panorama, move(turn_rad, distance_m) -> metres driven, truth() -> "
+      "CameraPose (for the step log only: the navigator never reads it).");
+}
+
+}  // namespace omninav::python

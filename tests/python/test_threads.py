@@ -1,0 +1,54 @@
+"""Long computations release the GIL: a second Python thread makes progress meanwhile."""
+
+import threading
+import time
+
+import omninav
+
+
+def longest_pause_while(work):
+    """Runs work() in a thread; returns how long it took and the longest the main thread went
+    without running a Python statement meanwhile."""
+    done = threading.Event()
+    took = []
+
+    def worker():
+        start = time.perf_counter()
+        work()
+        took.append(time.perf_counter() - start)
+        done.set()
+
+    thread = threading.Thread(target=worker)
+    last = time.perf_counter()
+    longest = 0.0
+    thread.start()
+    while not done.is_set():
+        now = time.perf_counter()
+        longest = max(longest, now - last)
+        last = now
+    thread.join()
+    return took[0], longest
+
+
+def test_rendering_lets_another_thread_run():
+    world = omninav.World("room:seed=6,boxes=6", width_px=1080, height_px=270, rays_per_pixel=3)
+    renderer = omninav.Renderer(world)
+    pose = omninav.CameraPose(3.0, 2.5, 1.0)
+    took, longest = longest_pause_while(lambda: renderer.render(pose))
+    # One call into C++; holding the GIL it would stop the main thread for all of it. (Half of
+    # it leaves room for a loaded machine's scheduling.)
+    assert took > 0.1, "the render was too quick to tell"
+    assert longest < took / 2, f"main thread stalled {longest:.3f} s of {took:.3f} s"
+
+
+def test_exploring_lets_another_thread_run():
+    world = omninav.World("room:seed=6,boxes=6", width_px=360, height_px=45, rays_per_pixel=1)
+    renderer = omninav.Renderer(world)
+    frames = [omninav.Frame(renderer.render(pose), index=i, truth=pose)
+              for i, (_, pose) in enumerate(world.trajectory("line:x0=2,y0=2,x1=4,y1=2.6"))]
+    memory = omninav.Map()
+    # The route there and back, five times: one call long enough to time.
+    took, longest = longest_pause_while(lambda: memory.explore((frames + frames[::-1]) * 5))
+    assert memory.place_count > 1
+    assert took > 0.1, "the exploration was too quick to tell"
+    assert longest < took / 2, f"main thread stalled {longest:.3f} s of {took:.3f} s"
