@@ -42,7 +42,8 @@ TEST(CompassConfig, ShippedFileHoldsTheTable2Defaults) {
             defaults.compass.sampling.fixed_skip_frames);
   EXPECT_NEAR(shipped.compass.sampling.max_reference_rotation_rad,
               defaults.compass.sampling.max_reference_rotation_rad, 1e-12);
-  EXPECT_EQ(shipped.compass.sampling.parallax_ratio, defaults.compass.sampling.parallax_ratio);
+  EXPECT_EQ(shipped.compass.sampling.parallax_step_ratio,
+            defaults.compass.sampling.parallax_step_ratio);
   EXPECT_EQ(matcher.confidence.flat_below_grey,
             defaults.compass.matcher.confidence.flat_below_grey);
   EXPECT_NEAR(matcher.confidence.competing_separation_rad,
@@ -63,7 +64,7 @@ TEST(CompassConfig, ReadsEveryKey) {
       "phase: {components: 4}\n"
       "subpixel: {mode: parabolic, parabolic_up_to_norm_amp: 0.4, linear_from_norm_amp: 0.9}\n"
       "sampling: {policy: fixed_skip, threshold_norm_amp: 0.7, fixed_skip_frames: 5, "
-      "max_reference_rotation_deg: 4, parallax_ratio: 0.1}\n"
+      "max_reference_rotation_deg: 4, parallax_step_ratio: 0.1}\n"
       "confidence: {flat_below_grey: 2, competing_separation_deg: 5, competing_depth_ratio: 0.2}\n"
       "input: {width_px: 1080}\n",
       "compass.yaml"));
@@ -75,7 +76,7 @@ TEST(CompassConfig, ReadsEveryKey) {
   EXPECT_EQ(read.compass.sampling.policy, SamplingPolicy::kFixedSkip);
   EXPECT_EQ(read.compass.sampling.fixed_skip_frames, 5);
   EXPECT_NEAR(read.compass.sampling.max_reference_rotation_rad, 4.0 * kPi / 180.0, 1e-12);
-  EXPECT_EQ(read.compass.sampling.parallax_ratio, 0.1);
+  EXPECT_EQ(read.compass.sampling.parallax_step_ratio, 0.1);
   EXPECT_EQ(read.width_px, 1080);
 }
 

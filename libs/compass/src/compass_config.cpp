@@ -55,7 +55,7 @@ void load_compass_config(const ConfigReader& config, CompassConfig& out) {
   sampling.read("fixed_skip_frames", sampling_params.fixed_skip_frames, 0, 100000);
   sampling.read_deg("max_reference_rotation_deg", sampling_params.max_reference_rotation_rad, 0.0,
                     180.0);
-  sampling.read("parallax_ratio", sampling_params.parallax_ratio, 0.0, 10.0);
+  sampling.read("parallax_step_ratio", sampling_params.parallax_step_ratio, 0.0, 10.0);
 
   const ConfigReader confidence = config.section("confidence");
   ConfidenceParams& confidence_params = matcher.confidence;

@@ -25,7 +25,7 @@ std::string describe(const SamplingParams& sampling) {
 VisualCompass::VisualCompass(const CompassParams& params, double initial_heading_rad)
     : params_(params), matcher_(params.matcher), initial_heading_rad_(initial_heading_rad) {
   if (!(params.sampling.max_reference_rotation_rad >= 0.0) ||
-      !(params.sampling.parallax_ratio >= 0.0)) {
+      !(params.sampling.parallax_step_ratio >= 0.0)) {
     throw UsageError("the rotation cap of Algorithm 1 needs a rotation and a parallax ratio >= 0");
   }
   if (params.sampling.policy == SamplingPolicy::kFixedSkip &&
@@ -44,7 +44,7 @@ bool VisualCompass::beyond_rotation_cap(const PairMatch& match,
   // r_rc as line 15 will use it: unwrapped next to r_rp.
   const double rotation_rad =
       rotation_ref_previous_rad + signed_difference(match.rotation_rad, rotation_ref_previous_rad);
-  const bool parallax = match.distance_min > sampling.parallax_ratio * match.self_amplitude;
+  const bool parallax = match.distance_min > sampling.parallax_step_ratio * match.self_step;
   return std::abs(rotation_rad) > sampling.max_reference_rotation_rad && parallax;
 }
 
