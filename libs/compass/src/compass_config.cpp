@@ -70,6 +70,15 @@ void load_compass_config(const ConfigReader& config, CompassConfig& out) {
   tilt.read("blocks", levelling.tilt.blocks, 4, 4096);
   tilt.read_deg("max_tilt_deg", levelling.tilt.max_tilt_rad, 0.5, 30.0);
 
+  const ConfigReader travel = config.section("travel_fit");
+  travel.read("enabled", out.compass.travel.enabled);
+  travel.read("iterations", out.compass.travel.fit.iterations, 0, 100);
+  travel.read("rows_used", out.compass.travel.fit.rows_used, 1, 100000);
+  std::string travel_columns = out.compass.travel.fit.whole ? "whole" : "bands";
+  travel.read("columns", travel_columns, {"whole", "bands"});
+  out.compass.travel.fit.whole = travel_columns == "whole";
+  travel.read_deg("max_correction_deg", out.compass.travel.fit.max_correction_rad, 0.0, 180.0);
+
   const ConfigReader input = config.section("input");
   std::optional<double> width = out.width_px ? std::optional<double>(*out.width_px) : std::nullopt;
   input.read("width_px", width, 8, 16384);

@@ -46,6 +46,7 @@
 #include "omninav/compass/frame.hpp"
 #include "omninav/compass/pair_matcher.hpp"
 #include "omninav/compass/tilt.hpp"
+#include "omninav/compass/travel_fit.hpp"
 
 namespace omninav::compass {
 
@@ -85,10 +86,20 @@ struct TiltLevellingParams {
   double elevation_max_rad = deg_to_rad(15.0);
 };
 
+// The turn fitted together with the parallax of the displacement (travel_fit.hpp) where it
+// accumulates: when a reference is replaced, r_rp (line 11's rotation from the old reference to
+// the frame that becomes the new one) is refined by fit_turn_and_travel before it is added to
+// ω_r. Frames in between keep line 9's estimate: their error does not accumulate.
+struct TravelFitting {
+  bool enabled = false;  // measured on the zoo: docs/compass.md "Turn and travel together"
+  TravelFitParams fit;
+};
+
 struct CompassParams {
   PairMatcherParams matcher;
   SamplingParams sampling;
   TiltLevellingParams levelling;
+  TravelFitting travel;
 };
 
 // What the compass says about one frame.
@@ -134,6 +145,9 @@ class VisualCompass {
   // (the tilt goes into `estimate`).
   PairMatch match_levelled(const CompassFrame& reference, const CompassFrame& frame,
                            int start_shift, CompassEstimate& estimate) const;
+  // r_rp refined by the turn-and-travel fit of (I_r, I_p) (TravelFitting).
+  double refined_rotation(const CompassFrame& previous, double rotation_ref_previous_rad,
+                          double shift_ref_previous_px) const;
 
   CompassParams params_;
   PairMatcher matcher_;
@@ -145,6 +159,7 @@ class VisualCompass {
   int reference_count_ = 0;
   double reference_heading_rad_ = 0.0;     // ω_r
   double rotation_ref_current_rad_ = 0.0;  // r_rc
+  double shift_ref_current_px_ = 0.0;      // α_m of the match that gave r_rc
   double current_heading_rad_ = 0.0;       // ω_c
 };
 
