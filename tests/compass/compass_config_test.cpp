@@ -44,6 +44,12 @@ TEST(CompassConfig, ShippedFileHoldsTheTable2Defaults) {
               defaults.compass.sampling.max_reference_rotation_rad, 1e-12);
   EXPECT_EQ(shipped.compass.sampling.parallax_step_ratio,
             defaults.compass.sampling.parallax_step_ratio);
+  EXPECT_EQ(shipped.compass.travel.enabled, defaults.compass.travel.enabled);
+  EXPECT_EQ(shipped.compass.travel.fit.iterations, defaults.compass.travel.fit.iterations);
+  EXPECT_EQ(shipped.compass.travel.fit.rows_used, defaults.compass.travel.fit.rows_used);
+  EXPECT_EQ(shipped.compass.travel.fit.whole, defaults.compass.travel.fit.whole);
+  EXPECT_NEAR(shipped.compass.travel.fit.max_correction_rad,
+              defaults.compass.travel.fit.max_correction_rad, 1e-12);
   EXPECT_EQ(matcher.confidence.flat_below_grey,
             defaults.compass.matcher.confidence.flat_below_grey);
   EXPECT_NEAR(matcher.confidence.competing_separation_rad,
@@ -66,8 +72,15 @@ TEST(CompassConfig, ReadsEveryKey) {
       "sampling: {policy: fixed_skip, threshold_norm_amp: 0.7, fixed_skip_frames: 5, "
       "max_reference_rotation_deg: 4, parallax_step_ratio: 0.1}\n"
       "confidence: {flat_below_grey: 2, competing_separation_deg: 5, competing_depth_ratio: 0.2}\n"
+      "travel_fit: {enabled: true, iterations: 3, rows_used: 20, columns: whole, "
+      "max_correction_deg: 3}\n"
       "input: {width_px: 1080}\n",
       "compass.yaml"));
+  EXPECT_TRUE(read.compass.travel.enabled);
+  EXPECT_EQ(read.compass.travel.fit.iterations, 3);
+  EXPECT_EQ(read.compass.travel.fit.rows_used, 20);
+  EXPECT_TRUE(read.compass.travel.fit.whole);
+  EXPECT_NEAR(read.compass.travel.fit.max_correction_rad, 3.0 * kPi / 180.0, 1e-12);
   EXPECT_FALSE(read.compass.matcher.distance.field_of_view.front_back);
   EXPECT_EQ(read.compass.matcher.minimiser.kind, MinimiserKind::kFft);
   EXPECT_EQ(read.compass.matcher.minimiser.fft_planning, FftPlanning::kMeasure);
