@@ -50,6 +50,12 @@ void apply_method(const std::string& method, compass::CompassParams& params) {
   compass::SamplingParams& sampling = params.sampling;
   if (method == "alg1") {
     sampling.policy = compass::SamplingPolicy::kThreshold;
+  } else if (method == "alg1-paper") {
+    // Algorithm 1 as written (§3.5): no rotation cap, no levelling, no travel fit.
+    sampling.policy = compass::SamplingPolicy::kThreshold;
+    sampling.max_reference_rotation_rad = 0.0;
+    params.levelling.enabled = false;
+    params.travel.enabled = false;
   } else if (method.rfind("fx:", 0) == 0) {
     sampling.policy = compass::SamplingPolicy::kFixedSkip;
     const int skip = parse_int_argument(method.substr(3), "--method " + method);
@@ -60,7 +66,8 @@ void apply_method(const std::string& method, compass::CompassParams& params) {
     params.matcher.minimiser.kind = compass::minimiser_kind_of(method);
   } else {
     throw UsageError("--method " + method +
-                     ": expected alg1, fx:N (N frames skipped), exhaustive, fft or phase");
+                     ": expected alg1, alg1-paper, fx:N (N frames skipped), exhaustive, fft or "
+                     "phase");
   }
 }
 
@@ -281,6 +288,8 @@ void add_compass_command(CLI::App& app, const GlobalOptions& global) {
                    "      below sampling.threshold_norm_amp (\"Atm 0.6\") or, once the pair shows\n"
                    "      parallax, the rotation from the reference exceeds\n"
                    "      sampling.max_reference_rotation_deg (ours; 0 = the paper's alone);\n"
+                   "alg1-paper: Algorithm 1 exactly as the 2006 paper writes it (no rotation\n"
+                   "      cap, no levelling, no travel fit), whatever compass.yaml says;\n"
                    "fx:N: a new reference every N+1 frames (\"Fx N\"; fx:0 = successive frames);\n"
                    "exhaustive | fft | phase: Algorithm 1 with that minimiser instead of\n"
                    "      compass.yaml's (exhaustive search, FFT correlation, Fourier phase)")

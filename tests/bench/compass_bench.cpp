@@ -98,11 +98,12 @@ void pairs(benchmark::State& state, MinimiserKind kind, bool variant, int width,
 // Algorithm 1 (Table 2's parameters) over the sequence, frames made as a camera would hand
 // them over (fresh CompassFrames); Fx 0 is the successive-pair compass.
 void algorithm1(benchmark::State& state, MinimiserKind kind, int width, int height, bool fixed_skip,
-                bool level = false) {
+                bool level = false, bool travel = false) {
   const std::vector<cv::Mat>& images = frames(width, height);
   omninav::compass::CompassParams params;
   params.matcher.minimiser.kind = kind;
   params.levelling.enabled = level;
+  params.travel.enabled = travel;
   if (fixed_skip) {
     params.sampling.policy = omninav::compass::SamplingPolicy::kFixedSkip;
     params.sampling.fixed_skip_frames = 0;
@@ -170,16 +171,20 @@ void register_all() {
     for (const auto& [name, kind] : {std::make_pair("local_scan", MinimiserKind::kLocalScan),
                                      std::make_pair("fft", MinimiserKind::kFft)}) {
       benchmark::RegisterBenchmark(("algorithm1/" + std::string(name) + "/" + size).c_str(),
-                                   algorithm1, kind, width, height, false, false)
+                                   algorithm1, kind, width, height, false, false, false)
           ->Unit(benchmark::kMicrosecond);
     }
     benchmark::RegisterBenchmark(("fx0/fft/" + size).c_str(), algorithm1, MinimiserKind::kFft,
-                                 width, height, true, false)
+                                 width, height, true, false, false)
         ->Unit(benchmark::kMicrosecond);
     // Algorithm 1 with compass.yaml's tilt.level on: every frame pays the estimate, the warp
     // and a second match (the estimate is small on these level frames, but never exactly 0).
     benchmark::RegisterBenchmark(("algorithm1_level/local_scan/" + size).c_str(), algorithm1,
-                                 MinimiserKind::kLocalScan, width, height, false, true)
+                                 MinimiserKind::kLocalScan, width, height, false, true, false)
+        ->Unit(benchmark::kMicrosecond);
+    // Algorithm 1 with compass.yaml's travel_fit.enabled on: the fit runs at each new reference.
+    benchmark::RegisterBenchmark(("algorithm1_travel/local_scan/" + size).c_str(), algorithm1,
+                                 MinimiserKind::kLocalScan, width, height, false, false, true)
         ->Unit(benchmark::kMicrosecond);
     for (const auto& [name, estimate, level] :
          {std::make_tuple("estimate", true, false), std::make_tuple("level", false, true),

@@ -2,6 +2,7 @@
 #include "cli.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
 
@@ -201,6 +202,20 @@ TEST_F(CommandLine, CompassFollowsARenderedTurnAndWritesItsCsv) {
   }
   EXPECT_EQ(rows, 16);  // a quarter turn at 30°/s is 3 s: 15 intervals at 5 Hz, 16 frames
   EXPECT_NE(header.find("heading_deg"), std::string::npos) << header;
+  // The paper's Algorithm 1 as written follows the same turn: its last error (the CSV's
+  // error_deg, next to last) is small.
+  const std::filesystem::path paper_csv = folder_ / "compass_paper.csv";
+  ASSERT_EQ(run_omninav({"compass", "--input", run.string(), "--truth", "--method", "alg1-paper",
+                         "--out", paper_csv.string()}),
+            0)
+      << errors_;
+  std::ifstream paper_file(paper_csv);
+  std::string paper_last;
+  while (std::getline(paper_file, line)) paper_last = line;
+  const std::string without_distance = paper_last.substr(0, paper_last.rfind(','));
+  const double paper_error_deg =
+      std::stod(without_distance.substr(without_distance.rfind(',') + 1));
+  EXPECT_LT(std::abs(paper_error_deg), 1.0) << paper_last;
   // A missing input is an input error (1), through an option as through a positional argument.
   EXPECT_EQ(run_omninav({"compass", "--input", (folder_ / "nowhere").string()}), 1);
   EXPECT_EQ(errors_, "error: " + (folder_ / "nowhere").string() + ": no such file or folder\n");

@@ -42,7 +42,14 @@ TEST(CompassConfig, ShippedFileHoldsTheTable2Defaults) {
             defaults.compass.sampling.fixed_skip_frames);
   EXPECT_NEAR(shipped.compass.sampling.max_reference_rotation_rad,
               defaults.compass.sampling.max_reference_rotation_rad, 1e-12);
-  EXPECT_EQ(shipped.compass.sampling.parallax_ratio, defaults.compass.sampling.parallax_ratio);
+  EXPECT_EQ(shipped.compass.sampling.parallax_step_ratio,
+            defaults.compass.sampling.parallax_step_ratio);
+  EXPECT_EQ(shipped.compass.travel.enabled, defaults.compass.travel.enabled);
+  EXPECT_EQ(shipped.compass.travel.fit.iterations, defaults.compass.travel.fit.iterations);
+  EXPECT_EQ(shipped.compass.travel.fit.rows_used, defaults.compass.travel.fit.rows_used);
+  EXPECT_EQ(shipped.compass.travel.fit.whole, defaults.compass.travel.fit.whole);
+  EXPECT_NEAR(shipped.compass.travel.fit.max_correction_rad,
+              defaults.compass.travel.fit.max_correction_rad, 1e-12);
   EXPECT_EQ(matcher.confidence.flat_below_grey,
             defaults.compass.matcher.confidence.flat_below_grey);
   EXPECT_NEAR(matcher.confidence.competing_separation_rad,
@@ -63,10 +70,17 @@ TEST(CompassConfig, ReadsEveryKey) {
       "phase: {components: 4}\n"
       "subpixel: {mode: parabolic, parabolic_up_to_norm_amp: 0.4, linear_from_norm_amp: 0.9}\n"
       "sampling: {policy: fixed_skip, threshold_norm_amp: 0.7, fixed_skip_frames: 5, "
-      "max_reference_rotation_deg: 4, parallax_ratio: 0.1}\n"
+      "max_reference_rotation_deg: 4, parallax_step_ratio: 0.1}\n"
       "confidence: {flat_below_grey: 2, competing_separation_deg: 5, competing_depth_ratio: 0.2}\n"
+      "travel_fit: {enabled: true, iterations: 3, rows_used: 20, columns: whole, "
+      "max_correction_deg: 3}\n"
       "input: {width_px: 1080}\n",
       "compass.yaml"));
+  EXPECT_TRUE(read.compass.travel.enabled);
+  EXPECT_EQ(read.compass.travel.fit.iterations, 3);
+  EXPECT_EQ(read.compass.travel.fit.rows_used, 20);
+  EXPECT_TRUE(read.compass.travel.fit.whole);
+  EXPECT_NEAR(read.compass.travel.fit.max_correction_rad, 3.0 * kPi / 180.0, 1e-12);
   EXPECT_FALSE(read.compass.matcher.distance.field_of_view.front_back);
   EXPECT_EQ(read.compass.matcher.minimiser.kind, MinimiserKind::kFft);
   EXPECT_EQ(read.compass.matcher.minimiser.fft_planning, FftPlanning::kMeasure);
@@ -75,7 +89,7 @@ TEST(CompassConfig, ReadsEveryKey) {
   EXPECT_EQ(read.compass.sampling.policy, SamplingPolicy::kFixedSkip);
   EXPECT_EQ(read.compass.sampling.fixed_skip_frames, 5);
   EXPECT_NEAR(read.compass.sampling.max_reference_rotation_rad, 4.0 * kPi / 180.0, 1e-12);
-  EXPECT_EQ(read.compass.sampling.parallax_ratio, 0.1);
+  EXPECT_EQ(read.compass.sampling.parallax_step_ratio, 0.1);
   EXPECT_EQ(read.width_px, 1080);
 }
 

@@ -55,7 +55,7 @@ void load_compass_config(const ConfigReader& config, CompassConfig& out) {
   sampling.read("fixed_skip_frames", sampling_params.fixed_skip_frames, 0, 100000);
   sampling.read_deg("max_reference_rotation_deg", sampling_params.max_reference_rotation_rad, 0.0,
                     180.0);
-  sampling.read("parallax_ratio", sampling_params.parallax_ratio, 0.0, 10.0);
+  sampling.read("parallax_step_ratio", sampling_params.parallax_step_ratio, 0.0, 10.0);
 
   const ConfigReader confidence = config.section("confidence");
   ConfidenceParams& confidence_params = matcher.confidence;
@@ -69,6 +69,15 @@ void load_compass_config(const ConfigReader& config, CompassConfig& out) {
   tilt.read("level", levelling.enabled);
   tilt.read("blocks", levelling.tilt.blocks, 4, 4096);
   tilt.read_deg("max_tilt_deg", levelling.tilt.max_tilt_rad, 0.5, 30.0);
+
+  const ConfigReader travel = config.section("travel_fit");
+  travel.read("enabled", out.compass.travel.enabled);
+  travel.read("iterations", out.compass.travel.fit.iterations, 0, 100);
+  travel.read("rows_used", out.compass.travel.fit.rows_used, 1, 100000);
+  std::string travel_columns = out.compass.travel.fit.whole ? "whole" : "bands";
+  travel.read("columns", travel_columns, {"whole", "bands"});
+  out.compass.travel.fit.whole = travel_columns == "whole";
+  travel.read_deg("max_correction_deg", out.compass.travel.fit.max_correction_rad, 0.0, 180.0);
 
   const ConfigReader input = config.section("input");
   std::optional<double> width = out.width_px ? std::optional<double>(*out.width_px) : std::nullopt;

@@ -24,6 +24,7 @@ struct FrameCaches {
   std::shared_ptr<const FirstSpectra> first;
   std::map<std::uint64_t, std::shared_ptr<const SecondSpectra>> second;  // by ColumnMask::key
   std::map<std::uint64_t, double> self_amplitude;  // by distance function (metric and mask)
+  std::map<std::uint64_t, double> self_step;       // d(I, I, 1 px), by distance function
   // Components 1..K of every line's spectrum (line r·C + ch, K values each), by K, for the
   // phase estimate (phase.cpp).
   std::map<int, std::shared_ptr<const std::vector<std::complex<double>>>> low_frequencies;

@@ -106,22 +106,30 @@ const DistanceFunction& PairMatcher::distance_function(int width_px) const {
   return *slot;
 }
 
-double PairMatcher::self_amplitude(const CompassFrame& frame) const {
+double PairMatcher::self_distance(const CompassFrame& frame, bool half_turn) const {
   const DistanceFunction& distance = distance_function(frame.width());
   const std::uint64_t key = distance_key(distance);
   detail::FrameCaches& caches = frame.caches();
+  std::map<std::uint64_t, double>& cache = half_turn ? caches.self_amplitude : caches.self_step;
   {
     const std::lock_guard<std::mutex> lock(caches.mutex);
-    if (const auto found = caches.self_amplitude.find(key); found != caches.self_amplitude.end()) {
-      return found->second;
-    }
+    if (const auto found = cache.find(key); found != cache.end()) return found->second;
   }
-  // A(I, I) = d(I, I, W/2) − d(I, I, 0), and d(I, I, 0) = 0.
+  // A(I, I) = d(I, I, W/2) − d(I, I, 0), and d(I, I, 0) = 0; the step is d(I, I, 1).
   CostTable table(distance, frame, frame, kernel_);
-  const double amplitude = distance_at(table, frame.width() / 2.0) - table.distance_at(0);
+  const double value = half_turn ? distance_at(table, frame.width() / 2.0) - table.distance_at(0)
+                                 : table.distance_at(1);
   const std::lock_guard<std::mutex> lock(caches.mutex);
-  caches.self_amplitude[key] = amplitude;
-  return amplitude;
+  cache[key] = value;
+  return value;
+}
+
+double PairMatcher::self_amplitude(const CompassFrame& frame) const {
+  return self_distance(frame, true);
+}
+
+double PairMatcher::self_step(const CompassFrame& frame) const {
+  return self_distance(frame, false);
 }
 
 PairMatch PairMatcher::match(const CompassFrame& first, const CompassFrame& second,
@@ -142,6 +150,7 @@ PairMatch PairMatcher::match(const CompassFrame& first, const CompassFrame& seco
 
   // Eq. 9 and its normalisation by A(I_i, I_i) (Eq. 8).
   match.self_amplitude = self_amplitude(first);
+  match.self_step = self_step(first);
   const double amplitude_px = distance_at(table, a + half_turn) - d_0;
   match.amplitude_norm_px = match.self_amplitude > 0.0 ? amplitude_px / match.self_amplitude : 0.0;
 

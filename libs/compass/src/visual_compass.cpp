@@ -25,7 +25,7 @@ std::string describe(const SamplingParams& sampling) {
 VisualCompass::VisualCompass(const CompassParams& params, double initial_heading_rad)
     : params_(params), matcher_(params.matcher), initial_heading_rad_(initial_heading_rad) {
   if (!(params.sampling.max_reference_rotation_rad >= 0.0) ||
-      !(params.sampling.parallax_ratio >= 0.0)) {
+      !(params.sampling.parallax_step_ratio >= 0.0)) {
     throw UsageError("the rotation cap of Algorithm 1 needs a rotation and a parallax ratio >= 0");
   }
   if (params.sampling.policy == SamplingPolicy::kFixedSkip &&
@@ -44,7 +44,7 @@ bool VisualCompass::beyond_rotation_cap(const PairMatch& match,
   // r_rc as line 15 will use it: unwrapped next to r_rp.
   const double rotation_rad =
       rotation_ref_previous_rad + signed_difference(match.rotation_rad, rotation_ref_previous_rad);
-  const bool parallax = match.distance_min > sampling.parallax_ratio * match.self_amplitude;
+  const bool parallax = match.distance_min > sampling.parallax_step_ratio * match.self_step;
   return std::abs(rotation_rad) > sampling.max_reference_rotation_rad && parallax;
 }
 
@@ -70,6 +70,20 @@ PairMatch VisualCompass::match_levelled(const CompassFrame& reference, const Com
   return second;
 }
 
+double VisualCompass::refined_rotation(const CompassFrame& previous,
+                                       double rotation_ref_previous_rad,
+                                       double shift_ref_previous_px) const {
+  if (!params_.travel.enabled) return rotation_ref_previous_rad;
+  const ColumnMask mask = params_.travel.fit.whole
+                              ? ColumnMask::whole(previous.width())
+                              : matcher_.distance_function(previous.width()).mask();
+  const TravelFit fit = fit_turn_and_travel(reference_->image(), previous.image(), mask,
+                                            shift_ref_previous_px, params_.travel.fit);
+  // Eq. 4 on the change of α: r_rp stays unwrapped.
+  return rotation_ref_previous_rad -
+         rotation_of_shift_px(fit.shift_px - shift_ref_previous_px, previous.width());
+}
+
 CompassEstimate VisualCompass::push(const CompassFrame& frame) {
   CompassEstimate estimate;
   estimate.frame_index = frame.index();
@@ -83,6 +97,7 @@ CompassEstimate VisualCompass::push(const CompassFrame& frame) {
     reference_heading_rad_ = initial_heading_rad_;
     current_heading_rad_ = initial_heading_rad_;
     rotation_ref_current_rad_ = 0.0;
+    shift_ref_current_px_ = 0.0;
     estimate.heading_rad = current_heading_rad_;
     estimate.amplitude_norm = 1.0;
     estimate.reference_index = frame.index();
@@ -95,6 +110,7 @@ CompassEstimate VisualCompass::push(const CompassFrame& frame) {
   current_ = frame;                         // line 7
   ++frame_count_;
   const double rotation_ref_previous_rad = rotation_ref_current_rad_;  // line 8
+  const double shift_ref_previous_px = shift_ref_current_px_;
   const double previous_heading_rad = current_heading_rad_;
   const int width = frame.width();
 
@@ -119,7 +135,9 @@ CompassEstimate VisualCompass::push(const CompassFrame& frame) {
   }
   if (switch_reference) {
     if (!previous_is_reference) {
-      reference_heading_rad_ += rotation_ref_previous_rad;  // line 11, the firewall
+      // Line 11, the firewall (with r_rp refined by the turn-and-travel fit).
+      reference_heading_rad_ +=
+          refined_rotation(previous, rotation_ref_previous_rad, shift_ref_previous_px);
       const int evaluations = estimate.evaluations;
       match = match_levelled(previous, frame, 0, estimate);  // line 12, started from 0
       estimate.evaluations = evaluations + match.evaluations;
@@ -140,6 +158,7 @@ CompassEstimate VisualCompass::push(const CompassFrame& frame) {
       estimate.new_reference ? match.rotation_rad
                              : rotation_ref_previous_rad +
                                    signed_difference(match.rotation_rad, rotation_ref_previous_rad);
+  shift_ref_current_px_ = match.subpixel_shift_px;
   current_heading_rad_ = reference_heading_rad_ + rotation_ref_current_rad_;  // line 15
 
   estimate.heading_rad = current_heading_rad_;

@@ -74,6 +74,10 @@ struct PairMatch {
   double amplitude_norm = 0.0;  // 𝒜_n (Eq. 8); 0 when the first image is featureless
   double amplitude_norm_px = 0.0;  // A_n, pixel resolution (Eq. 9 normalised)
   double self_amplitude = 0.0;     // A(I_i, I_i), the normaliser
+  double self_step = 0.0;  // d(I_i, I_i, 1 px): the first image against itself rolled by one
+                           // column, the largest d_m a pure rotation can leave (its minimum is
+                           // at most half a column from a whole shift); the compass's run-time
+                           // floor for parallax (visual_compass.hpp)
   ConfidenceFlags flags;
   int evaluations = 0;  // distance evaluations by the fast kernel (FFT: the shifts it left to
                         // evaluate exactly and the sub-pixel fit's; the oracle: W)
@@ -94,6 +98,8 @@ class PairMatcher {
 
   // A(I, I) = d(I, I, W/2) (Eq. 8's normaliser), cached in the frame.
   double self_amplitude(const CompassFrame& frame) const;
+  // d(I, I, 1 px), PairMatch::self_step, cached in the frame.
+  double self_step(const CompassFrame& frame) const;
 
   // The distance function for panoramas `width_px` wide (made once per width).
   const DistanceFunction& distance_function(int width_px) const;
@@ -101,6 +107,9 @@ class PairMatcher {
   const PairMatcherParams& params() const { return params_; }
 
  private:
+  // A(I, I) (half_turn) or d(I, I, 1 px), cached in the frame by distance function.
+  double self_distance(const CompassFrame& frame, bool half_turn) const;
+
   PairMatcherParams params_;
   std::unique_ptr<Minimiser> minimiser_;
   CostTable::Kernel kernel_;  // for the minimiser's tables and the self amplitudes

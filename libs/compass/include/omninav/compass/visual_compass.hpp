@@ -16,16 +16,22 @@
 // nothing to fall back on: the match stands and is flagged low_amplitude.
 //
 // BEYOND THE PAPER: the rotation cap. Line 10's test also succeeds when |r_rc| exceeds
-// max_reference_rotation_rad while the pair shows parallax, d_m > parallax_ratio·A(I_r, I_r)
-// (the minimum's rise that §3.4.4 reads as parallax, Figs. 11-12). Why: the field of view moves
-// with the second image (§3.4.3), centred on ITS front and back, but on a curved path the
+// max_reference_rotation_rad while the pair shows parallax: its minimum d_m is above what a pure
+// rotation can leave, parallax_step_ratio·d(I_r, I_r, 1 column). Why the cap: the field of view
+// moves with the second image (§3.4.3), centred on ITS front and back, but on a curved path the
 // translation between the two frames points along the chord, half the rotation away; the
 // bands then sit off the focus of expansion, the expansion inside them is lopsided, and the
 // minimum of d is biased by an amount that grows with rotation × translation and keeps its sign
 // while the robot keeps turning one way. With t alone a reference can last 61° of turn and
-// 0.96 m on the rendered CIRCLE (21° max error over three turns); capped at 6° it stays within
-// 3° (docs/compass.md). A pure rotation shows no parallax (d_m ≈ 0), so it keeps its one or
-// two references. max_reference_rotation_rad = 0 gives the paper's Algorithm 1 exactly.
+// 0.96 m on the rendered CIRCLE (21° max error over three turns); the cap bounds it
+// (docs/compass.md). Why the parallax test: every new reference adds the sub-pixel fit's
+// error, and that error is a bias (the fit is pulled towards whole columns, and a steady turn
+// gives every hop the same fraction of a column), so needless references make a pure rotation
+// drift (6.9° over three turns in the field at 360 columns with a reference every 5°). A pure
+// rotation matches at a whole shift to within half a column, so its minimum stays below the
+// reference against itself rolled by one column: that distance, measured on the reference at
+// run time, is the floor (nothing fitted to a scene). max_reference_rotation_rad = 0 gives the
+// paper's Algorithm 1 exactly.
 //
 // "Fx n" (§4.3: "skipping a fixed number of frames"): the same loop with line 10's test
 // replaced by "I_c is more than n + 1 frames after I_r". The reference frames are then frames
@@ -40,6 +46,7 @@
 #include "omninav/compass/frame.hpp"
 #include "omninav/compass/pair_matcher.hpp"
 #include "omninav/compass/tilt.hpp"
+#include "omninav/compass/travel_fit.hpp"
 
 namespace omninav::compass {
 
@@ -59,10 +66,10 @@ struct SamplingParams {
   // this, radians, once the pair shows parallax; 0: off (the paper's Algorithm 1). 6° keeps the
   // bands within 3° of the direction of travel (docs/compass.md: 5-6° work on rendered CIRCLE).
   double max_reference_rotation_rad = 6.0 * 3.14159265358979323846 / 180.0;
-  // Parallax shown: the pair's minimum d_m above this share of the reference's self amplitude
-  // A(I_r, I_r). Rendered pure rotations stay below 0.075 (95th percentile), 6 cm of translation
-  // in the default room gives 0.08-0.20 (docs/compass.md).
-  double parallax_ratio = 0.08;
+  // Parallax shown: the pair's minimum d_m above this multiple of d(I_r, I_r, 1 column)
+  // (PairMatch::self_step), the most a pure rotation leaves (above). 1: the bound itself, not a
+  // value fitted to a scene.
+  double parallax_step_ratio = 1.0;
 };
 
 // Levelling each frame against its reference before matching (tilt.hpp, docs/compass.md
@@ -79,10 +86,20 @@ struct TiltLevellingParams {
   double elevation_max_rad = deg_to_rad(15.0);
 };
 
+// The turn fitted together with the parallax of the displacement (travel_fit.hpp) where it
+// accumulates: when a reference is replaced, r_rp (line 11's rotation from the old reference to
+// the frame that becomes the new one) is refined by fit_turn_and_travel before it is added to
+// ω_r. Frames in between keep line 9's estimate: their error does not accumulate.
+struct TravelFitting {
+  bool enabled = false;  // measured on the zoo: docs/compass.md "Turn and travel together"
+  TravelFitParams fit;
+};
+
 struct CompassParams {
   PairMatcherParams matcher;
   SamplingParams sampling;
   TiltLevellingParams levelling;
+  TravelFitting travel;
 };
 
 // What the compass says about one frame.
@@ -128,6 +145,9 @@ class VisualCompass {
   // (the tilt goes into `estimate`).
   PairMatch match_levelled(const CompassFrame& reference, const CompassFrame& frame,
                            int start_shift, CompassEstimate& estimate) const;
+  // r_rp refined by the turn-and-travel fit of (I_r, I_p) (TravelFitting).
+  double refined_rotation(const CompassFrame& previous, double rotation_ref_previous_rad,
+                          double shift_ref_previous_px) const;
 
   CompassParams params_;
   PairMatcher matcher_;
@@ -139,6 +159,7 @@ class VisualCompass {
   int reference_count_ = 0;
   double reference_heading_rad_ = 0.0;     // ω_r
   double rotation_ref_current_rad_ = 0.0;  // r_rc
+  double shift_ref_current_px_ = 0.0;      // α_m of the match that gave r_rc
   double current_heading_rad_ = 0.0;       // ω_c
 };
 
