@@ -80,6 +80,7 @@ void run_explore(const GlobalOptions& global, const ExploreOptions& options) {
                                                   .is_grid = input.is_grid(),
                                                   .all_frames = options.all_frames,
                                                   .frame_count = input.size(),
+                                                  .grid_spacing_m = input.grid_spacing_m(),
                                                   .next = [&input] { return input.next(); }});
   store.save(memory, {.overwrite = options.overwrite, .after_place = {}});
   const std::size_t added = memory.place_count() - places_before;

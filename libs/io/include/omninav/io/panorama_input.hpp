@@ -39,6 +39,7 @@ class PanoramaInput {
   // What is read, e.g. "BoB database grid/ (80 images, with poses) (unwrapped with camera.yaml)".
   std::string describe() const;
   bool is_grid() const;
+  std::optional<double> grid_spacing_m() const;  // SequenceReader::grid_spacing_m
   bool unwraps() const { return unwrap_; }
 
  private:
