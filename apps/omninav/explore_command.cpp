@@ -83,6 +83,7 @@ void run_explore(const GlobalOptions& global, const ExploreOptions& options) {
                                                   .is_grid = input.is_grid(),
                                                   .all_frames = options.all_frames,
                                                   .frame_count = input.size(),
+                                                  .grid_spacing_m = input.grid_spacing_m(),
                                                   .next = [&input] { return input.next(); }});
   // A camera's dropped frames and stop by Ctrl-C stay with the run they shaped.
   memory.add_run_note(memory.runs().size() - 1, input.notes());

@@ -6,6 +6,7 @@
 #include "cli.hpp"
 #include "omninav/core/errors.hpp"
 #include "omninav/core/format.hpp"
+#include "omninav/core/log.hpp"
 #include "omninav/core/output_file.hpp"
 #include "omninav/eval/png.hpp"
 #include "omninav/evaluation/organised_map.hpp"
@@ -52,6 +53,24 @@ void run_organise(const GlobalOptions& global, const OrganiseOptions& options) {
                   << " dropped), " << organised.lattice.motion_constraints
                   << " motions (directions from the phases)\n"
                   << "  solver:   " << organised.lattice.summary << "\n";
+  // The quality needs no ground truth: the lattice against the motions it was solved from.
+  const memory::LatticeQuality& quality = organised.quality;
+  summary(global) << "  quality:  " << quality.motions << " motions, median residual "
+                  << fixed(quality.motion_residual_steps, 2) << " steps, "
+                  << fixed(100.0 * quality.motions_off, 1)
+                  << " % pointing > 45 deg off the lattice, " << quality.pieces
+                  << (quality.pieces == 1 ? " piece" : " pieces") << " before look-alike joins: "
+                  << (quality.trustworthy ? "trustworthy" : "NOT TRUSTWORTHY") << "\n";
+  if (!quality.trustworthy) {
+    log_warning("the lattice of " + options.map.string() + " is not trustworthy: " +
+                (quality.pieces > 1
+                     ? std::to_string(quality.pieces) +
+                           " pieces are placed against each other by look-alikes only"
+                     : fixed(100.0 * quality.motions_off, 1) +
+                           " % of the motions disagree with it (more than " +
+                           fixed(100.0 * params.max_motions_off, 1) + " %)") +
+                "; positions on it may be metres off");
+  }
   const std::optional<evaluation::LatticeScore>& evaluation = result.score;
   if (evaluation) {
     // An RMSE over no places (a map without interior places) is NaN: said in words.
@@ -83,14 +102,16 @@ void add_organise_command(CLI::App& app, const GlobalOptions& global) {
       "Arrange the places of a visual memory into a 2-D lattice with the spring model "
       "(Menegatti et al. 2004, §3; Ceres): distances from similarity, stiff short springs, "
       "directions of motion from the phases. Stores the positions in the map, prints the "
-      "calibration and the solver's report, and draws <map>.lattice.png. When the map has ground "
+      "calibration, the solver's report and the lattice's quality (the motions against it; a "
+      "warning when it is not trustworthy), and draws <map>.lattice.png. When the map has ground "
       "truth: the truth beside it, the Procrustes RMSE, and the folds (triangles of true "
       "neighbours turned over in the lattice).");
   command->add_option("map", options->map, "The map (.vmem)")->required();
   command
       ->add_option("--step-m", options->step_m,
                    "Metres between consecutive places of the exploration (default: lattice.yaml, "
-                   "else the spacing the map was explored with, explore --every-m)")
+                   "else the spacing the map was explored with, explore --every-m, else the "
+                   "grid spacing its BoB grid database states, grid.separationMM)")
       ->check(NumberRange(0.0, 100.0));
   command->add_flag("--no-motion", options->no_motion,
                     "Springs only: no motions measured from the phases");

@@ -170,11 +170,26 @@ TEST_F(CommandLine, OrganiseThenNavigateNeedTheirPrerequisites) {
                          (folder_ / "nav").string()}),
             2);
   EXPECT_NE(errors_.find("organise"), std::string::npos) << errors_;
-  // A grid database has no spacing policy: the scale must be given.
-  EXPECT_EQ(run_omninav({"organise", map.string()}), 2);
-  EXPECT_NE(errors_.find("--step-m"), std::string::npos) << errors_;
-  ASSERT_EQ(run_omninav({"organise", map.string(), "--step-m", "0.3"}), 0) << errors_;
+  // The rendered grid database states its spacing (BoB's grid.separationMM): no step needed.
+  ASSERT_EQ(run_omninav({"organise", map.string()}), 0) << errors_;
+  EXPECT_NE(output_.find("0.300 m between consecutive places (map: the grid database's "
+                         "grid.separationMM)"),
+            std::string::npos)
+      << output_;
+  EXPECT_NE(output_.find("quality:"), std::string::npos) << output_;
   EXPECT_TRUE(std::filesystem::exists(folder_ / "grid.lattice.png"));
+  {
+    // A grid database whose metadata does not state it: the scale must be given.
+    const std::filesystem::path bare = folder_ / "bare";
+    std::filesystem::copy(grid, bare);
+    std::ofstream(bare / "database_metadata.yaml") << "metadata:\n  type: grid\n";
+    const std::filesystem::path bare_map = folder_ / "bare.vmem";
+    ASSERT_EQ(run_omninav({"explore", "--input", bare.string(), "--out", bare_map.string()}), 0)
+        << errors_;
+    EXPECT_EQ(run_omninav({"organise", bare_map.string()}), 2);
+    EXPECT_NE(errors_.find("--step-m"), std::string::npos) << errors_;
+    ASSERT_EQ(run_omninav({"organise", bare_map.string(), "--step-m", "0.3"}), 0) << errors_;
+  }
   EXPECT_EQ(run_omninav({"navigate", map.string(), "--start", "1.5,1.6,0", "--goal", goal, "--out",
                          (folder_ / "nav").string(), "--max-steps", "5"}),
             0)

@@ -102,6 +102,13 @@ TEST(BobDatabaseReader, ReadsBobExampleGrid) {
   ASSERT_EQ(reader.entries().size(), 4u);
   EXPECT_EQ(reader.entries()[2].grid, (std::array{0, 1, 0}));
   EXPECT_EQ(reader.entries()[3].grid, (std::array{1, 1, 0}));
+  // The grid's geometry as GridRecorder states it; the spacing is the smallest positive
+  // separation in the floor's plane.
+  ASSERT_TRUE(reader.info().grid);
+  EXPECT_EQ(reader.info().grid->begin_mm, (std::array{0.0, 0.0, 10.0}));
+  EXPECT_EQ(reader.info().grid->separation_mm, (std::array{1000.0, 1000.0, 0.0}));
+  EXPECT_EQ(reader.info().grid->size, (std::array{2, 2, 1}));
+  EXPECT_EQ(reader.grid_spacing_m(), std::optional<double>(1.0));
   ASSERT_TRUE(reader.entries()[1].truth);
   EXPECT_NEAR(reader.entries()[1].truth->x_m, 1.0, kExact);
   const std::vector<Frame> frames = read_all(reader);
@@ -109,12 +116,42 @@ TEST(BobDatabaseReader, ReadsBobExampleGrid) {
   EXPECT_EQ(index_of(frames[3].image), 3);
 }
 
-TEST(BobDatabaseReader, WithoutMetadataGridColumnsMakeAGrid) {
-  const TempDir dir;
+TEST(BobDatabaseReader, GridSpacingIsTheSmallestPositiveSeparation) {
+  GridGeometry grid;
+  EXPECT_FALSE(grid.spacing_m());  // no separation stated
+  grid.separation_mm = {300.0, 250.0, 100.0};
+  EXPECT_DOUBLE_EQ(*grid.spacing_m(), 0.25);  // z is a grid's height, not a floor spacing
+  grid.separation_mm = {0.0, 0.0, 100.0};
+  EXPECT_DOUBLE_EQ(*grid.spacing_m(), 0.1);  // a column of points
+}
+
+// A grid database of one image, a.png, at the origin with these grid indices.
+void write_one_grid_image(const TempDir& dir, const std::string& indices) {
   write_text(dir / kBobEntriesFile,
              "X [mm], Y [mm], Z [mm], Heading [degrees], Filename, Grid X, Grid Y, Grid Z\n"
-             "0, 0, 0, 0, a.png, 4, 5, 6\n");
+             "0, 0, 0, 0, a.png, " +
+                 indices + "\n");
   write_image(dir / "a.png", make_image(0));
+}
+
+TEST(BobDatabaseReader, BadGridSeparationIsInputErrorNamingMetadata) {
+  const TempDir dir;
+  write_one_grid_image(dir, "0, 0, 0");
+  for (const char* separation : {"[ -300., 300., 0. ]", "[ 300., 300. ]", "300", "[ a, 1, 2 ]"}) {
+    write_text(
+        dir / kBobMetadataFile,
+        std::string("metadata:\n  type: grid\n  grid:\n    separationMM: ") + separation + "\n");
+    EXPECT_INPUT_ERROR(BobDatabaseReader{dir.path()}, (dir / kBobMetadataFile).string(),
+                       "metadata.grid.separationMM is not [x, y, z]");
+  }
+  write_text(dir / kBobMetadataFile, "metadata:\n  type: grid\n  grid: 300\n");
+  EXPECT_INPUT_ERROR(BobDatabaseReader{dir.path()}, (dir / kBobMetadataFile).string(),
+                     "metadata.grid is not a map");
+}
+
+TEST(BobDatabaseReader, WithoutMetadataGridColumnsMakeAGrid) {
+  const TempDir dir;
+  write_one_grid_image(dir, "4, 5, 6");
   const BobDatabaseReader reader(dir.path());
   EXPECT_TRUE(reader.info().is_grid);
   EXPECT_EQ(reader.entries()[0].grid, (std::array{4, 5, 6}));

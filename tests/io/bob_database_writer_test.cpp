@@ -103,6 +103,7 @@ TEST(DatabaseWriter, GridRoundTripKeepsIndicesAndUsesBobGridNames) {
   const TempDir dir;
   DatabaseInfo info;
   info.is_grid = true;
+  info.grid = GridGeometry{{-500.0, 0.0, 10.0}, {500.0, 1000.0, 0.0}, {3, 2, 1}};
   {
     DatabaseWriter writer(dir.path(), info);
     int index = 0;
@@ -122,6 +123,12 @@ TEST(DatabaseWriter, GridRoundTripKeepsIndicesAndUsesBobGridNames) {
 
   BobDatabaseReader reader(dir.path());
   EXPECT_TRUE(reader.info().is_grid);
+  // The geometry as BoB's GridRecorder writes it, read back.
+  ASSERT_TRUE(reader.info().grid);
+  EXPECT_EQ(reader.info().grid->begin_mm, info.grid->begin_mm);
+  EXPECT_EQ(reader.info().grid->separation_mm, info.grid->separation_mm);
+  EXPECT_EQ(reader.info().grid->size, info.grid->size);
+  EXPECT_EQ(reader.grid_spacing_m(), std::optional<double>(0.5));
   ASSERT_EQ(reader.entries().size(), 6u);
   EXPECT_EQ(reader.entries()[4].grid, (std::array{1, 1, 0}));
   ASSERT_TRUE(reader.entries()[4].truth);

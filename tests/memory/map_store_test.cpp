@@ -200,6 +200,35 @@ TEST_F(MapStoreTest, RoundTripKeepsSignaturesAndGraphIdentical) {
   EXPECT_EQ(loaded.exploration_spacing_m(), 0.3);
 }
 
+TEST_F(MapStoreTest, RoundTripKeepsTheGridSpacingAndTheLatticeQuality) {
+  VisualMemory memory = synthetic_memory(5);
+  memory.set_grid_spacing_m(0.3);
+  memory.set_lattice_positions(diagonal_lattice(memory));
+  memory.set_lattice_quality({.motions = 40,
+                              .motion_residual_steps = 0.25,
+                              .motions_off = 0.125,
+                              .pieces = 2,
+                              .trustworthy = false});
+  const fs::path file = dir_ / "quality.vmem";
+  MapStore store(file);
+  store.save(memory);
+  VisualMemory loaded = store.load();
+  EXPECT_EQ(loaded.grid_spacing_m(), 0.3);
+  EXPECT_FALSE(loaded.exploration_spacing_m());
+  ASSERT_TRUE(loaded.lattice_quality());
+  EXPECT_EQ(loaded.lattice_quality()->motions, 40);
+  EXPECT_EQ(loaded.lattice_quality()->motion_residual_steps, 0.25);
+  EXPECT_EQ(loaded.lattice_quality()->motions_off, 0.125);
+  EXPECT_EQ(loaded.lattice_quality()->pieces, 2);
+  EXPECT_FALSE(loaded.lattice_quality()->trustworthy);
+  // A lattice cleared takes its quality with it, on disk too.
+  loaded.clear_lattice_positions();
+  EXPECT_FALSE(loaded.lattice_quality());
+  store.save(loaded);
+  EXPECT_FALSE(load_map(file).lattice_quality());
+  EXPECT_THROW(memory.set_grid_spacing_m(0.0), UsageError);
+}
+
 // The spacing was a free-form note once; readers of the schema's parameters table (older
 // omninav, sqlite3) still find it under the note's name, and a map that has it as the note
 // reads it as the spacing.

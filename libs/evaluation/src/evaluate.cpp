@@ -285,6 +285,7 @@ class WorldRun {
                                                     .is_grid = is_grid,
                                                     .all_frames = false,
                                                     .frame_count = reader->size(),
+                                                    .grid_spacing_m = reader->grid_spacing_m(),
                                                     .next = [&reader] { return reader->next(); }});
     memory::MapStore(map_file).save(memory, {.overwrite = true, .after_place = {}});
     command(args);
@@ -322,7 +323,10 @@ class WorldRun {
     set("lattice_" + key + "_folds", static_cast<double>(evaluation->folded.size()));
     log_stage("lattice " + key + ": RMSE " + num(evaluation->rmse.all, 2) + " spacings, " +
               std::to_string(evaluation->folded.size()) + " of " +
-              std::to_string(evaluation->neighbour_triangles) + " triangles folded");
+              std::to_string(evaluation->neighbour_triangles) + " triangles folded; quality " +
+              num(result.organised.quality.motions_off, 3) + " of motions off, " +
+              std::to_string(result.organised.quality.pieces) + " piece(s), residual " +
+              num(result.organised.quality.motion_residual_steps, 2) + " steps");
   }
 
   void grid_map() {
@@ -340,7 +344,8 @@ class WorldRun {
     }
     bool organised = false;
     stage("lattice", [&] {
-      organise(map_file, "grid", layout_.spacing_m);
+      // The scale from the database's metadata (grid.separationMM), as organise reads it.
+      organise(map_file, "grid", 0.0);
       organised = true;
     });
     stage("memory", [&] { localise(map_file); });

@@ -119,6 +119,18 @@ bool has_any_grid_column(const CsvTable& table) {
 
 }  // namespace
 
+std::optional<double> GridGeometry::spacing_m() const {
+  double smallest = 0.0;
+  const auto consider = [&smallest](double mm) {
+    if (mm > 0.0 && (smallest == 0.0 || mm < smallest)) smallest = mm;
+  };
+  consider(separation_mm[0]);
+  consider(separation_mm[1]);
+  if (smallest == 0.0) consider(separation_mm[2]);
+  if (smallest == 0.0) return std::nullopt;
+  return smallest / 1000.0;
+}
+
 BobDatabaseReader::BobDatabaseReader(const std::filesystem::path& folder) : folder_(folder) {
   const std::optional<bob::Metadata> metadata = bob::read_metadata(folder / kBobMetadataFile);
   const CsvTable table = CsvTable::read(folder / kBobEntriesFile);

@@ -58,6 +58,22 @@ class MetadataParser {
     } else if (camera.IsDefined() && !camera.IsNull()) {
       fail("camera", "is not a map");
     }
+
+    const YAML::Node grid = metadata_["grid"];
+    if (grid.IsDefined() && grid.IsMap()) {
+      GridGeometry geometry;
+      geometry.begin_mm = triple("grid.beginAtMM", grid["beginAtMM"], -1e12);
+      geometry.separation_mm = triple("grid.separationMM", grid["separationMM"], 0.0);
+      const std::array<double, 3> size = triple("grid.size", grid["size"], 0.0);
+      for (std::size_t i = 0; i < 3; ++i) {
+        if (size[i] != std::floor(size[i]) || size[i] > 1e9)
+          fail("grid.size", "is not [nx, ny, nz]");
+        geometry.size[i] = static_cast<int>(size[i]);
+      }
+      parsed.info.grid = geometry;
+    } else if (grid.IsDefined() && !grid.IsNull()) {
+      fail("grid", "is not a map");
+    }
     return parsed;
   }
 
@@ -80,6 +96,20 @@ class MetadataParser {
     }
     if (!std::isfinite(value)) fail(key, "is not a finite number");  // YAML has .nan and .inf
     return value;
+  }
+
+  // [x, y, z], each finite and at least `least`; [0, 0, 0] when absent.
+  std::array<double, 3> triple(const std::string& key, const YAML::Node& node, double least) const {
+    std::array<double, 3> values{};
+    if (absent(node)) return values;
+    if (!node.IsSequence() || node.size() != 3) fail(key, "is not [x, y, z]");
+    for (std::size_t i = 0; i < 3; ++i) {
+      if (!node[i].IsScalar() || !YAML::convert<double>::decode(node[i], values[i]) ||
+          !std::isfinite(values[i]) || values[i] < least) {
+        fail(key, "is not [x, y, z] of finite numbers" + std::string(least == 0.0 ? " >= 0" : ""));
+      }
+    }
+    return values;
   }
 
   cv::Size resolution(const YAML::Node& node) const {
@@ -210,6 +240,19 @@ std::string metadata_yaml(const DatabaseInfo& info, bool greyscale) {
   storage << "isGreyscale" << (greyscale ? 1 : 0);
   if (info.frame_rate_hz) storage << "frameRate" << *info.frame_rate_hz;
   if (!info.description.empty()) storage << "description" << info.description;
+  if (info.grid) {
+    const GridGeometry& grid = *info.grid;
+    storage << "grid"
+            << "{";
+    storage << "beginAtMM"
+            << "[:" << grid.begin_mm[0] << grid.begin_mm[1] << grid.begin_mm[2] << "]";
+    storage << "separationMM"
+            << "[:" << grid.separation_mm[0] << grid.separation_mm[1] << grid.separation_mm[2]
+            << "]";
+    storage << "size"
+            << "[:" << grid.size[0] << grid.size[1] << grid.size[2] << "]";
+    storage << "}";
+  }
   storage << "}";
   return storage.releaseAndGetString();
 }

@@ -71,4 +71,8 @@ bool PanoramaInput::is_grid() const {
   return reader_ && reader_->is_grid();
 }
 
+std::optional<double> PanoramaInput::grid_spacing_m() const {
+  return reader_ ? reader_->grid_spacing_m() : std::nullopt;
+}
+
 }  // namespace omninav::io

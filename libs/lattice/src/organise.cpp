@@ -21,15 +21,25 @@ std::pair<double, ScaleSource> scale_of(const memory::VisualMemory& memory,
                                         const OrganiseParams& params) {
   if (params.step_m > 0.0) return {params.step_m, ScaleSource::kUser};
   if (memory.exploration_spacing_m()) return {*memory.exploration_spacing_m(), ScaleSource::kMap};
+  if (memory.grid_spacing_m()) return {*memory.grid_spacing_m(), ScaleSource::kGrid};
   throw UsageError(
       "organise: the map does not say how far apart consecutive places are (explore with a "
-      "spacing in metres, or give the step, e.g. --step-m 0.3)");
+      "spacing in metres or a grid database whose metadata states grid.separationMM, or give "
+      "the step, e.g. --step-m 0.3)");
 }
 
 }  // namespace
 
 std::string to_string(ScaleSource source) {
-  return source == ScaleSource::kMap ? "map: exploration.every_m" : "user";
+  switch (source) {
+    case ScaleSource::kMap:
+      return "map: exploration.every_m";
+    case ScaleSource::kGrid:
+      return "map: the grid database's grid.separationMM";
+    case ScaleSource::kUser:
+      break;
+  }
+  return "user";
 }
 
 std::vector<std::optional<double>> lattice_headings(const memory::VisualMemory& memory) {
@@ -70,6 +80,35 @@ void load_organise_params(const ConfigReader& section, OrganiseParams& params) {
   section.read("loss_scale_m", params.lattice.loss_scale_m, 1e-4, 100.0);
   section.read("motion_loss_scale", params.lattice.motion_loss_scale, 0.01, 100.0);
   section.read("max_iterations", params.lattice.max_iterations, 1, 100000);
+  section.read("max_motions_off", params.max_motions_off, 0.0, 1.0);
+}
+
+memory::LatticeQuality measure_quality(const std::vector<Eigen::Vector2d>& positions,
+                                       const std::vector<MotionMeasurement>& motions, int joins,
+                                       double step_m, double max_motions_off) {
+  memory::LatticeQuality quality;
+  quality.pieces = 1 + joins;
+  // The joins are the last motions (motions.hpp): they rest on look-alikes, not checked ones.
+  const std::size_t checked = motions.size() - std::min<std::size_t>(motions.size(), joins);
+  std::vector<double> residuals;
+  int off = 0;
+  for (std::size_t i = 0; i < checked; ++i) {
+    const MotionMeasurement& motion = motions[i];
+    const Eigen::Vector2d measured =
+        motion.length_m *
+        Eigen::Vector2d(std::cos(motion.direction_rad), std::sin(motion.direction_rad));
+    const Eigen::Vector2d on_lattice = positions[motion.to] - positions[motion.from];
+    residuals.push_back((on_lattice - measured).norm() / step_m);
+    const double cosine = on_lattice.dot(measured) / (on_lattice.norm() * measured.norm() + 1e-300);
+    off += cosine < std::cos(M_PI / 4.0);
+  }
+  quality.motions = static_cast<int>(checked);
+  if (checked > 0) {
+    quality.motion_residual_steps = median(std::move(residuals));
+    quality.motions_off = static_cast<double>(off) / static_cast<double>(checked);
+  }
+  quality.trustworthy = quality.pieces == 1 && quality.motions_off <= max_motions_off;
+  return quality;
 }
 
 double DistanceCalibration::distance_m(int a, int b, double dissimilarity) const {
@@ -149,13 +188,18 @@ OrganiseResult organise(memory::VisualMemory& memory, const OrganiseParams& para
   lattice.correlation_range_m = calibration.correlation_range_m;
   result.lattice = solve_lattice(count, result.springs, result.motions, lattice);
   memory.set_lattice_positions(result.lattice.positions);
+  result.quality = measure_quality(result.lattice.positions, result.motions, result.motion_joins,
+                                   calibration.step_m, params.max_motions_off);
+  memory.set_lattice_quality(result.quality);
   log_info("organise: " + std::to_string(result.lattice.springs_kept) + " of " +
            std::to_string(result.lattice.springs_given) + " springs kept (of " +
            std::to_string(result.lattice.place_pairs) + " pairs of places), " +
            std::to_string(result.motions.size()) + " motions (" +
            std::to_string(result.look_alikes_dropped) + " look-alikes dropped, " +
-           std::to_string(result.motion_joins) + " added to join the lattice); " +
-           result.lattice.summary);
+           std::to_string(result.motion_joins) + " added to join the lattice); quality: " +
+           std::to_string(result.quality.motions_off) + " of motions off, residual " +
+           std::to_string(result.quality.motion_residual_steps) + " steps, " +
+           std::to_string(result.quality.pieces) + " piece(s); " + result.lattice.summary);
   return result;
 }
 

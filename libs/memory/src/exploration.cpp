@@ -319,6 +319,7 @@ Run explore_frames(VisualMemory& memory, const ExplorationParams& params,
     progress.advance();
   }
   if (explorer.frames_seen() == 0) throw InputError(input.name + ": no frames");
+  if (input.is_grid && input.grid_spacing_m) memory.set_grid_spacing_m(*input.grid_spacing_m);
   return explorer.run();
 }
 

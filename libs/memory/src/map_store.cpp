@@ -149,6 +149,7 @@ double position(double value, const std::filesystem::path& file, const std::stri
 // The parameters table's key for the exploration spacing (a "note" to the readers of maps
 // written before it was typed, who read it under this name too).
 constexpr const char* kExplorationSpacingKey = "exploration.every_m";
+constexpr const char* kGridSpacingKey = "grid.separation_m";
 
 std::map<std::string, std::string> parameter_rows(const VisualMemory& memory) {
   const MapParameters& p = memory.parameters();
@@ -160,6 +161,14 @@ std::map<std::string, std::string> parameter_rows(const VisualMemory& memory) {
   rows["signature.panorama_rows"] = std::to_string(p.panorama_rows);
   if (memory.exploration_spacing_m()) {
     rows[kExplorationSpacingKey] = shortest(*memory.exploration_spacing_m());
+  }
+  if (memory.grid_spacing_m()) rows[kGridSpacingKey] = shortest(*memory.grid_spacing_m());
+  if (const std::optional<LatticeQuality>& quality = memory.lattice_quality()) {
+    rows["lattice.quality.motions"] = std::to_string(quality->motions);
+    rows["lattice.quality.motion_residual_steps"] = shortest(quality->motion_residual_steps);
+    rows["lattice.quality.motions_off"] = shortest(quality->motions_off);
+    rows["lattice.quality.pieces"] = std::to_string(quality->pieces);
+    rows["lattice.quality.trustworthy"] = quality->trustworthy ? "true" : "false";
   }
   return rows;
 }
@@ -307,6 +316,8 @@ void write_parameters(Database& db, const VisualMemory& memory) {
   Statement upsert = db.prepare(
       "INSERT INTO parameters (key, value) VALUES (?, ?) "
       "ON CONFLICT(key) DO UPDATE SET value = excluded.value");
+  // A lattice quality belongs to the lattice it measured: none is kept for another.
+  db.exec("DELETE FROM parameters WHERE key LIKE 'lattice.quality.%'");
   for (const auto& [key, value] : parameter_rows(memory)) upsert.bind(1, key).bind(2, value).run();
 }
 
@@ -579,6 +590,23 @@ VisualMemory read_parameters(Database& db) {
       }
       // A spacing of 0 (none) was once possible to store: it says nothing.
       if (every_m > 0.0) memory.set_exploration_spacing_m(every_m);
+    }
+    if (rows.contains(kGridSpacingKey)) {
+      memory.set_grid_spacing_m(parse_double(get(kGridSpacingKey), kGridSpacingKey));
+    }
+    if (rows.contains("lattice.quality.motions")) {
+      LatticeQuality quality;
+      const auto number = [&](const std::string& key) {
+        const double value = parse_double(get("lattice.quality." + key), key);
+        if (!std::isfinite(value)) throw InputError("lattice.quality." + key + " is not finite");
+        return value;
+      };
+      quality.motions = static_cast<int>(number("motions"));
+      quality.motion_residual_steps = number("motion_residual_steps");
+      quality.motions_off = number("motions_off");
+      quality.pieces = static_cast<int>(number("pieces"));
+      quality.trustworthy = get("lattice.quality.trustworthy") == "true";
+      memory.set_lattice_quality(quality);
     }
     return memory;
   } catch (const std::exception& e) {

@@ -53,6 +53,14 @@ void VisualMemory::set_exploration_spacing_m(double metres) {
   exploration_spacing_m_ = metres;
 }
 
+void VisualMemory::set_grid_spacing_m(double metres) {
+  if (!std::isfinite(metres) || metres <= 0.0) {
+    throw UsageError("a grid spacing of " + std::to_string(metres) +
+                     " m: it must be a positive distance");
+  }
+  grid_spacing_m_ = metres;
+}
+
 void VisualMemory::set_lattice_positions(const std::vector<Eigen::Vector2d>& lattice_positions) {
   if (lattice_positions.size() != place_count()) {
     throw UsageError(std::to_string(lattice_positions.size()) + " lattice positions for a map of " +
@@ -63,6 +71,7 @@ void VisualMemory::set_lattice_positions(const std::vector<Eigen::Vector2d>& lat
 
 void VisualMemory::clear_lattice_positions() {
   for (PlaceIndex i = 0; i < place_count(); ++i) graph_[i].lattice_position.reset();
+  lattice_quality_.reset();
 }
 
 std::size_t VisualMemory::add_run(Run run) {

@@ -7,7 +7,8 @@
 //     and any extra columns a recorder adds, such as "Timestamp [ms]";
 //   - database_metadata.yaml (optional): an OpenCV FileStorage YAML file whose `metadata` map
 //     holds `type` (route or grid), `camera` {name, resolution [w, h], isPanoramic},
-//     `needsUnwrapping`, `isGreyscale`, and for video databases `videoFile` and `frameRate`
+//     `needsUnwrapping`, `isGreyscale`, for video databases `videoFile` and `frameRate`, and
+//     for grids (BoB's GridRecorder) `grid` {beginAtMM, separationMM, size}, each [x, y, z]
 //     (read with yaml-cpp, at most 64 KiB and 32 levels deep; the images must have the stated
 //     resolution). A folder with this file but no database_entries.csv is an error;
 //   - the images, named by the recorder: routes "image_00000.png"... (BoB's ant-world example
@@ -45,6 +46,17 @@ inline constexpr const char* kBobEntriesFile = "database_entries.csv";
 inline constexpr const char* kBobMetadataFile = "database_metadata.yaml";
 
 // What database_metadata.yaml says (or, for a writer, will say) about a database.
+// Where a grid database's points lie (metadata `grid`, as BoB's GridRecorder writes it): point
+// (i, j, k) of the grid is at begin_mm + (i, j, k) * separation_mm, componentwise.
+struct GridGeometry {
+  std::array<double, 3> begin_mm{};       // `beginAtMM`
+  std::array<double, 3> separation_mm{};  // `separationMM`: between neighbouring points, >= 0
+  std::array<int, 3> size{};              // `size`: points along x, y and z
+  // The distance between neighbouring points of the grid, metres: the smallest positive
+  // separation along x and y (along z when the grid is a column); nothing when none is > 0.
+  std::optional<double> spacing_m() const;
+};
+
 struct DatabaseInfo {
   bool is_grid = false;                  // metadata `type`: grid, else route
   cv::Size image_size;                   // `camera.resolution`; 0x0 when unknown (writer: the
@@ -54,6 +66,7 @@ struct DatabaseInfo {
   std::string description;               // `description`, free text (omninav's own key)
   std::optional<bool> needs_unwrapping;  // `needsUnwrapping` (else `camera.isPanoramic`):
                                          // raw omnidirectional images; unknown when absent
+  std::optional<GridGeometry> grid;      // `grid`, when the metadata has it (grids only)
 };
 
 // One row of database_entries.csv, parsed.
@@ -79,6 +92,9 @@ class BobDatabaseReader : public SequenceReader {
   std::string describe() const override;
   bool needs_unwrapping() const override { return info_.needs_unwrapping.value_or(false); }
   bool is_grid() const override { return info_.is_grid; }
+  std::optional<double> grid_spacing_m() const override {
+    return info_.grid ? info_.grid->spacing_m() : std::nullopt;
+  }
 
   const DatabaseInfo& info() const { return info_; }
   const std::vector<DatabaseEntry>& entries() const { return entries_; }

@@ -45,6 +45,7 @@ class PanoramaInput {
   bool is_grid() const;
   // What the reading adds to the results (SequenceReader::notes); empty when nothing.
   std::string notes() const;
+  std::optional<double> grid_spacing_m() const;  // SequenceReader::grid_spacing_m
   bool unwraps() const { return unwrap_; }
 
  private:

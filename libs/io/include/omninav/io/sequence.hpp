@@ -32,6 +32,9 @@ class SequenceReader {
   // needsUnwrapping), and whether they lie on a grid (a BoB grid database).
   virtual bool needs_unwrapping() const { return false; }
   virtual bool is_grid() const { return false; }
+  // The distance between neighbouring points of a grid, metres, when the input states it (a
+  // BoB grid database's metadata `grid.separationMM`); nothing otherwise.
+  virtual std::optional<double> grid_spacing_m() const { return std::nullopt; }
   // Whether the frames come from a video file (they have no file names of their own).
   virtual bool is_video() const { return false; }
   // What the reading itself adds to the results, for a command's log and a map's run: e.g. a

@@ -45,6 +45,11 @@ struct OrganiseParams {
   // they contribute and their length is held loosely.
   double neighbour_motion_length_stddev = 1.0;
   LatticeParams lattice;  // correlation_range_m is set by the calibration
+  // The verdict of the lattice quality (LatticeQuality, measured without ground truth): the
+  // lattice is not trustworthy when more than this share of its motions point more than 45°
+  // away from where the lattice puts their places, or when the motions that survived the
+  // look-alike checks left the places in more than one piece (joined by look-alikes only).
+  double max_motions_off = 0.05;
 };
 
 // Reads the `organise:` section of lattice.yaml.
@@ -60,10 +65,11 @@ void load_organise_params(const ConfigReader& section, OrganiseParams& params);
 // Beyond a short range D saturates (the plateau: the 90th percentile of all pairs) and says
 // little; x₁ of Eq. 5, where stiffness falls to 0.1, is where the median step's line reaches
 // range_fraction of the plateau.
-// Where the scale came from: the user (OrganiseParams::step_m) or the map
-// (VisualMemory::exploration_spacing_m).
-enum class ScaleSource { kUser, kMap };
-// "user" or "map: exploration.every_m".
+// Where the scale came from: the user (OrganiseParams::step_m), the map's exploration spacing
+// (VisualMemory::exploration_spacing_m) or the grid spacing its grid database stated
+// (VisualMemory::grid_spacing_m), in that order.
+enum class ScaleSource { kUser, kMap, kGrid };
+// "user", "map: exploration.every_m" or "map: the grid database's grid.separationMM".
 std::string to_string(ScaleSource source);
 
 struct DistanceCalibration {
@@ -84,7 +90,15 @@ struct OrganiseResult {
   int look_alikes_dropped = 0;  // neighbour motions dropped as look-alikes (src/motions.hpp)
   int motion_joins = 0;         // motions added to join places the others left apart
   LatticeResult lattice;
+  memory::LatticeQuality quality;  // also stored in the map (VisualMemory::lattice_quality)
 };
+
+// The lattice against the motions it was solved from, without ground truth: each motion's
+// measured displacement (direction, length) against the lattice's, over every motion but those
+// added to join pieces; the verdict from `max_motions_off` and the pieces.
+memory::LatticeQuality measure_quality(const std::vector<Eigen::Vector2d>& positions,
+                                       const std::vector<MotionMeasurement>& motions, int joins,
+                                       double step_m, double max_motions_off);
 
 // Each place's heading in the lattice frame (the first place's heading along +x): stored
 // headings when every place has one, else the relative headings measured between consecutive

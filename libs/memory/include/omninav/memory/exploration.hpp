@@ -151,6 +151,9 @@ struct ExplorationInput {
   bool is_grid = false;
   bool all_frames = false;      // every frame a place, whatever the exploration rules say
   std::size_t frame_count = 0;  // for the progress line only (0: unknown)
+  // The distance between neighbouring points of a grid database, when it states it
+  // (io::SequenceReader::grid_spacing_m): recorded in the map as its scale.
+  std::optional<double> grid_spacing_m;
   std::function<std::optional<io::Frame>()> next;  // the next frame; nothing at the end
 };
 

@@ -82,6 +82,20 @@ struct MapParameters {
   int panorama_rows = 0;                // rows of the panoramas (0: set by the first place)
 };
 
+// How far a lattice can be trusted, from the map alone: the motions measured between places
+// (001 §3.4, the directions from the phases) against the lattice they were solved into.
+struct LatticeQuality {
+  int motions = 0;  // motions compared (steps, listed pairs and kept neighbour motions)
+  // Median over the motions of |lattice displacement − measured motion| in steps.
+  double motion_residual_steps = 0.0;
+  // Share of the motions whose direction on the lattice is more than 45° off the measured one.
+  double motions_off = 0.0;
+  // Pieces the trusted motions left the places in, before look-alike pairs joined them: more
+  // than one means the pieces' relative placement rests on look-alikes alone.
+  int pieces = 1;
+  bool trustworthy = true;  // the verdict (lattice/organise.hpp: thresholds)
+};
+
 class VisualMemory {
  public:
   explicit VisualMemory(MapParameters parameters = {});
@@ -94,6 +108,16 @@ class VisualMemory {
   std::optional<double> exploration_spacing_m() const { return exploration_spacing_m_; }
   // Throws UsageError unless `metres` is finite and positive.
   void set_exploration_spacing_m(double metres);
+  // The distance between neighbouring points of the grid a grid database states (BoB's
+  // `grid.separationMM`), when a run explored one: the lattice's scale after every_m. Throws
+  // UsageError unless `metres` is finite and positive.
+  std::optional<double> grid_spacing_m() const { return grid_spacing_m_; }
+  void set_grid_spacing_m(double metres);
+
+  // How well the lattice agrees with the motions it was built from, measured without ground
+  // truth (lattice/organise.hpp, LatticeQuality); none before the map is organised.
+  const std::optional<LatticeQuality>& lattice_quality() const { return lattice_quality_; }
+  void set_lattice_quality(const LatticeQuality& quality) { lattice_quality_ = quality; }
 
   std::size_t place_count() const { return boost::num_vertices(graph_); }
   std::size_t edge_count() const { return boost::num_edges(graph_); }
@@ -143,6 +167,8 @@ class VisualMemory {
 
   MapParameters parameters_;
   std::optional<double> exploration_spacing_m_;
+  std::optional<double> grid_spacing_m_;
+  std::optional<LatticeQuality> lattice_quality_;
   Graph graph_;
   // Edges in the order added, by position: the `out_position`-th out-edge of `from` (vecS
   // out-edge lists only grow at the end). Positions, unlike edge descriptors, survive copies.
