@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <deque>
 #include <limits>
 #include <optional>
 
@@ -58,6 +59,18 @@ std::optional<Eigen::Vector2d> lattice_position(const memory::Localisation& loca
 
 }  // namespace
 
+const char* phase_name(NavigationPhase phase) {
+  switch (phase) {
+    case NavigationPhase::kFollowingRoute:
+      return "route";
+    case NavigationPhase::kHoming:
+      return "homing";
+    case NavigationPhase::kReturning:
+      return "returning";
+  }
+  return "?";
+}
+
 void load_navigator_params(const ConfigReader& section, NavigatorParams& params) {
   section.read("step_m", params.step_m, 0.01, 5.0);
   section.read("max_steps", params.max_steps, 1, 100000);
@@ -73,6 +86,12 @@ void load_navigator_params(const ConfigReader& section, NavigatorParams& params)
   section.read("homing_step_m", params.homing_step_m, 0.01, 5.0);
   section.read("homing_stop_m", params.homing_stop_m, 0.0, 5.0);
   section.read("homing_max_steps", params.homing_max_steps, 0, 100000);
+  section.read("recognition_link_ratio", params.recognition_link_ratio, 0.1, 100.0);
+  section.read("lost_views", params.lost_views, 0, 100000);
+  section.read("lost_jumps", params.lost_jumps, 0, 100000);
+  section.read("lost_jump_window", params.lost_jump_window, 1, 100000);
+  section.read("recoveries", params.recoveries, 0, 100000);
+  section.read("return_max_steps", params.return_max_steps, 0, 100000);
   // The last sidestep turns farthest: past 180° it would repeat an earlier direction.
   const double widest_deg = std::abs(sidestep_turn(params.sidesteps, params.sidestep_deg));
   if (widest_deg > 180.0) {
@@ -89,9 +108,15 @@ namespace {
 // One run of the navigator, a small state machine. Each view of the robot is one step:
 //   - following the route (§3.5): recognise the place, turn to its direction towards the goal,
 //     step. Nothing recognised: drive on straight ahead. The goal's place recognised
-//     (goal_confirmations times in a row): arrive, or start homing on the goal image;
+//     (goal_confirmations times in a row): arrive, or start homing on the goal image. Views not
+//     recognised (beyond the recognition limit) params.lost_views times in a row, or
+//     params.lost_jumps jumps within lost_jump_window views: lost, start returning;
 //   - homing (homing.hpp): step towards the goal image while it seems nearer; arrive when it
 //     seems near enough, farther than at the last view, or when blocked every way;
+//   - returning (lost): drive back by dead reckoning to the anchor, where the robot last
+//     recognised a place without a jump (or its start). A view recognised on the way, or the
+//     anchor reached: follow the route again, planned without the link that led off. When the
+//     robot was lost more than params.recoveries times, the anchor reached ends the run: gave up;
 //   - arrived: the run ends, the goal reached.
 // The run also ends when max_steps views are spent: the goal counts as reached only while
 // homing (its place was recognised, as the paper's robot asks).
@@ -102,17 +127,18 @@ namespace {
 // when no route is left round it, escaping: a few steps at an angle from the planned direction.
 // Blocked again while escaping, the robot tries the next escape turn: the other side, then
 // wider (a robot in a corner between two boxes is blocked both ways at unstick_turn_deg),
-// round to the first after 180°.
+// round to the first after 180°. Returning, a blocked move sidesteps the same way.
 class NavigationRun {
  public:
   NavigationRun(NavigationWorld& world, const std::vector<PlaceNode>& places, const RoutePlan& plan,
                 const PanoramaLocaliser& localise, const NavigatorParams& params,
-                const GoalHoming& homing)
+                const GoalHoming& homing, double recognition_limit)
       : world_(world),
         places_(places),
         localise_(localise),
         params_(params),
         homing_(homing),
+        recognition_limit_(recognition_limit),
         plan_(plan),
         look_ahead_tolerance_m_(params.look_ahead_links > 1
                                     ? params.look_ahead_tolerance_spacings * lattice_spacing(places)
@@ -120,15 +146,18 @@ class NavigationRun {
         entries_(places.size(), 0) {}
 
   NavigationResult run() {
-    for (int index = 0; index < params_.max_steps && state_ != State::kArrived; ++index) {
+    for (int index = 0;
+         index < params_.max_steps && state_ != State::kArrived && state_ != State::kGaveUp;
+         ++index) {
       take_step(index);
     }
     result_.reached = state_ == State::kArrived || state_ == State::kHoming;
+    result_.gave_up = state_ == State::kGaveUp;
     return std::move(result_);
   }
 
  private:
-  enum class State { kFollowingRoute, kHoming, kArrived };
+  enum class State { kFollowingRoute, kHoming, kReturning, kArrived, kGaveUp };
 
   void take_step(int index) {
     NavigationStep step;
@@ -137,18 +166,31 @@ class NavigationRun {
     const cv::Mat view = world_.view(index);
     const memory::Localisation localisation = localise_(view);
     if (!localisation.best.empty()) step.match = localisation.best.front();
+    step.recognised = step.match && step.match->dissimilarity_per_value <= recognition_limit_;
     const int place = place_of(step);
     if (place >= 0) {
       step.heading_estimate_rad =
           wrap_angle(places_[place].heading_rad + step.match->relative_heading_rad);
     }
+    if (state_ == State::kReturning) {
+      step.phase = NavigationPhase::kReturning;
+      go_back(step, place, localisation);
+      return;
+    }
     if (state_ == State::kFollowingRoute) {
+      if (place >= 0) note_jump(step, place);
+      const bool at_goal = place >= 0 && goal_confirmed(step, place);
+      if (!at_goal && lost(step)) {
+        lose_way(step);
+        go_back(step, place, localisation);
+        return;
+      }
+      if (step.recognised && !step.jump) set_anchor(place);
       if (place < 0) {
         drive_blind(step);
         return;
       }
-      note_jump(step, place);
-      if (goal_confirmed(step, place)) {
+      if (at_goal) {
         if (!homing_ || !params_.home_on_goal_image || params_.homing_max_steps == 0) {
           result_.steps.push_back(step);
           state_ = State::kArrived;
@@ -158,15 +200,26 @@ class NavigationRun {
       }
     }
     if (state_ == State::kHoming) {
+      step.phase = NavigationPhase::kHoming;
       home(step, view);
     } else {
       follow_route(step, place, localisation);
     }
   }
 
+  // Turns by `turn_rad` and drives up to `distance_m`; keeps the dead reckoning (the robot's
+  // own record of its turns and distances, in the frame of its start) and the path length.
+  double drive(double turn_rad, double distance_m) {
+    heading_rad_ = wrap_angle(heading_rad_ + turn_rad);
+    const double driven = world_.move(turn_rad, distance_m);
+    position_ += driven * Eigen::Vector2d(std::cos(heading_rad_), std::sin(heading_rad_));
+    result_.path_length_m += driven;
+    return driven;
+  }
+
   // Nothing recognised (an empty candidate set): go on straight ahead.
   void drive_blind(NavigationStep& step) {
-    result_.path_length_m += world_.move(0.0, params_.step_m);
+    drive(0.0, params_.step_m);
     result_.steps.push_back(step);
   }
 
@@ -181,9 +234,119 @@ class NavigationRun {
     result_.jumps += step.jump ? 1 : 0;
   }
 
-  // The goal's place recognised, with the goal similarity, goal_confirmations views in a row.
+  // Lost: lost_views views in a row not recognised that do not look more like the map than the
+  // others of the row (a robot coming onto the map sees its best place nearer with every view),
+  // or twice as many not recognised anyway, or lost_jumps jumps within the last
+  // lost_jump_window views.
+  bool lost(const NavigationStep& step) {
+    if (step.recognised) {
+      forget_unrecognised();
+    } else {
+      const double d = step.match ? step.match->dissimilarity_per_value
+                                  : std::numeric_limits<double>::infinity();
+      ++unrecognised_;
+      if (d < nearest_unrecognised_) {
+        nearest_unrecognised_ = d;
+      } else {
+        ++not_nearer_;
+      }
+    }
+    if (step.jump) jump_views_.push_back(step.index);
+    while (!jump_views_.empty() && step.index - jump_views_.front() >= params_.lost_jump_window) {
+      jump_views_.pop_front();
+    }
+    return (params_.lost_views > 0 &&
+            (not_nearer_ >= params_.lost_views || unrecognised_ >= 2 * params_.lost_views)) ||
+           (params_.lost_jumps > 0 && static_cast<int>(jump_views_.size()) >= params_.lost_jumps);
+  }
+
+  void forget_unrecognised() {
+    unrecognised_ = 0;
+    not_nearer_ = 0;
+    nearest_unrecognised_ = std::numeric_limits<double>::infinity();
+  }
+
+  // Where the robot last knew where it was: this view recognised `place`, without a jump.
+  void set_anchor(int place) {
+    anchor_ = position_;
+    anchor_place_ = place;
+    probe_turns_ = 0;
+  }
+
+  // Lost: turn back towards the anchor. Past the recoveries' budget, the return is the last.
+  void lose_way(NavigationStep& step) {
+    step.lost = true;
+    step.phase = NavigationPhase::kReturning;
+    ++result_.lost_events;
+    state_ = State::kReturning;
+    giving_up_ = result_.lost_events > params_.recoveries;
+    return_steps_ = 0;
+    sidestep_ = 0;
+    escape_steps_left_ = 0;
+    forget_unrecognised();
+    jump_views_.clear();
+    expected_ = -1;
+    // The link followed from the anchor led off the map: plan without it (from the start,
+    // without an anchor, the next try turns aside instead).
+    if (giving_up_) return;
+    if (anchor_place_ >= 0) {
+      if (replan_without_link(places_, anchor_place_, plan_)) ++result_.replans;
+    } else {
+      ++probe_turns_;
+    }
+  }
+
+  // Returning: a view recognised on the way (not the first, which found the robot lost) ends
+  // it; so does reaching the anchor, or the return's budget: follow the route again, or, when
+  // giving up, stop.
+  void go_back(NavigationStep& step, int place, const memory::Localisation& localisation) {
+    if (step.recognised && !step.lost && !giving_up_) {
+      ++result_.recoveries;
+      resume();
+      set_anchor(place);
+      step.phase = NavigationPhase::kFollowingRoute;
+      follow_route(step, place, localisation);
+      return;
+    }
+    const Eigen::Vector2d to = anchor_ - position_;
+    if (to.norm() <= 0.25 * params_.step_m || return_steps_ >= params_.return_max_steps) {
+      result_.steps.push_back(step);
+      if (giving_up_) {
+        state_ = State::kGaveUp;
+      } else {
+        resume();
+      }
+      return;
+    }
+    const double distance_m = std::min(to.norm(), params_.step_m);
+    step.turn_rad = signed_difference(std::atan2(to.y(), to.x()), heading_rad_) +
+                    sidestep_turn(sidestep_, deg_to_rad(params_.sidestep_deg));
+    const double driven = drive(step.turn_rad, distance_m);
+    ++return_steps_;
+    if (driven >= 0.5 * distance_m) {
+      sidestep_ = 0;
+    } else {
+      sidestep_ = sidestep_ < params_.sidesteps ? sidestep_ + 1 : 1;
+      ++result_.sidesteps;
+    }
+    result_.steps.push_back(step);
+  }
+
+  // Back on the route (after being lost): following again, with a fresh count of views not
+  // recognised; from the start (no anchor) the next moves turn by the probe's angle.
+  void resume() {
+    state_ = State::kFollowingRoute;
+    sidestep_ = 0;
+    forget_unrecognised();
+    probe_turn_rad_ =
+        anchor_place_ < 0 ? sidestep_turn(probe_turns_, deg_to_rad(kProbeTurnDeg)) : 0.0;
+  }
+
+  // The goal's place recognised (within the recognition limit, with the goal similarity),
+  // goal_confirmations views in a row.
   bool goal_confirmed(const NavigationStep& step, int place) {
-    if (place != plan_.goal || step.match->similarity < params_.goal_similarity) {
+    if (place != plan_.goal || !step.recognised ||
+        step.match->similarity < params_.goal_similarity) {
       goal_matches_ = 0;
       return false;
     }
@@ -211,8 +374,7 @@ class NavigationRun {
     }
     step.turn_rad = cue.bearing_rad + sidestep_turn(sidestep_, deg_to_rad(params_.sidestep_deg));
     const double distance_m = std::min(cue.distance_m, params_.homing_step_m);
-    const double driven = world_.move(step.turn_rad, distance_m);
-    result_.path_length_m += driven;
+    const double driven = drive(step.turn_rad, distance_m);
     ++result_.homing_steps;
     result_.steps.push_back(step);
     if (driven >= 0.5 * distance_m) {
@@ -242,8 +404,10 @@ class NavigationRun {
       direction_in_place += sidestep_turn(sidestep_, deg_to_rad(params_.sidestep_deg));
       result_.sidesteps += sidestep_ > 0 ? 1 : 0;
     }
+    // Looking for the map from the start: the probe's turn until a view is recognised.
+    if (anchor_place_ < 0) direction_in_place += probe_turn_rad_;
     step.turn_rad = signed_difference(direction_in_place, step.match->relative_heading_rad);
-    const double driven = world_.move(step.turn_rad, params_.step_m);
+    const double driven = drive(step.turn_rad, params_.step_m);
     if (driven >= 0.5 * params_.step_m) {
       sidestep_ = 0;
     } else if (!escaping && sidestep_ < params_.sidesteps) {
@@ -251,7 +415,6 @@ class NavigationRun {
     } else {
       drop_link_or_escape(place, escaping);
     }
-    result_.path_length_m += driven;
     expected_ = plan_.next[place] >= 0 ? plan_.next[place] : place;
     result_.steps.push_back(step);
   }
@@ -303,11 +466,16 @@ class NavigationRun {
 
   int previous_place() const { return result_.steps.empty() ? -1 : place_of(result_.steps.back()); }
 
+  // Looking for the map from its start, the robot turns this far from the plan's direction
+  // after each time it found itself lost (sidestep_turn's units: 90°, -90°, 180°, ...).
+  static constexpr double kProbeTurnDeg = 90.0;
+
   NavigationWorld& world_;
   const std::vector<PlaceNode>& places_;
   const PanoramaLocaliser& localise_;
   const NavigatorParams& params_;
   const GoalHoming& homing_;
+  const double recognition_limit_;
 
   State state_ = State::kFollowingRoute;
   NavigationResult result_;
@@ -321,14 +489,30 @@ class NavigationRun {
   const double look_ahead_tolerance_m_;
   std::vector<int> entries_;      // times each place was entered (loops)
   GoalCue homing_from_ = kNoCue;  // homing: the cue of the last view that moved
+
+  // Dead reckoning, in the frame of the robot's start (the robot at the origin facing +x).
+  Eigen::Vector2d position_ = Eigen::Vector2d::Zero();
+  double heading_rad_ = 0.0;
+  // Lost and found.
+  int unrecognised_ = 0;  // views in a row whose best place lies beyond the limit
+  int not_nearer_ = 0;    // ... of them no nearer to the map than the nearest before
+  double nearest_unrecognised_ = std::numeric_limits<double>::infinity();  // its dissimilarity
+  std::deque<int> jump_views_;  // the views of the last jumps (within lost_jump_window)
+  Eigen::Vector2d anchor_ = Eigen::Vector2d::Zero();  // where a place was last recognised
+  int anchor_place_ = -1;        // that place; -1: none since the start (the anchor is the start)
+  bool giving_up_ = false;       // the return under way is the last
+  int return_steps_ = 0;         // steps of the return under way
+  int probe_turns_ = 0;          // times lost without an anchor
+  double probe_turn_rad_ = 0.0;  // the turn from the plan while looking for the map from the start
 };
 
 }  // namespace
 
 NavigationResult navigate(NavigationWorld& world, const std::vector<PlaceNode>& places,
                           const RoutePlan& plan, const PanoramaLocaliser& localise,
-                          const NavigatorParams& params, const GoalHoming& homing) {
-  return NavigationRun(world, places, plan, localise, params, homing).run();
+                          const NavigatorParams& params, const GoalHoming& homing,
+                          double recognition_limit) {
+  return NavigationRun(world, places, plan, localise, params, homing, recognition_limit).run();
 }
 
 }  // namespace omninav::navigation
