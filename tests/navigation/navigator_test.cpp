@@ -476,13 +476,33 @@ TEST(Navigator, LostOffTheMapGoesBackAndStopsInsteadOfDrivingAway) {
   // and three more, each farther from the map (steps of 0.15 m).
   EXPECT_LT(farthest_from_row_m(result, world), 0.7 + (params.lost_views + 1) * params.step_m);
 
-  // The navigator of §3.5 without the check drives on south until its budget is spent.
+  // The navigator of §3.5 without the checks drives on south until its budget is spent.
   NavigatorParams unaware = params;
   unaware.lost_views = 0;
+  unaware.stay_within_map_extent = false;
   PointWorld away;
   const NavigationResult driven_away = run(unaware, away);
   EXPECT_EQ(driven_away.lost_events, 0);
   EXPECT_GT(std::abs(away.truth().y_m), 10.0);
+
+  // Where every view matches (a field seen from 10 cm: off the map as well as on it), the
+  // map's extent still bounds the way: the row is 4 m across, and a robot farther than that
+  // from its start by its dead reckoning is lost, goes back to where it last recognised a
+  // place within that reach, and after the recoveries stops there.
+  NavigatorParams fenced = params;
+  fenced.lost_views = 0;
+  PointWorld fenced_world;
+  const NavigationResult bounded = navigate(
+      fenced_world, places, plan, distance_oracle(fenced_world, truth, 2, kPi / 2), fenced, {});
+  EXPECT_FALSE(bounded.reached);
+  EXPECT_TRUE(bounded.gave_up);
+  EXPECT_EQ(bounded.lost_events, 3);
+  double farthest_from_start = 0.0;
+  for (const NavigationStep& step : bounded.steps) {
+    farthest_from_start = std::max(farthest_from_start, step.truth.floor_position().norm());
+  }
+  EXPECT_LT(farthest_from_start, 4.0 + fenced.step_m + 0.01);
+  EXPECT_LT(fenced_world.truth().floor_position().norm(), 4.0 + 0.01);
 }
 
 // A robot that recognises nothing (started off the map): lost after lost_views views, back to

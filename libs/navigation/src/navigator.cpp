@@ -49,6 +49,18 @@ int place_of(const NavigationStep& step) {
   return step.match ? static_cast<int>(step.match->place) : -1;
 }
 
+// The diagonal of the bounding box of the places on the lattice: how far apart two places of
+// the map can be.
+double lattice_extent_m(const std::vector<PlaceNode>& places) {
+  if (places.empty()) return 0.0;
+  Eigen::Vector2d low = places.front().position_m, high = low;
+  for (const PlaceNode& place : places) {
+    low = low.cwiseMin(place.position_m);
+    high = high.cwiseMax(place.position_m);
+  }
+  return (high - low).norm();
+}
+
 // Where the localiser puts the robot between places on the lattice, when it can tell (the best
 // places' positions weighted by similarity, memory::PositionEstimate).
 std::optional<Eigen::Vector2d> lattice_position(const memory::Localisation& localisation) {
@@ -92,6 +104,7 @@ void load_navigator_params(const ConfigReader& section, NavigatorParams& params)
   section.read("lost_jump_window", params.lost_jump_window, 1, 100000);
   section.read("recoveries", params.recoveries, 0, 100000);
   section.read("return_max_steps", params.return_max_steps, 0, 100000);
+  section.read("stay_within_map_extent", params.stay_within_map_extent);
   // The last sidestep turns farthest: past 180° it would repeat an earlier direction.
   const double widest_deg = std::abs(sidestep_turn(params.sidesteps, params.sidestep_deg));
   if (widest_deg > 180.0) {
@@ -143,7 +156,9 @@ class NavigationRun {
         look_ahead_tolerance_m_(params.look_ahead_links > 1
                                     ? params.look_ahead_tolerance_spacings * lattice_spacing(places)
                                     : 0.0),
-        entries_(places.size(), 0) {}
+        entries_(places.size(), 0),
+        extent_m_(params.stay_within_map_extent ? lattice_extent_m(places)
+                                                : std::numeric_limits<double>::infinity()) {}
 
   NavigationResult run() {
     for (int index = 0;
@@ -180,12 +195,12 @@ class NavigationRun {
     if (state_ == State::kFollowingRoute) {
       if (place >= 0) note_jump(step, place);
       const bool at_goal = place >= 0 && goal_confirmed(step, place);
-      if (!at_goal && lost(step)) {
+      if (!at_goal && (lost(step) || beyond_extent())) {
         lose_way(step);
         go_back(step, place, localisation);
         return;
       }
-      if (step.recognised && !step.jump) set_anchor(place);
+      if (step.recognised && !step.jump && position_.norm() <= extent_m_) set_anchor(place);
       if (place < 0) {
         drive_blind(step);
         return;
@@ -258,6 +273,19 @@ class NavigationRun {
     return (params_.lost_views > 0 &&
             (not_nearer_ >= params_.lost_views || unrecognised_ >= 2 * params_.lost_views)) ||
            (params_.lost_jumps > 0 && static_cast<int>(jump_views_.size()) >= params_.lost_jumps);
+  }
+
+  // Farther from its start, by its own dead reckoning, than the map is across: it cannot be on
+  // the map any more, whatever it recognises (where the views of the map look as unlike each
+  // other as anything off it, a field seen from 10 cm, off-map views still match). The way
+  // back is then to the start, or to an anchor set within that reach.
+  bool beyond_extent() {
+    if (position_.norm() <= extent_m_) return false;
+    if (anchor_.norm() > extent_m_) {
+      anchor_ = Eigen::Vector2d::Zero();
+      anchor_place_ = -1;
+    }
+    return true;
   }
 
   void forget_unrecognised() {
@@ -488,6 +516,7 @@ class NavigationRun {
   std::vector<Edge> blocked_;  // links found blocked: the look-ahead keeps away from them
   const double look_ahead_tolerance_m_;
   std::vector<int> entries_;      // times each place was entered (loops)
+  const double extent_m_;         // the diagonal of the lattice's bounding box (or ∞)
   GoalCue homing_from_ = kNoCue;  // homing: the cue of the last view that moved
 
   // Dead reckoning, in the frame of the robot's start (the robot at the origin facing +x).

@@ -94,6 +94,12 @@ struct NavigatorParams {
   int lost_jump_window = 8;
   int recoveries = 2;
   int return_max_steps = 20;
+  // Beyond §3.5: a robot farther from its start, by its dead reckoning, than the lattice is
+  // across (the diagonal of its bounding box, measured from the map when the run starts)
+  // cannot be on the map: lost, whatever it recognises, it goes back as above (to its start,
+  // or an anchor within that reach). Where off-map views match as well as the map's own (a field
+  // seen from 10 cm), this bounds how far it strays.
+  bool stay_within_map_extent = true;
 };
 
 // Reads the `navigator:` section of navigation.yaml.
