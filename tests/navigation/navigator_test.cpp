@@ -459,8 +459,8 @@ TEST(Navigator, LostOffTheMapGoesBackAndStopsInsteadOfDrivingAway) {
   const NavigationResult result = run(params, world);
   EXPECT_FALSE(result.reached);
   // Lost, back, on again (the same way: no route is left round place 2's link), lost again:
-  // once more than the two recoveries allowed, then back to where it last recognised place 2
-  // and stopped, long before the budget.
+  // once more than the two recoveries allowed, then back to its start and stopped, long
+  // before the budget.
   EXPECT_EQ(result.lost_events, 3);
   EXPECT_EQ(result.recoveries, 2);
   EXPECT_TRUE(result.gave_up);
@@ -469,9 +469,9 @@ TEST(Navigator, LostOffTheMapGoesBackAndStopsInsteadOfDrivingAway) {
       static_cast<int>(std::count_if(result.steps.begin(), result.steps.end(),
                                      [](const NavigationStep& step) { return step.lost; }));
   EXPECT_EQ(lost_steps, 3);
-  // Stopped where place 2 was last recognised: within its 0.7 m, near x = 2.
-  EXPECT_LT(std::abs(world.truth().y_m), 0.7 + 0.05);
-  EXPECT_NEAR(world.truth().x_m, 2.0, 0.6);
+  // Stopped back at its start (the dead reckoning of a point robot without noise: exact but
+  // for the last return step's quarter step).
+  EXPECT_LT(world.truth().floor_position().norm(), 0.25 * params.step_m + 0.01);
   // Never farther than the views that found it lost past the 0.7 m: the first not recognised
   // and three more, each farther from the map (steps of 0.15 m).
   EXPECT_LT(farthest_from_row_m(result, world), 0.7 + (params.lost_views + 1) * params.step_m);
@@ -488,7 +488,7 @@ TEST(Navigator, LostOffTheMapGoesBackAndStopsInsteadOfDrivingAway) {
   // Where every view matches (a field seen from 10 cm: off the map as well as on it), the
   // map's extent still bounds the way: the row is 4 m across, and a robot farther than that
   // from its start by its dead reckoning is lost, goes back to where it last recognised a
-  // place within that reach, and after the recoveries stops there.
+  // place within that reach, and after the recoveries goes back to its start and stops.
   NavigatorParams fenced = params;
   fenced.lost_views = 0;
   PointWorld fenced_world;
@@ -502,7 +502,7 @@ TEST(Navigator, LostOffTheMapGoesBackAndStopsInsteadOfDrivingAway) {
     farthest_from_start = std::max(farthest_from_start, step.truth.floor_position().norm());
   }
   EXPECT_LT(farthest_from_start, 4.0 + fenced.step_m + 0.01);
-  EXPECT_LT(fenced_world.truth().floor_position().norm(), 4.0 + 0.01);
+  EXPECT_LT(fenced_world.truth().floor_position().norm(), 0.25 * fenced.step_m + 0.01);
 }
 
 // A robot that recognises nothing (started off the map): lost after lost_views views, back to

@@ -200,6 +200,12 @@ class NavigationRun {
         go_back(step, place, localisation);
         return;
       }
+      if (!at_goal && budget_only_lasts_the_way_back(index)) {
+        give_up(step);
+        go_back(step, place, localisation);
+        return;
+      }
+      if (step.recognised && !step.jump) correct_heading(step);
       if (step.recognised && !step.jump && position_.norm() <= extent_m_) set_anchor(place);
       if (place < 0) {
         drive_blind(step);
@@ -275,6 +281,23 @@ class NavigationRun {
            (params_.lost_jumps > 0 && static_cast<int>(jump_views_.size()) >= params_.lost_jumps);
   }
 
+  // A recognised view measures the robot's heading against the place's image (Eq. 1's phases),
+  // in the lattice frame, whose angle to the dead reckoning's frame the first such view fixes:
+  // later ones put the dead reckoning's heading right again (each turn adds turn_noise, and the
+  // returns and the map's extent rely on it). A measure far off the dead reckoning's (more than
+  // kHeadingOutlierDeg: a look-alike place facing another way) is left out.
+  void correct_heading(const NavigationStep& step) {
+    if (!lattice_to_dead_reckoning_rad_) {
+      lattice_to_dead_reckoning_rad_ = signed_difference(step.heading_estimate_rad, heading_rad_);
+      return;
+    }
+    const double measured_rad =
+        wrap_angle(step.heading_estimate_rad - *lattice_to_dead_reckoning_rad_);
+    if (std::abs(signed_difference(measured_rad, heading_rad_)) <= deg_to_rad(kHeadingOutlierDeg)) {
+      heading_rad_ = measured_rad;
+    }
+  }
+
   // Farther from its start, by its own dead reckoning, than the map is across: it cannot be on
   // the map any more, whatever it recognises (where the views of the map look as unlike each
   // other as anything off it, a field seen from 10 cm, off-map views still match). The way
@@ -304,19 +327,42 @@ class NavigationRun {
   // Lost: turn back towards the anchor. Past the recoveries' budget, the return is the last.
   void lose_way(NavigationStep& step) {
     step.lost = true;
-    step.phase = NavigationPhase::kReturning;
     ++result_.lost_events;
+    turn_back(step, result_.lost_events > params_.recoveries);
+  }
+
+  // The steps left only just take the robot back to its start (by its dead reckoning, with two
+  // steps to spare): rather than end wherever the budget runs out (where look-alikes led it,
+  // an office's desks repeating beyond the map), it gives up and goes back.
+  bool budget_only_lasts_the_way_back(int index) const {
+    if (!params_.stay_within_map_extent) return false;
+    const double left_m = (params_.max_steps - index) * params_.step_m;
+    return left_m <= position_.norm() + 2.0 * params_.step_m;
+  }
+
+  void give_up(NavigationStep& step) { turn_back(step, true); }
+
+  // Turns back towards the anchor (giving up: the start), as the state says.
+  void turn_back(NavigationStep& step, bool giving_up) {
+    step.phase = NavigationPhase::kReturning;
     state_ = State::kReturning;
-    giving_up_ = result_.lost_events > params_.recoveries;
+    giving_up_ = giving_up;
     return_steps_ = 0;
     sidestep_ = 0;
     escape_steps_left_ = 0;
     forget_unrecognised();
     jump_views_.clear();
     expected_ = -1;
+    // Giving up, the robot goes back to its start, where it was put (on the map, in the
+    // trials), rather than to the anchor: where the map's views look alike (a field seen from
+    // 10 cm) a view off the map may still have been recognised and anchored. Its dead
+    // reckoning's heading is kept right by the recognised views (correct_heading).
+    if (giving_up_) {
+      anchor_ = Eigen::Vector2d::Zero();
+      return;
+    }
     // The link followed from the anchor led off the map: plan without it (from the start,
     // without an anchor, the next try turns aside instead).
-    if (giving_up_) return;
     if (anchor_place_ >= 0) {
       if (replan_without_link(places_, anchor_place_, plan_)) ++result_.replans;
     } else {
@@ -337,7 +383,9 @@ class NavigationRun {
       return;
     }
     const Eigen::Vector2d to = anchor_ - position_;
-    if (to.norm() <= 0.25 * params_.step_m || return_steps_ >= params_.return_max_steps) {
+    // (Giving up, the way back to the start is bounded by max_steps alone.)
+    if (to.norm() <= 0.25 * params_.step_m ||
+        (!giving_up_ && return_steps_ >= params_.return_max_steps)) {
       result_.steps.push_back(step);
       if (giving_up_) {
         state_ = State::kGaveUp;
@@ -497,6 +545,7 @@ class NavigationRun {
   // Looking for the map from its start, the robot turns this far from the plan's direction
   // after each time it found itself lost (sidestep_turn's units: 90°, -90°, 180°, ...).
   static constexpr double kProbeTurnDeg = 90.0;
+  static constexpr double kHeadingOutlierDeg = 30.0;
 
   NavigationWorld& world_;
   const std::vector<PlaceNode>& places_;
@@ -522,6 +571,7 @@ class NavigationRun {
   // Dead reckoning, in the frame of the robot's start (the robot at the origin facing +x).
   Eigen::Vector2d position_ = Eigen::Vector2d::Zero();
   double heading_rad_ = 0.0;
+  std::optional<double> lattice_to_dead_reckoning_rad_;  // set by the first recognised view
   // Lost and found.
   int unrecognised_ = 0;  // views in a row whose best place lies beyond the limit
   int not_nearer_ = 0;    // ... of them no nearer to the map than the nearest before

@@ -98,7 +98,9 @@ struct NavigatorParams {
   // across (the diagonal of its bounding box, measured from the map when the run starts)
   // cannot be on the map: lost, whatever it recognises, it goes back as above (to its start,
   // or an anchor within that reach). Where off-map views match as well as the map's own (a field
-  // seen from 10 cm), this bounds how far it strays.
+  // seen from 10 cm), this bounds how far it strays. With it, too, a robot whose steps left only
+  // just take it back to its start gives up and goes back, rather than end where the budget
+  // runs out.
   bool stay_within_map_extent = true;
 };
 
