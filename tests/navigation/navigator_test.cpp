@@ -503,6 +503,17 @@ TEST(Navigator, LostOffTheMapGoesBackAndStopsInsteadOfDrivingAway) {
   }
   EXPECT_LT(farthest_from_start, 4.0 + fenced.step_m + 0.01);
   EXPECT_LT(fenced_world.truth().floor_position().norm(), 0.25 * fenced.step_m + 0.01);
+
+  // Kept within the lattice's bounding box grown by one spacing (1 m here) instead, by the
+  // dead reckoning carried onto the lattice from the first place recognised, the robot never
+  // goes more than a step past 1 m from the row.
+  NavigatorParams boxed = fenced;
+  boxed.stay_within_lattice_box = true;
+  PointWorld boxed_world;
+  const NavigationResult in_box = navigate(
+      boxed_world, places, plan, distance_oracle(boxed_world, truth, 2, kPi / 2), boxed, {});
+  EXPECT_TRUE(in_box.gave_up);
+  EXPECT_LT(farthest_from_row_m(in_box, boxed_world), 1.0 + boxed.step_m + 0.01);
 }
 
 // A robot that recognises nothing (started off the map): lost after lost_views views, back to

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <deque>
@@ -105,6 +106,8 @@ void load_navigator_params(const ConfigReader& section, NavigatorParams& params)
   section.read("recoveries", params.recoveries, 0, 100000);
   section.read("return_max_steps", params.return_max_steps, 0, 100000);
   section.read("stay_within_map_extent", params.stay_within_map_extent);
+  section.read("stay_within_lattice_box", params.stay_within_lattice_box);
+  section.read("lattice_box_margin_spacings", params.lattice_box_margin_spacings, 0.0, 100.0);
   // The last sidestep turns farthest: past 180° it would repeat an earlier direction.
   const double widest_deg = std::abs(sidestep_turn(params.sidesteps, params.sidestep_deg));
   if (widest_deg > 180.0) {
@@ -158,7 +161,18 @@ class NavigationRun {
                                     : 0.0),
         entries_(places.size(), 0),
         extent_m_(params.stay_within_map_extent ? lattice_extent_m(places)
-                                                : std::numeric_limits<double>::infinity()) {}
+                                                : std::numeric_limits<double>::infinity()) {
+    if (!places.empty()) {
+      box_low_ = box_high_ = places.front().position_m;
+      for (const PlaceNode& node : places) {
+        box_low_ = box_low_.cwiseMin(node.position_m);
+        box_high_ = box_high_.cwiseMax(node.position_m);
+      }
+      const double margin_m = params.lattice_box_margin_spacings * lattice_spacing(places);
+      box_low_ -= Eigen::Vector2d::Constant(margin_m);
+      box_high_ += Eigen::Vector2d::Constant(margin_m);
+    }
+  }
 
   NavigationResult run() {
     for (int index = 0;
@@ -205,8 +219,8 @@ class NavigationRun {
         go_back(step, place, localisation);
         return;
       }
-      if (step.recognised && !step.jump) correct_heading(step);
-      if (step.recognised && !step.jump && position_.norm() <= extent_m_) set_anchor(place);
+      if (step.recognised && !step.jump) correct_heading(step, place);
+      if (step.recognised && !step.jump && within_map(position_)) set_anchor(place);
       if (place < 0) {
         drive_blind(step);
         return;
@@ -286,9 +300,11 @@ class NavigationRun {
   // later ones put the dead reckoning's heading right again (each turn adds turn_noise, and the
   // returns and the map's extent rely on it). A measure far off the dead reckoning's (more than
   // kHeadingOutlierDeg: a look-alike place facing another way) is left out.
-  void correct_heading(const NavigationStep& step) {
+  void correct_heading(const NavigationStep& step, int place) {
     if (!lattice_to_dead_reckoning_rad_) {
       lattice_to_dead_reckoning_rad_ = signed_difference(step.heading_estimate_rad, heading_rad_);
+      lattice_origin_ = places_[place].position_m;
+      dead_reckoning_origin_ = position_;
       return;
     }
     const double measured_rad =
@@ -303,12 +319,25 @@ class NavigationRun {
   // other as anything off it, a field seen from 10 cm, off-map views still match). The way
   // back is then to the start, or to an anchor set within that reach.
   bool beyond_extent() {
-    if (position_.norm() <= extent_m_) return false;
-    if (anchor_.norm() > extent_m_) {
+    if (within_map(position_)) return false;
+    if (!within_map(anchor_)) {
       anchor_ = Eigen::Vector2d::Zero();
       anchor_place_ = -1;
     }
     return true;
+  }
+
+  // Within the map's extent from the start, and (stay_within_lattice_box) with the dead
+  // reckoning carried onto the lattice from the first recognised place, within the lattice's
+  // bounding box grown by lattice_box_margin_spacings.
+  bool within_map(const Eigen::Vector2d& at) const {
+    if (at.norm() > extent_m_) return false;
+    if (!params_.stay_within_lattice_box || !lattice_to_dead_reckoning_rad_) return true;
+    const Eigen::Vector2d on_lattice =
+        lattice_origin_ +
+        Eigen::Rotation2Dd(*lattice_to_dead_reckoning_rad_) * (at - dead_reckoning_origin_);
+    return (on_lattice.array() >= box_low_.array()).all() &&
+           (on_lattice.array() <= box_high_.array()).all();
   }
 
   void forget_unrecognised() {
@@ -571,7 +600,11 @@ class NavigationRun {
   // Dead reckoning, in the frame of the robot's start (the robot at the origin facing +x).
   Eigen::Vector2d position_ = Eigen::Vector2d::Zero();
   double heading_rad_ = 0.0;
-  std::optional<double> lattice_to_dead_reckoning_rad_;  // set by the first recognised view
+  std::optional<double> lattice_to_dead_reckoning_rad_;       // set by the first recognised view
+  Eigen::Vector2d lattice_origin_ = Eigen::Vector2d::Zero();  // that view's place on the lattice
+  Eigen::Vector2d dead_reckoning_origin_ = Eigen::Vector2d::Zero();  // ... and by dead reckoning
+  Eigen::Vector2d box_low_ = Eigen::Vector2d::Zero();   // the lattice's bounding box, grown
+  Eigen::Vector2d box_high_ = Eigen::Vector2d::Zero();  // by lattice_box_margin_spacings
   // Lost and found.
   int unrecognised_ = 0;  // views in a row whose best place lies beyond the limit
   int not_nearer_ = 0;    // ... of them no nearer to the map than the nearest before

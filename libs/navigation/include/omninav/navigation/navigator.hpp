@@ -102,6 +102,11 @@ struct NavigatorParams {
   // just take it back to its start gives up and goes back, rather than end where the budget
   // runs out.
   bool stay_within_map_extent = true;
+  // Beyond §3.5, with stay_within_map_extent: the dead reckoning carried onto the lattice from
+  // the first place recognised (its position, and the heading measured there) must stay within
+  // the lattice's bounding box grown by this many lattice spacings, or the robot is lost.
+  bool stay_within_lattice_box = false;
+  double lattice_box_margin_spacings = 1.0;
 };
 
 // Reads the `navigator:` section of navigation.yaml.
