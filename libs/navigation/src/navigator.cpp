@@ -406,7 +406,7 @@ class NavigationRun {
     if (step.recognised && !step.lost && !giving_up_) {
       ++result_.recoveries;
       resume();
-      set_anchor(place);
+      if (within_map(position_)) set_anchor(place);
       step.phase = NavigationPhase::kFollowingRoute;
       follow_route(step, place, localisation);
       return;
