@@ -182,7 +182,9 @@ void run_navigate(const GlobalOptions& global, const NavigateOptions& options) {
   summary(global) << (result.reached ? "reached" : "did not reach") << " the goal (place "
                   << run.goal.place << ") in " << result.steps.size() << " steps, "
                   << fixed(result.path_length_m, 2) << " m driven, " << result.jumps
-                  << " localisation jumps; steps: " << (options.out / "steps.csv").string()
+                  << " localisation jumps, lost " << result.lost_events << " times"
+                  << (result.gave_up ? " (gave up)" : "")
+                  << "; steps: " << (options.out / "steps.csv").string()
                   << ", picture: " << (options.out / "path.png").string() << "\n";
 }
 

@@ -410,6 +410,140 @@ TEST(Navigator, LookAheadDrivesStraightWhereTheRouteZigZags) {
   EXPECT_LT(widest_looking_ahead_m, 0.1);
 }
 
+// A localiser that knows how far the robot stands from the nearest place: the match's
+// dissimilarity per value is that distance in metres, so that a match limit of d says "within
+// d metres of a place". All places face +x; the robot's heading relative to `misled`'s image
+// reads `misled_rad` too far left (a place whose stored heading is wrong: its direction leads
+// elsewhere). `world` must outlive the localiser.
+PanoramaLocaliser distance_oracle(const PointWorld& world, std::vector<Eigen::Vector2d> truth,
+                                  int misled = -1, double misled_rad = 0.0) {
+  return [&world, truth, misled, misled_rad](const cv::Mat&) {
+    std::size_t nearest = 0;
+    const Eigen::Vector2d at = world.truth().floor_position();
+    for (std::size_t i = 1; i < truth.size(); ++i) {
+      if ((truth[i] - at).norm() < (truth[nearest] - at).norm()) nearest = i;
+    }
+    const double error_rad = static_cast<int>(nearest) == misled ? misled_rad : 0.0;
+    memory::Localisation localisation = recognised(nearest, world.truth().heading_rad + error_rad);
+    localisation.best.front().dissimilarity_per_value = (truth[nearest] - at).norm();
+    return localisation;
+  };
+}
+
+// The farthest the robot stood from the row y = 0 over the run, and where it stopped.
+double farthest_from_row_m(const NavigationResult& result, const PointWorld& world) {
+  double farthest = std::abs(world.truth().y_m);
+  for (const NavigationStep& step : result.steps) {
+    farthest = std::max(farthest, std::abs(step.truth.y_m));
+  }
+  return farthest;
+}
+
+// Five places in a row, 1 m apart along x, the goal at the east end; place 2's heading reads
+// 90° off, so its direction sends the robot south, off the map, and it keeps recognising place
+// 2 (the nearest) as it goes. Views farther than 0.7 m from every place are not recognised.
+TEST(Navigator, LostOffTheMapGoesBackAndStopsInsteadOfDrivingAway) {
+  std::vector<PlaceNode> places;
+  std::vector<Eigen::Vector2d> truth;
+  for (int x = 0; x < 5; ++x) {
+    places.push_back({Eigen::Vector2d(x, 0), 0.0});
+    truth.emplace_back(x, 0);
+  }
+  const RoutePlan plan = plan_to_goal(places, lattice_neighbours(places, 1.5), 4);
+  NavigatorParams params;
+  params.max_steps = 200;
+  const auto run = [&](const NavigatorParams& with, PointWorld& world) {
+    return navigate(world, places, plan, distance_oracle(world, truth, 2, kPi / 2), with, {}, 0.7);
+  };
+  PointWorld world;
+  const NavigationResult result = run(params, world);
+  EXPECT_FALSE(result.reached);
+  // Lost, back, on again (the same way: no route is left round place 2's link), lost again:
+  // once more than the two recoveries allowed, then back to its start and stopped, long
+  // before the budget.
+  EXPECT_EQ(result.lost_events, 3);
+  EXPECT_EQ(result.recoveries, 2);
+  EXPECT_TRUE(result.gave_up);
+  EXPECT_LT(static_cast<int>(result.steps.size()), params.max_steps / 2);
+  const int lost_steps =
+      static_cast<int>(std::count_if(result.steps.begin(), result.steps.end(),
+                                     [](const NavigationStep& step) { return step.lost; }));
+  EXPECT_EQ(lost_steps, 3);
+  // Stopped back at its start (the dead reckoning of a point robot without noise: exact but
+  // for the last return step's quarter step).
+  EXPECT_LT(world.truth().floor_position().norm(), 0.25 * params.step_m + 0.01);
+  // Never farther than the views that found it lost past the 0.7 m: the first not recognised
+  // and three more, each farther from the map (steps of 0.15 m).
+  EXPECT_LT(farthest_from_row_m(result, world), 0.7 + (params.lost_views + 1) * params.step_m);
+
+  // The navigator of §3.5 without the checks drives on south until its budget is spent.
+  NavigatorParams unaware = params;
+  unaware.lost_views = 0;
+  unaware.stay_within_map_extent = false;
+  PointWorld away;
+  const NavigationResult driven_away = run(unaware, away);
+  EXPECT_EQ(driven_away.lost_events, 0);
+  EXPECT_GT(std::abs(away.truth().y_m), 10.0);
+
+  // Where every view matches (a field seen from 10 cm: off the map as well as on it), the
+  // map's extent still bounds the way: the row is 4 m across, and a robot farther than that
+  // from its start by its dead reckoning is lost, goes back to where it last recognised a
+  // place within that reach, and after the recoveries goes back to its start and stops.
+  NavigatorParams fenced = params;
+  fenced.lost_views = 0;
+  PointWorld fenced_world;
+  const NavigationResult bounded = navigate(
+      fenced_world, places, plan, distance_oracle(fenced_world, truth, 2, kPi / 2), fenced, {});
+  EXPECT_FALSE(bounded.reached);
+  EXPECT_TRUE(bounded.gave_up);
+  EXPECT_EQ(bounded.lost_events, 3);
+  double farthest_from_start = 0.0;
+  for (const NavigationStep& step : bounded.steps) {
+    farthest_from_start = std::max(farthest_from_start, step.truth.floor_position().norm());
+  }
+  EXPECT_LT(farthest_from_start, 4.0 + fenced.step_m + 0.01);
+  EXPECT_LT(fenced_world.truth().floor_position().norm(), 0.25 * fenced.step_m + 0.01);
+
+  // Kept within the lattice's bounding box grown by one spacing (1 m here) instead, by the
+  // dead reckoning carried onto the lattice from the first place recognised, the robot never
+  // goes more than a step past 1 m from the row.
+  NavigatorParams boxed = fenced;
+  boxed.stay_within_lattice_box = true;
+  PointWorld boxed_world;
+  const NavigationResult in_box = navigate(
+      boxed_world, places, plan, distance_oracle(boxed_world, truth, 2, kPi / 2), boxed, {});
+  EXPECT_TRUE(in_box.gave_up);
+  EXPECT_LT(farthest_from_row_m(in_box, boxed_world), 1.0 + boxed.step_m + 0.01);
+}
+
+// A robot that recognises nothing (started off the map): lost after lost_views views, back to
+// its start by dead reckoning, out again turned 90° one way, then the other, and after the
+// recoveries back at its start, stopped.
+TEST(Navigator, NeverRecognisingAPlaceItStopsWhereItStarted) {
+  const std::vector<PlaceNode> places{{Eigen::Vector2d(0, 0), 0.0}, {Eigen::Vector2d(1, 0), 0.0}};
+  const RoutePlan plan = plan_to_goal(places, lattice_neighbours(places, 1.5), 1);
+  PointWorld world;
+  const PanoramaLocaliser far_away = [&world](const cv::Mat&) {
+    memory::Localisation localisation = recognised(0, world.truth().heading_rad);
+    localisation.best.front().dissimilarity_per_value = 100.0;
+    return localisation;
+  };
+  NavigatorParams params;
+  const NavigationResult result = navigate(world, places, plan, far_away, params, {}, 1.0);
+  EXPECT_FALSE(result.reached);
+  EXPECT_TRUE(result.gave_up);
+  EXPECT_EQ(result.lost_events, params.recoveries + 1);
+  EXPECT_EQ(result.recoveries, 0);
+  EXPECT_LT(std::hypot(world.truth().x_m, world.truth().y_m), 0.05);
+  double farthest = 0.0;
+  for (const NavigationStep& step : result.steps) {
+    farthest = std::max(farthest, std::hypot(step.truth.x_m, step.truth.y_m));
+  }
+  // Lost at the fourth view (the first not recognised, three more no nearer to the map).
+  EXPECT_LT(farthest, params.lost_views * params.step_m + 0.05);
+  EXPECT_LT(static_cast<int>(result.steps.size()), 40);
+}
+
 TEST(Navigator, ReadsItsParametersAndRejectsSidestepsPastHalfATurn) {
   NavigatorParams params;
   load_navigator_params(ConfigReader::from_string("navigator:\n  look_ahead_links: 3\n"
@@ -422,6 +556,17 @@ TEST(Navigator, ReadsItsParametersAndRejectsSidestepsPastHalfATurn) {
   EXPECT_DOUBLE_EQ(params.look_ahead_tolerance_spacings, 0.7);
   EXPECT_EQ(params.sidesteps, 6);
   EXPECT_DOUBLE_EQ(params.sidestep_deg, 60.0);
+  load_navigator_params(ConfigReader::from_string("navigator:\n  lost_views: 5\n  lost_jumps: 2\n"
+                                                  "  lost_jump_window: 4\n  recoveries: 1\n"
+                                                  "  return_max_steps: 9\n",
+                                                  "navigation.yaml")
+                            .section("navigator"),
+                        params);
+  EXPECT_EQ(params.lost_views, 5);
+  EXPECT_EQ(params.lost_jumps, 2);
+  EXPECT_EQ(params.lost_jump_window, 4);
+  EXPECT_EQ(params.recoveries, 1);
+  EXPECT_EQ(params.return_max_steps, 9);
   const auto error_of = [](const std::string& yaml) -> std::string {
     NavigatorParams ignored;
     try {

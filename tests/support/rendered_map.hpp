@@ -5,6 +5,7 @@
 //   - rendered_grid_map: a grid sweep as a grid database lists it, every pose a place;
 //   - rendered_run_map: a stream (a route, a zig-zag), a place every `every_m` metres travelled.
 
+#include <Eigen/Geometry>
 #include <string>
 #include <vector>
 
@@ -60,6 +61,19 @@ inline memory::VisualMemory rendered_run_map(const sim::World& world,
     explorer.add(frame);
   }
   return map;
+}
+
+// The places' true positions as their lattice, in the lattice frame (origin at the first place,
+// its heading along +x): for tests that isolate navigation from the spring model.
+inline void set_truth_lattice(memory::VisualMemory& memory) {
+  const CameraPose first = *memory.place(0).truth;
+  std::vector<Eigen::Vector2d> lattice_positions;
+  for (std::size_t i = 0; i < memory.place_count(); ++i) {
+    const CameraPose& truth = *memory.place(i).truth;
+    lattice_positions.push_back(Eigen::Rotation2Dd(-first.heading_rad) *
+                                (truth.floor_position() - first.floor_position()));
+  }
+  memory.set_lattice_positions(lattice_positions);
 }
 
 }  // namespace omninav::testing

@@ -20,6 +20,7 @@
 #include "omninav/navigation/memory_places.hpp"
 #include "omninav/sim/renderer.hpp"
 #include "omninav/sim/room.hpp"
+#include "support/rendered_map.hpp"
 
 namespace omninav::testing {
 
@@ -72,14 +73,7 @@ inline RoomMap* build_room_map() {
     }
   }
   // Lattice from the truth, in the lattice frame: origin at the first place, its heading +x.
-  const CameraPose first = *map->memory.place(0).truth;
-  std::vector<Eigen::Vector2d> lattice_positions;
-  for (std::size_t i = 0; i < map->memory.place_count(); ++i) {
-    const CameraPose& truth = *map->memory.place(i).truth;
-    lattice_positions.push_back(Eigen::Rotation2Dd(-first.heading_rad) *
-                                (truth.floor_position() - first.floor_position()));
-  }
-  map->memory.set_lattice_positions(lattice_positions);
+  set_truth_lattice(map->memory);
   map->places = navigation::places_from_memory(map->memory);
   map->localiser = std::make_unique<memory::Localiser>(map->memory, memory::LocalisationParams{});
   map->extractor =
@@ -105,7 +99,8 @@ class RoomNavigation : public ::testing::Test {
             limit(),
             homing(),
             navigation::RouteParams{},
-            navigation::NavigatorParams{}};
+            navigation::NavigatorParams{},
+            navigation::recognition_limit(map().memory, navigation::NavigatorParams{})};
   }
   // The place nearest to (x, y) by truth.
   static int nearest_place(double x_m, double y_m) {

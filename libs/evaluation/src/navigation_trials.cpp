@@ -11,6 +11,7 @@
 #include "omninav/core/format.hpp"
 #include "omninav/core/progress.hpp"
 #include "omninav/core/statistics.hpp"
+#include "omninav/evaluation/evaluate.hpp"
 #include "omninav/evaluation/robot_worlds.hpp"
 #include "omninav/memory/localisation.hpp"
 
@@ -96,6 +97,7 @@ std::vector<TrialOutcome> run_trials(const std::vector<Trial>& trials, const Tri
       // The goal image matched no place: the trial fails, the others go on.
     }
     const CameraPose& end = virtual_robot.pose();
+    outcome.end = end;
     outcome.final_error_m = std::hypot(goal.x_m - end.x_m, goal.y_m - end.y_m);
     outcome.reached = outcome.stopped_at_goal && outcome.final_error_m <= goal_radius_m;
     outcomes.push_back(outcome);
@@ -121,6 +123,15 @@ MapTrials run_map_trials(const memory::VisualMemory& memory,
       random_trials(scene.world, mapped, result.spacing_m, scene.robot.radius_m,
                     memory.place(0).truth->z_m, params);
   result.outcomes = run_trials(trials, scene, setup, result.goal_radius_m);
+  const std::vector<Eigen::Vector2d> hull = convex_hull(mapped);
+  for (TrialOutcome& outcome : result.outcomes) {
+    for (const navigation::NavigationStep& step : outcome.result.steps) {
+      outcome.step_outside_m.push_back(distance_outside(hull, step.truth.floor_position()));
+      outcome.outside_m = std::max(outcome.outside_m, outcome.step_outside_m.back());
+    }
+    outcome.end_outside_m = distance_outside(hull, outcome.end.floor_position());
+    outcome.outside_m = std::max(outcome.outside_m, outcome.end_outside_m);
+  }
   return result;
 }
 
@@ -130,6 +141,9 @@ TrialSummary summarise(const std::vector<TrialOutcome>& outcomes) {
   std::vector<double> ratios;
   double steps = 0.0;
   for (const TrialOutcome& outcome : outcomes) {
+    summary.lost += outcome.result.lost_events > 0 ? 1 : 0;
+    summary.gave_up += outcome.result.gave_up ? 1 : 0;
+    summary.outside_m = std::max(summary.outside_m, outcome.outside_m);
     if (!outcome.reached) continue;
     ++summary.reached;
     ratios.push_back(outcome.result.path_length_m / outcome.straight_m);
@@ -148,7 +162,9 @@ std::string TrialSummary::text() const {
   return "reached " + std::to_string(reached) + " of " + std::to_string(trials) + " goals (" +
          fixed(100.0 * reached_share, 1) + "%); path / straight line over those reached: mean " +
          fixed(mean_path_ratio, 2) + ", median " + fixed(median_path_ratio, 2) + "; mean " +
-         fixed(mean_steps, 1) + " steps";
+         fixed(mean_steps, 1) + " steps; lost in " + std::to_string(lost) + " trials (" +
+         std::to_string(gave_up) + " gave up); at most " + fixed(outside_m, 2) +
+         " m outside the mapped area";
 }
 
 }  // namespace omninav::evaluation

@@ -10,7 +10,8 @@ namespace omninav::evaluation {
 void write_trials_csv(std::ostream& out, const std::vector<TrialOutcome>& outcomes) {
   out << "trial,start_x_m,start_y_m,start_heading_deg,goal_x_m,goal_y_m,goal_heading_deg,"
          "goal_place,stopped_at_goal,reached,final_error_m,path_m,straight_m,path_ratio,steps,"
-         "jumps,sidesteps,replans,loops,homing_steps\n";
+         "jumps,sidesteps,replans,loops,homing_steps,lost_events,recoveries,gave_up,outside_m,"
+         "end_outside_m\n";
   for (std::size_t i = 0; i < outcomes.size(); ++i) {
     const TrialOutcome& o = outcomes[i];
     const navigation::NavigationResult& r = o.result;
@@ -33,15 +34,25 @@ void write_trials_csv(std::ostream& out, const std::vector<TrialOutcome>& outcom
                          std::to_string(r.sidesteps),
                          std::to_string(r.replans),
                          std::to_string(r.loops),
-                         std::to_string(r.homing_steps)});
+                         std::to_string(r.homing_steps),
+                         std::to_string(r.lost_events),
+                         std::to_string(r.recoveries),
+                         r.gave_up ? "1" : "0",
+                         general(o.outside_m),
+                         general(o.end_outside_m)});
   }
 }
 
 void write_trial_steps_csv(std::ostream& out, const std::vector<TrialOutcome>& outcomes,
                            double lattice_to_world_rad) {
-  report::write_navigation_steps_header(out, true);
+  report::write_navigation_steps_header(out, true, true);
   for (std::size_t i = 0; i < outcomes.size(); ++i) {
-    report::write_navigation_steps(out, outcomes[i].result, lattice_to_world_rad, i);
+    const TrialOutcome& o = outcomes[i];
+    // Outcomes made by run_trials alone do not know the mapped area: 0 outside.
+    const std::vector<double> outside_m = o.step_outside_m.size() == o.result.steps.size()
+                                              ? o.step_outside_m
+                                              : std::vector<double>(o.result.steps.size(), 0.0);
+    report::write_navigation_steps(out, o.result, lattice_to_world_rad, i, outside_m);
   }
 }
 

@@ -81,6 +81,11 @@ double match_limit(const memory::VisualMemory& memory, const RouteParams& params
   return params.match_dissimilarity_ratio * *link;
 }
 
+double recognition_limit(const memory::VisualMemory& memory, const NavigatorParams& params) {
+  const std::optional<double> link = median_link_dissimilarity(memory);
+  return link ? params.recognition_link_ratio * *link : std::numeric_limits<double>::infinity();
+}
+
 HomingScale homing_scale(const memory::VisualMemory& memory, const std::vector<PlaceNode>& places) {
   HomingScale scale{memory.parameters().signature, memory.parameters().weights, 0.0};
   const std::optional<double> link = median_link_dissimilarity(memory);
@@ -104,6 +109,7 @@ GoalNavigationSetup goal_navigation_setup(const memory::VisualMemory& memory,
   setup.homing = homing_scale(memory, setup.places);
   setup.route = route;
   setup.navigator = navigator;
+  setup.recognition_limit = recognition_limit(memory, navigator);
   return setup;
 }
 

@@ -2,8 +2,10 @@
 
 #include <fmt/format.h>
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <deque>
 #include <limits>
 #include <optional>
 
@@ -48,6 +50,18 @@ int place_of(const NavigationStep& step) {
   return step.match ? static_cast<int>(step.match->place) : -1;
 }
 
+// The diagonal of the bounding box of the places on the lattice: how far apart two places of
+// the map can be.
+double lattice_extent_m(const std::vector<PlaceNode>& places) {
+  if (places.empty()) return 0.0;
+  Eigen::Vector2d low = places.front().position_m, high = low;
+  for (const PlaceNode& place : places) {
+    low = low.cwiseMin(place.position_m);
+    high = high.cwiseMax(place.position_m);
+  }
+  return (high - low).norm();
+}
+
 // Where the localiser puts the robot between places on the lattice, when it can tell (the best
 // places' positions weighted by similarity, memory::PositionEstimate).
 std::optional<Eigen::Vector2d> lattice_position(const memory::Localisation& localisation) {
@@ -57,6 +71,18 @@ std::optional<Eigen::Vector2d> lattice_position(const memory::Localisation& loca
 }
 
 }  // namespace
+
+const char* phase_name(NavigationPhase phase) {
+  switch (phase) {
+    case NavigationPhase::kFollowingRoute:
+      return "route";
+    case NavigationPhase::kHoming:
+      return "homing";
+    case NavigationPhase::kReturning:
+      return "returning";
+  }
+  return "?";
+}
 
 void load_navigator_params(const ConfigReader& section, NavigatorParams& params) {
   section.read("step_m", params.step_m, 0.01, 5.0);
@@ -73,6 +99,15 @@ void load_navigator_params(const ConfigReader& section, NavigatorParams& params)
   section.read("homing_step_m", params.homing_step_m, 0.01, 5.0);
   section.read("homing_stop_m", params.homing_stop_m, 0.0, 5.0);
   section.read("homing_max_steps", params.homing_max_steps, 0, 100000);
+  section.read("recognition_link_ratio", params.recognition_link_ratio, 0.1, 100.0);
+  section.read("lost_views", params.lost_views, 0, 100000);
+  section.read("lost_jumps", params.lost_jumps, 0, 100000);
+  section.read("lost_jump_window", params.lost_jump_window, 1, 100000);
+  section.read("recoveries", params.recoveries, 0, 100000);
+  section.read("return_max_steps", params.return_max_steps, 0, 100000);
+  section.read("stay_within_map_extent", params.stay_within_map_extent);
+  section.read("stay_within_lattice_box", params.stay_within_lattice_box);
+  section.read("lattice_box_margin_spacings", params.lattice_box_margin_spacings, 0.0, 100.0);
   // The last sidestep turns farthest: past 180° it would repeat an earlier direction.
   const double widest_deg = std::abs(sidestep_turn(params.sidesteps, params.sidestep_deg));
   if (widest_deg > 180.0) {
@@ -89,9 +124,15 @@ namespace {
 // One run of the navigator, a small state machine. Each view of the robot is one step:
 //   - following the route (§3.5): recognise the place, turn to its direction towards the goal,
 //     step. Nothing recognised: drive on straight ahead. The goal's place recognised
-//     (goal_confirmations times in a row): arrive, or start homing on the goal image;
+//     (goal_confirmations times in a row): arrive, or start homing on the goal image. Views not
+//     recognised (beyond the recognition limit) params.lost_views times in a row, or
+//     params.lost_jumps jumps within lost_jump_window views: lost, start returning;
 //   - homing (homing.hpp): step towards the goal image while it seems nearer; arrive when it
 //     seems near enough, farther than at the last view, or when blocked every way;
+//   - returning (lost): drive back by dead reckoning to the anchor, where the robot last
+//     recognised a place without a jump (or its start). A view recognised on the way, or the
+//     anchor reached: follow the route again, planned without the link that led off. When the
+//     robot was lost more than params.recoveries times, the anchor reached ends the run: gave up;
 //   - arrived: the run ends, the goal reached.
 // The run also ends when max_steps views are spent: the goal counts as reached only while
 // homing (its place was recognised, as the paper's robot asks).
@@ -102,33 +143,50 @@ namespace {
 // when no route is left round it, escaping: a few steps at an angle from the planned direction.
 // Blocked again while escaping, the robot tries the next escape turn: the other side, then
 // wider (a robot in a corner between two boxes is blocked both ways at unstick_turn_deg),
-// round to the first after 180°.
+// round to the first after 180°. Returning, a blocked move sidesteps the same way.
 class NavigationRun {
  public:
   NavigationRun(NavigationWorld& world, const std::vector<PlaceNode>& places, const RoutePlan& plan,
                 const PanoramaLocaliser& localise, const NavigatorParams& params,
-                const GoalHoming& homing)
+                const GoalHoming& homing, double recognition_limit)
       : world_(world),
         places_(places),
         localise_(localise),
         params_(params),
         homing_(homing),
+        recognition_limit_(recognition_limit),
         plan_(plan),
         look_ahead_tolerance_m_(params.look_ahead_links > 1
                                     ? params.look_ahead_tolerance_spacings * lattice_spacing(places)
                                     : 0.0),
-        entries_(places.size(), 0) {}
+        entries_(places.size(), 0),
+        extent_m_(params.stay_within_map_extent ? lattice_extent_m(places)
+                                                : std::numeric_limits<double>::infinity()) {
+    if (!places.empty()) {
+      box_low_ = box_high_ = places.front().position_m;
+      for (const PlaceNode& node : places) {
+        box_low_ = box_low_.cwiseMin(node.position_m);
+        box_high_ = box_high_.cwiseMax(node.position_m);
+      }
+      const double margin_m = params.lattice_box_margin_spacings * lattice_spacing(places);
+      box_low_ -= Eigen::Vector2d::Constant(margin_m);
+      box_high_ += Eigen::Vector2d::Constant(margin_m);
+    }
+  }
 
   NavigationResult run() {
-    for (int index = 0; index < params_.max_steps && state_ != State::kArrived; ++index) {
+    for (int index = 0;
+         index < params_.max_steps && state_ != State::kArrived && state_ != State::kGaveUp;
+         ++index) {
       take_step(index);
     }
     result_.reached = state_ == State::kArrived || state_ == State::kHoming;
+    result_.gave_up = state_ == State::kGaveUp;
     return std::move(result_);
   }
 
  private:
-  enum class State { kFollowingRoute, kHoming, kArrived };
+  enum class State { kFollowingRoute, kHoming, kReturning, kArrived, kGaveUp };
 
   void take_step(int index) {
     NavigationStep step;
@@ -137,18 +195,37 @@ class NavigationRun {
     const cv::Mat view = world_.view(index);
     const memory::Localisation localisation = localise_(view);
     if (!localisation.best.empty()) step.match = localisation.best.front();
+    step.recognised = step.match && step.match->dissimilarity_per_value <= recognition_limit_;
     const int place = place_of(step);
     if (place >= 0) {
       step.heading_estimate_rad =
           wrap_angle(places_[place].heading_rad + step.match->relative_heading_rad);
     }
+    if (state_ == State::kReturning) {
+      step.phase = NavigationPhase::kReturning;
+      go_back(step, place, localisation);
+      return;
+    }
     if (state_ == State::kFollowingRoute) {
+      if (place >= 0) note_jump(step, place);
+      const bool at_goal = place >= 0 && goal_confirmed(step, place);
+      if (!at_goal && (lost(step) || beyond_extent())) {
+        lose_way(step);
+        go_back(step, place, localisation);
+        return;
+      }
+      if (!at_goal && budget_only_lasts_the_way_back(index)) {
+        give_up(step);
+        go_back(step, place, localisation);
+        return;
+      }
+      if (step.recognised && !step.jump) correct_heading(step, place);
+      if (step.recognised && !step.jump && within_map(position_)) set_anchor(place);
       if (place < 0) {
         drive_blind(step);
         return;
       }
-      note_jump(step, place);
-      if (goal_confirmed(step, place)) {
+      if (at_goal) {
         if (!homing_ || !params_.home_on_goal_image || params_.homing_max_steps == 0) {
           result_.steps.push_back(step);
           state_ = State::kArrived;
@@ -158,15 +235,26 @@ class NavigationRun {
       }
     }
     if (state_ == State::kHoming) {
+      step.phase = NavigationPhase::kHoming;
       home(step, view);
     } else {
       follow_route(step, place, localisation);
     }
   }
 
+  // Turns by `turn_rad` and drives up to `distance_m`; keeps the dead reckoning (the robot's
+  // own record of its turns and distances, in the frame of its start) and the path length.
+  double drive(double turn_rad, double distance_m) {
+    heading_rad_ = wrap_angle(heading_rad_ + turn_rad);
+    const double driven = world_.move(turn_rad, distance_m);
+    position_ += driven * Eigen::Vector2d(std::cos(heading_rad_), std::sin(heading_rad_));
+    result_.path_length_m += driven;
+    return driven;
+  }
+
   // Nothing recognised (an empty candidate set): go on straight ahead.
   void drive_blind(NavigationStep& step) {
-    result_.path_length_m += world_.move(0.0, params_.step_m);
+    drive(0.0, params_.step_m);
     result_.steps.push_back(step);
   }
 
@@ -181,9 +269,189 @@ class NavigationRun {
     result_.jumps += step.jump ? 1 : 0;
   }
 
-  // The goal's place recognised, with the goal similarity, goal_confirmations views in a row.
+  // Lost: lost_views views in a row not recognised that do not look more like the map than the
+  // others of the row (a robot coming onto the map sees its best place nearer with every view),
+  // or twice as many not recognised anyway, or lost_jumps jumps within the last
+  // lost_jump_window views.
+  bool lost(const NavigationStep& step) {
+    if (step.recognised) {
+      forget_unrecognised();
+    } else {
+      const double d = step.match ? step.match->dissimilarity_per_value
+                                  : std::numeric_limits<double>::infinity();
+      ++unrecognised_;
+      if (d < nearest_unrecognised_) {
+        nearest_unrecognised_ = d;
+      } else {
+        ++not_nearer_;
+      }
+    }
+    if (step.jump) jump_views_.push_back(step.index);
+    while (!jump_views_.empty() && step.index - jump_views_.front() >= params_.lost_jump_window) {
+      jump_views_.pop_front();
+    }
+    return (params_.lost_views > 0 &&
+            (not_nearer_ >= params_.lost_views || unrecognised_ >= 2 * params_.lost_views)) ||
+           (params_.lost_jumps > 0 && static_cast<int>(jump_views_.size()) >= params_.lost_jumps);
+  }
+
+  // A recognised view measures the robot's heading against the place's image (Eq. 1's phases),
+  // in the lattice frame, whose angle to the dead reckoning's frame the first such view fixes:
+  // later ones put the dead reckoning's heading right again (each turn adds turn_noise, and the
+  // returns and the map's extent rely on it). A measure far off the dead reckoning's (more than
+  // kHeadingOutlierDeg: a look-alike place facing another way) is left out.
+  void correct_heading(const NavigationStep& step, int place) {
+    if (!lattice_to_dead_reckoning_rad_) {
+      lattice_to_dead_reckoning_rad_ = signed_difference(step.heading_estimate_rad, heading_rad_);
+      lattice_origin_ = places_[place].position_m;
+      dead_reckoning_origin_ = position_;
+      return;
+    }
+    const double measured_rad =
+        wrap_angle(step.heading_estimate_rad - *lattice_to_dead_reckoning_rad_);
+    if (std::abs(signed_difference(measured_rad, heading_rad_)) <= deg_to_rad(kHeadingOutlierDeg)) {
+      heading_rad_ = measured_rad;
+    }
+  }
+
+  // Farther from its start, by its own dead reckoning, than the map is across: it cannot be on
+  // the map any more, whatever it recognises (where the views of the map look as unlike each
+  // other as anything off it, a field seen from 10 cm, off-map views still match). The way
+  // back is then to the start, or to an anchor set within that reach.
+  bool beyond_extent() {
+    if (within_map(position_)) return false;
+    if (!within_map(anchor_)) {
+      anchor_ = Eigen::Vector2d::Zero();
+      anchor_place_ = -1;
+    }
+    return true;
+  }
+
+  // Within the map's extent from the start, and (stay_within_lattice_box) with the dead
+  // reckoning carried onto the lattice from the first recognised place, within the lattice's
+  // bounding box grown by lattice_box_margin_spacings.
+  bool within_map(const Eigen::Vector2d& at) const {
+    if (at.norm() > extent_m_) return false;
+    if (!params_.stay_within_lattice_box || !lattice_to_dead_reckoning_rad_) return true;
+    const Eigen::Vector2d on_lattice =
+        lattice_origin_ +
+        Eigen::Rotation2Dd(*lattice_to_dead_reckoning_rad_) * (at - dead_reckoning_origin_);
+    return (on_lattice.array() >= box_low_.array()).all() &&
+           (on_lattice.array() <= box_high_.array()).all();
+  }
+
+  void forget_unrecognised() {
+    unrecognised_ = 0;
+    not_nearer_ = 0;
+    nearest_unrecognised_ = std::numeric_limits<double>::infinity();
+  }
+
+  // Where the robot last knew where it was: this view recognised `place`, without a jump.
+  void set_anchor(int place) {
+    anchor_ = position_;
+    anchor_place_ = place;
+    probe_turns_ = 0;
+  }
+
+  // Lost: turn back towards the anchor. Past the recoveries' budget, the return is the last.
+  void lose_way(NavigationStep& step) {
+    step.lost = true;
+    ++result_.lost_events;
+    turn_back(step, result_.lost_events > params_.recoveries);
+  }
+
+  // The steps left only just take the robot back to its start (by its dead reckoning, with two
+  // steps to spare): rather than end wherever the budget runs out (where look-alikes led it,
+  // an office's desks repeating beyond the map), it gives up and goes back.
+  bool budget_only_lasts_the_way_back(int index) const {
+    if (!params_.stay_within_map_extent) return false;
+    const double left_m = (params_.max_steps - index) * params_.step_m;
+    return left_m <= position_.norm() + 2.0 * params_.step_m;
+  }
+
+  void give_up(NavigationStep& step) { turn_back(step, true); }
+
+  // Turns back towards the anchor (giving up: the start), as the state says.
+  void turn_back(NavigationStep& step, bool giving_up) {
+    step.phase = NavigationPhase::kReturning;
+    state_ = State::kReturning;
+    giving_up_ = giving_up;
+    return_steps_ = 0;
+    sidestep_ = 0;
+    escape_steps_left_ = 0;
+    forget_unrecognised();
+    jump_views_.clear();
+    expected_ = -1;
+    // Giving up, the robot goes back to its start, where it was put (on the map, in the
+    // trials), rather than to the anchor: where the map's views look alike (a field seen from
+    // 10 cm) a view off the map may still have been recognised and anchored. Its dead
+    // reckoning's heading is kept right by the recognised views (correct_heading).
+    if (giving_up_) {
+      anchor_ = Eigen::Vector2d::Zero();
+      return;
+    }
+    // The link followed from the anchor led off the map: plan without it (from the start,
+    // without an anchor, the next try turns aside instead).
+    if (anchor_place_ >= 0) {
+      if (replan_without_link(places_, anchor_place_, plan_)) ++result_.replans;
+    } else {
+      ++probe_turns_;
+    }
+  }
+
+  // Returning: a view recognised on the way (not the first, which found the robot lost) ends
+  // it; so does reaching the anchor, or the return's budget: follow the route again, or, when
+  // giving up, stop.
+  void go_back(NavigationStep& step, int place, const memory::Localisation& localisation) {
+    if (step.recognised && !step.lost && !giving_up_) {
+      ++result_.recoveries;
+      resume();
+      if (within_map(position_)) set_anchor(place);
+      step.phase = NavigationPhase::kFollowingRoute;
+      follow_route(step, place, localisation);
+      return;
+    }
+    const Eigen::Vector2d to = anchor_ - position_;
+    // (Giving up, the way back to the start is bounded by max_steps alone.)
+    if (to.norm() <= 0.25 * params_.step_m ||
+        (!giving_up_ && return_steps_ >= params_.return_max_steps)) {
+      result_.steps.push_back(step);
+      if (giving_up_) {
+        state_ = State::kGaveUp;
+      } else {
+        resume();
+      }
+      return;
+    }
+    const double distance_m = std::min(to.norm(), params_.step_m);
+    step.turn_rad = signed_difference(std::atan2(to.y(), to.x()), heading_rad_) +
+                    sidestep_turn(sidestep_, deg_to_rad(params_.sidestep_deg));
+    const double driven = drive(step.turn_rad, distance_m);
+    ++return_steps_;
+    if (driven >= 0.5 * distance_m) {
+      sidestep_ = 0;
+    } else {
+      sidestep_ = sidestep_ < params_.sidesteps ? sidestep_ + 1 : 1;
+      ++result_.sidesteps;
+    }
+    result_.steps.push_back(step);
+  }
+
+  // Back on the route (after being lost): following again, with a fresh count of views not
+  // recognised; from the start (no anchor) the next moves turn by the probe's angle.
+  void resume() {
+    state_ = State::kFollowingRoute;
+    sidestep_ = 0;
+    forget_unrecognised();
+    probe_turn_rad_ =
+        anchor_place_ < 0 ? sidestep_turn(probe_turns_, deg_to_rad(kProbeTurnDeg)) : 0.0;
+  }
+
+  // The goal's place recognised (within the recognition limit, with the goal similarity),
+  // goal_confirmations views in a row.
   bool goal_confirmed(const NavigationStep& step, int place) {
-    if (place != plan_.goal || step.match->similarity < params_.goal_similarity) {
+    if (place != plan_.goal || !step.recognised ||
+        step.match->similarity < params_.goal_similarity) {
       goal_matches_ = 0;
       return false;
     }
@@ -211,8 +479,7 @@ class NavigationRun {
     }
     step.turn_rad = cue.bearing_rad + sidestep_turn(sidestep_, deg_to_rad(params_.sidestep_deg));
     const double distance_m = std::min(cue.distance_m, params_.homing_step_m);
-    const double driven = world_.move(step.turn_rad, distance_m);
-    result_.path_length_m += driven;
+    const double driven = drive(step.turn_rad, distance_m);
     ++result_.homing_steps;
     result_.steps.push_back(step);
     if (driven >= 0.5 * distance_m) {
@@ -242,8 +509,10 @@ class NavigationRun {
       direction_in_place += sidestep_turn(sidestep_, deg_to_rad(params_.sidestep_deg));
       result_.sidesteps += sidestep_ > 0 ? 1 : 0;
     }
+    // Looking for the map from the start: the probe's turn until a view is recognised.
+    if (anchor_place_ < 0) direction_in_place += probe_turn_rad_;
     step.turn_rad = signed_difference(direction_in_place, step.match->relative_heading_rad);
-    const double driven = world_.move(step.turn_rad, params_.step_m);
+    const double driven = drive(step.turn_rad, params_.step_m);
     if (driven >= 0.5 * params_.step_m) {
       sidestep_ = 0;
     } else if (!escaping && sidestep_ < params_.sidesteps) {
@@ -251,7 +520,6 @@ class NavigationRun {
     } else {
       drop_link_or_escape(place, escaping);
     }
-    result_.path_length_m += driven;
     expected_ = plan_.next[place] >= 0 ? plan_.next[place] : place;
     result_.steps.push_back(step);
   }
@@ -303,11 +571,17 @@ class NavigationRun {
 
   int previous_place() const { return result_.steps.empty() ? -1 : place_of(result_.steps.back()); }
 
+  // Looking for the map from its start, the robot turns this far from the plan's direction
+  // after each time it found itself lost (sidestep_turn's units: 90°, -90°, 180°, ...).
+  static constexpr double kProbeTurnDeg = 90.0;
+  static constexpr double kHeadingOutlierDeg = 30.0;
+
   NavigationWorld& world_;
   const std::vector<PlaceNode>& places_;
   const PanoramaLocaliser& localise_;
   const NavigatorParams& params_;
   const GoalHoming& homing_;
+  const double recognition_limit_;
 
   State state_ = State::kFollowingRoute;
   NavigationResult result_;
@@ -320,15 +594,37 @@ class NavigationRun {
   std::vector<Edge> blocked_;  // links found blocked: the look-ahead keeps away from them
   const double look_ahead_tolerance_m_;
   std::vector<int> entries_;      // times each place was entered (loops)
+  const double extent_m_;         // the diagonal of the lattice's bounding box (or ∞)
   GoalCue homing_from_ = kNoCue;  // homing: the cue of the last view that moved
+
+  // Dead reckoning, in the frame of the robot's start (the robot at the origin facing +x).
+  Eigen::Vector2d position_ = Eigen::Vector2d::Zero();
+  double heading_rad_ = 0.0;
+  std::optional<double> lattice_to_dead_reckoning_rad_;       // set by the first recognised view
+  Eigen::Vector2d lattice_origin_ = Eigen::Vector2d::Zero();  // that view's place on the lattice
+  Eigen::Vector2d dead_reckoning_origin_ = Eigen::Vector2d::Zero();  // ... and by dead reckoning
+  Eigen::Vector2d box_low_ = Eigen::Vector2d::Zero();   // the lattice's bounding box, grown
+  Eigen::Vector2d box_high_ = Eigen::Vector2d::Zero();  // by lattice_box_margin_spacings
+  // Lost and found.
+  int unrecognised_ = 0;  // views in a row whose best place lies beyond the limit
+  int not_nearer_ = 0;    // ... of them no nearer to the map than the nearest before
+  double nearest_unrecognised_ = std::numeric_limits<double>::infinity();  // its dissimilarity
+  std::deque<int> jump_views_;  // the views of the last jumps (within lost_jump_window)
+  Eigen::Vector2d anchor_ = Eigen::Vector2d::Zero();  // where a place was last recognised
+  int anchor_place_ = -1;        // that place; -1: none since the start (the anchor is the start)
+  bool giving_up_ = false;       // the return under way is the last
+  int return_steps_ = 0;         // steps of the return under way
+  int probe_turns_ = 0;          // times lost without an anchor
+  double probe_turn_rad_ = 0.0;  // the turn from the plan while looking for the map from the start
 };
 
 }  // namespace
 
 NavigationResult navigate(NavigationWorld& world, const std::vector<PlaceNode>& places,
                           const RoutePlan& plan, const PanoramaLocaliser& localise,
-                          const NavigatorParams& params, const GoalHoming& homing) {
-  return NavigationRun(world, places, plan, localise, params, homing).run();
+                          const NavigatorParams& params, const GoalHoming& homing,
+                          double recognition_limit) {
+  return NavigationRun(world, places, plan, localise, params, homing, recognition_limit).run();
 }
 
 }  // namespace omninav::navigation

@@ -24,6 +24,9 @@ struct GoalNavigationSetup {
   HomingScale homing;  // homing_scale
   RouteParams route;
   NavigatorParams navigator;
+  // The robot's views must match a place within this, or it finds itself lost
+  // (recognition_limit, NavigatorParams::lost_views).
+  double recognition_limit = std::numeric_limits<double>::infinity();
 };
 
 // One navigation: the goal image's place, the plan to it and the run.

@@ -35,6 +35,12 @@ PanoramaLocaliser memory_localiser(const memory::Localiser& localiser,
 // fails to match), with a warning in the log.
 double match_limit(const memory::VisualMemory& memory, const RouteParams& params);
 
+// The largest mean dissimilarity per value at which the navigator recognises a view's best
+// place: params.recognition_link_ratio × the median over the map's links of their
+// dissimilarity per value. Infinite for a map without links (then the navigator never finds
+// itself lost by recognition).
+double recognition_limit(const memory::VisualMemory& memory, const NavigatorParams& params);
+
 // What homing on a goal image needs from `memory` (homing.hpp): its signature parameters and
 // weights, and the lattice spacing of `places` over the median dissimilarity per value of the
 // map's links, which join places about one spacing apart. Without links, metres_per_dissimilarity
@@ -42,7 +48,7 @@ double match_limit(const memory::VisualMemory& memory, const RouteParams& params
 HomingScale homing_scale(const memory::VisualMemory& memory, const std::vector<PlaceNode>& places);
 
 // What navigating to goal images on `memory` needs: its places (places_from_memory), its match
-// limit and homing scale, with `localise` and the settings.
+// and recognition limits and homing scale, with `localise` and the settings.
 GoalNavigationSetup goal_navigation_setup(const memory::VisualMemory& memory,
                                           PanoramaLocaliser localise, const RouteParams& route,
                                           const NavigatorParams& navigator);

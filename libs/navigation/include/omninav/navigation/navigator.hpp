@@ -16,6 +16,7 @@
 // the robot homes on the goal image itself (homing.hpp).
 
 #include <functional>
+#include <limits>
 #include <opencv2/core.hpp>
 #include <optional>
 #include <vector>
@@ -72,6 +73,40 @@ struct NavigatorParams {
   double homing_step_m = 0.1;   // longest homing step (a step goes as far as the goal seems)
   double homing_stop_m = 0.15;  // the goal seeming this near ends homing
   int homing_max_steps = 8;     // homing steps at most (they count against max_steps too)
+  // Beyond §3.5: knowing when it is lost (docs/navigation.md). A view is recognised when its
+  // best place differs from it by at most recognition_link_ratio × the median dissimilarity
+  // per value of the map's links (places about one spacing apart; memory_places.hpp,
+  // recognition_limit, measured from the map when the run starts): a robot on the map stands
+  // within half a cell's diagonal of a place, nearer than neighbouring places are to each
+  // other. In a row of views not recognised, lost_views
+  // that look no more like the map than an earlier one of the row (a robot coming onto the map
+  // sees its best place nearer with every view), or 2 × lost_views of them anyway, or
+  // lost_jumps jumps within lost_jump_window views, mean the robot is lost (0: never by that
+  // cue). Lost, it goes back by dead reckoning (the turns it commanded and the distances it
+  // drove) to where it last recognised a place without a jump (its start when it never did),
+  // at most return_max_steps steps, drops the link it followed from that place and plans again
+  // (from its start: it tries a direction turned 90°, then -90°, 180°, ... from the plan's), and
+  // goes on. Lost more than `recoveries` times, it goes back there and stops: the run fails
+  // where the map is known instead of driving away.
+  double recognition_link_ratio = 1.0;
+  int lost_views = 3;
+  int lost_jumps = 0;
+  int lost_jump_window = 8;
+  int recoveries = 2;
+  int return_max_steps = 20;
+  // Beyond §3.5: a robot farther from its start, by its dead reckoning, than the lattice is
+  // across (the diagonal of its bounding box, measured from the map when the run starts)
+  // cannot be on the map: lost, whatever it recognises, it goes back as above (to its start,
+  // or an anchor within that reach). Where off-map views match as well as the map's own (a field
+  // seen from 10 cm), this bounds how far it strays. With it, too, a robot whose steps left only
+  // just take it back to its start gives up and goes back, rather than end where the budget
+  // runs out.
+  bool stay_within_map_extent = true;
+  // Beyond §3.5, with stay_within_map_extent: the dead reckoning carried onto the lattice from
+  // the first place recognised (its position, and the heading measured there) must stay within
+  // the lattice's bounding box grown by this many lattice spacings, or the robot is lost.
+  bool stay_within_lattice_box = false;
+  double lattice_box_margin_spacings = 1.0;
 };
 
 // Reads the `navigator:` section of navigation.yaml.
@@ -92,6 +127,16 @@ class NavigationWorld {
   virtual CameraPose truth() const = 0;
 };
 
+// What the navigator was doing at a step.
+enum class NavigationPhase {
+  kFollowingRoute,  // §3.5's loop (with the additions above)
+  kHoming,          // homing on the goal image
+  kReturning,       // lost: going back to where it last recognised a place
+};
+
+// "route", "homing", "returning" (steps.csv).
+const char* phase_name(NavigationPhase phase);
+
 struct NavigationStep {
   int index = 0;
   CameraPose truth;                         // where the robot really was (evaluation only)
@@ -99,6 +144,10 @@ struct NavigationStep {
   double heading_estimate_rad = 0.0;  // in the lattice frame: place heading + heading in place
   double turn_rad = 0.0;              // the turn commanded
   bool jump = false;                  // matched neither the expected place nor its neighbours
+  // The best place lies within the map's recognition limit (NavigatorParams, lost_views).
+  bool recognised = false;
+  NavigationPhase phase = NavigationPhase::kFollowingRoute;
+  bool lost = false;  // the robot found itself lost at this step and turned back
 };
 
 struct NavigationResult {
@@ -110,12 +159,19 @@ struct NavigationResult {
   int replans = 0;       // links of the memory graph found blocked, and the plan made without them
   int loops = 0;         // places entered loop_entries times, and the plan made without their link
   int homing_steps = 0;  // steps taken towards the goal image after recognising its place
+  int lost_events = 0;   // times the robot found itself lost (NavigatorParams, lost_views)
+  int recoveries = 0;    // times it recognised a place again after being lost
+  bool gave_up = false;  // lost more than `recoveries` times: it went back and stopped
 };
 
 // Drives `world`'s robot along `plan` until it recognises the goal place, then, when `homing`
-// is given and params.home_on_goal_image, homes on the goal image.
+// is given and params.home_on_goal_image, homes on the goal image. A view whose best place
+// differs by more than `recognition_limit` per value (memory_places.hpp, recognition_limit) is
+// not recognised: the robot's cue that it is lost (infinite: every view with a candidate is
+// recognised).
 NavigationResult navigate(NavigationWorld& world, const std::vector<PlaceNode>& places,
                           const RoutePlan& plan, const PanoramaLocaliser& localise,
-                          const NavigatorParams& params, const GoalHoming& homing = {});
+                          const NavigatorParams& params, const GoalHoming& homing = {},
+                          double recognition_limit = std::numeric_limits<double>::infinity());
 
 }  // namespace omninav::navigation
