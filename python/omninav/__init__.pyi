@@ -46,7 +46,7 @@ class SamplingParams:
     fixed_skip_frames: int
     max_reference_rotation_rad: float
     max_reference_rotation_deg: float
-    parallax_ratio: float
+    parallax_step_ratio: float
 
 class MinimiserParams:
     kind: str  # "local_scan" | "exhaustive" | "fft" | "phase"

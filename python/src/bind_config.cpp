@@ -43,7 +43,9 @@ void bind_compass_config(py::module_& m) {
           [](const SamplingParams& p) { return rad_to_deg(p.max_reference_rotation_rad); },
           [](SamplingParams& p, double deg) { p.max_reference_rotation_rad = deg_to_rad(deg); },
           "The same cap in degrees, as the YAML key.")
-      .def_readwrite("parallax_ratio", &SamplingParams::parallax_ratio);
+      .def_readwrite("parallax_step_ratio", &SamplingParams::parallax_step_ratio,
+                     "The pair shows parallax when its minimum is above this times the "
+                     "reference's distance to itself rolled by one column.");
 
   py::class_<compass::MinimiserParams>(m, "MinimiserParams", "compass.yaml's minimiser section.")
       .def_property(

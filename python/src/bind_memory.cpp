@@ -272,6 +272,7 @@ void bind_memory(py::module_& m) {
                                              .is_grid = frames->is_grid(),
                                              .all_frames = all_frames,
                                              .frame_count = frames->size(),
+                                             .grid_spacing_m = frames->grid_spacing_m(),
                                              .next = [&frames] { return frames->next(); }});
             }
             py::iterator frames = py::iter(input);
@@ -283,6 +284,7 @@ void bind_memory(py::module_& m) {
                  .is_grid = false,
                  .all_frames = all_frames,
                  .frame_count = 0,
+                 .grid_spacing_m = std::nullopt,
                  .next = [&frames, &count]() -> std::optional<io::Frame> {
                    py::gil_scoped_acquire acquire;
                    if (frames == py::iterator::sentinel()) return std::nullopt;

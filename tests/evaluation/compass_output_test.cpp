@@ -46,13 +46,19 @@ TEST(CompassOutput, CsvRowsCarryTheEstimateAndTheErrorAgainstTruth) {
   EXPECT_EQ(rows[0][3], "heading_deg");
   EXPECT_EQ(rows[0][15], "distance_m");
   EXPECT_EQ(rows[1][2], "0.5000");
-  EXPECT_EQ(rows[1][3], "90.0000");
+  EXPECT_EQ(std::stod(rows[1][3]), 90.0);
   EXPECT_EQ(rows[1][15], "0.0000");
-  // 400° wraps to 40°; the truth is 30°: 10° of error; 3 m travelled.
-  const std::vector<std::string> second{
-      "1",           "f1.png",  "",   "40.0000", "400.0000", "-45.0000", "0.7500",  "0",
-      "featureless", "-2.5000", "17", "0.0000",  "0.0000",   "30.0000",  "10.0000", "3.0000"};
-  EXPECT_EQ(rows[2], second);
+  // 400° wraps to 40°; the truth is 30°: 10° of error; 3 m travelled. The headings and the
+  // rotation are printed to read back exactly (through radians: 40° is 40.00000000000001).
+  std::vector<std::string> second = rows[2];
+  EXPECT_NEAR(std::stod(second[3]), 40.0, 1e-12);
+  EXPECT_NEAR(std::stod(second[4]), 400.0, 1e-12);
+  EXPECT_NEAR(std::stod(second[5]), -45.0, 1e-12);
+  second[3] = second[4] = second[5] = "";
+  const std::vector<std::string> rest{
+      "1",           "f1.png",  "",   "",       "",       "",        "0.7500",  "0",
+      "featureless", "-2.5000", "17", "0.0000", "0.0000", "30.0000", "10.0000", "3.0000"};
+  EXPECT_EQ(second, rest);
   // No truth: the truth columns are empty.
   EXPECT_EQ(rows[3][13], "");
   EXPECT_EQ(rows[3][15], "");

@@ -20,9 +20,11 @@ def test_headings_equal_the_command_lines(route_db):
                  for frame in omninav.Panoramas(route_db, absolute_sources=False)]
     assert len(estimates) == len(printed) > 20
     for estimate, row in zip(estimates, printed):
-        # The CSV prints 4 decimals of degrees: Python's numbers printed the same way are the
-        # same text, digit for digit.
-        assert f"{math.degrees(estimate.heading_rad):.4f}" == row["heading_unwrapped_deg"]
+        # The CSV prints headings so that they read back exactly.
+        assert math.degrees(estimate.heading_rad) == pytest.approx(
+            float(row["heading_unwrapped_deg"]), abs=1e-9)
+        assert math.degrees(math.remainder(estimate.heading_rad, 2 * math.pi)) == pytest.approx(
+            float(row["heading_deg"]), abs=1e-9)
         assert f"{estimate.amplitude_norm:.4f}" == row["amplitude_norm"]
         assert str(estimate.reference_index) == row["reference_frame"]
         assert estimate.confidence == row["confidence"]

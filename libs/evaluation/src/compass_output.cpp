@@ -20,19 +20,15 @@ void write_compass_csv(std::ostream& out, const std::vector<CompassFrame>& frame
   std::optional<CameraPose> last_truth;
   for (const CompassFrame& row : frames) {
     const compass::CompassEstimate& e = row.estimate;
-    std::vector<std::string> fields{std::to_string(e.frame_index),
-                                    row.source,
-                                    fixed_or_empty(row.time_s, 4),
-                                    fixed(rad_to_deg(wrap_angle(e.heading_rad)), 4),
-                                    fixed(rad_to_deg(e.heading_rad), 4),
-                                    fixed(rad_to_deg(e.rotation_rad), 4),
-                                    fixed(e.amplitude_norm, 4),
-                                    std::to_string(e.reference_index),
-                                    e.flags.describe(),
-                                    fixed(e.shift_px, 4),
-                                    std::to_string(e.evaluations),
-                                    fixed(rad_to_deg(e.pitch_rad), 4),
-                                    fixed(rad_to_deg(e.roll_rad), 4)};
+    std::vector<std::string> fields{
+        std::to_string(e.frame_index), row.source, fixed_or_empty(row.time_s, 4),
+        // Headings read back exactly (the Python module's test
+        // compares them to 1e-9 degrees).
+        shortest(rad_to_deg(wrap_angle(e.heading_rad))), shortest(rad_to_deg(e.heading_rad)),
+        shortest(rad_to_deg(e.rotation_rad)), fixed(e.amplitude_norm, 4),
+        std::to_string(e.reference_index), e.flags.describe(), fixed(e.shift_px, 4),
+        std::to_string(e.evaluations), fixed(rad_to_deg(e.pitch_rad), 4),
+        fixed(rad_to_deg(e.roll_rad), 4)};
     if (with_truth) {
       if (row.truth) {
         if (last_truth) {
