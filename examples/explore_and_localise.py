@@ -60,10 +60,11 @@ def main():
     axes.plot([p.x_m for _, p in route], [p.y_m for _, p in route], color="0.7", label="route")
     axes.scatter([p.truth.x_m for p in places], [p.truth.y_m for p in places], s=20,
                  color="tab:blue", label="places", zorder=3)
-    for query, place, error_m in results:
+    for index, (query, place, error_m) in enumerate(results):
         colour = "tab:green" if error_m < 0.3 else "tab:red"
-        axes.plot([query.x_m, place.x_m], [query.y_m, place.y_m], color=colour)
-        axes.scatter([query.x_m], [query.y_m], marker="x", color=colour, zorder=4)
+        axes.plot([query.x_m, place.x_m], [query.y_m, place.y_m], color=colour, linewidth=2)
+        axes.scatter([query.x_m], [query.y_m], marker="x", color=colour, zorder=4,
+                     label="query, joined to its best place" if index == 0 else None)
     axes.set_aspect("equal")
     axes.set_xlabel("x (m)")
     axes.set_ylabel("y (m)")
