@@ -165,8 +165,8 @@ void add_localise_command(CLI::App& app, const GlobalOptions& global) {
   command->add_option("map", options->map, "The map, e.g. maps/room.vmem")->required();
   command
       ->add_option("queries", options->queries,
-                   "Query panoramas: image files, folders, videos or databases, or a camera: "
-                   "camera:0 (V4L2; Ctrl-C ends it)")
+                   "Query panoramas: image files, folders, videos, databases or ROS bags "
+                   "(--topic; docs/bags.md), or a camera: camera:0 (V4L2; Ctrl-C ends it)")
       ->required();
   command->add_option("--levels", options->levels,
                       "Components compared at each level, e.g. 2,5,15 (default: memory.yaml)");
