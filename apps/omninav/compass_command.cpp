@@ -51,9 +51,11 @@ void apply_method(const std::string& method, compass::CompassParams& params) {
   if (method == "alg1") {
     sampling.policy = compass::SamplingPolicy::kThreshold;
   } else if (method == "alg1-paper") {
-    // Algorithm 1 as written (§3.5): no rotation cap, no levelling, no travel fit.
+    // Algorithm 1 as written (§3.5): no rotation cap, no global fallback, no levelling, no
+    // travel fit.
     sampling.policy = compass::SamplingPolicy::kThreshold;
     sampling.max_reference_rotation_rad = 0.0;
+    params.fast_turns.global_fallback = false;
     params.levelling.enabled = false;
     params.travel.enabled = false;
   } else if (method.rfind("fx:", 0) == 0) {

@@ -43,10 +43,12 @@ using omninav::compass::PairMatcherParams;
 
 constexpr int kFrames = 24;
 
-// Frames along a circle in the default room, rendered once per size.
-const std::vector<cv::Mat>& frames(int width, int height) {
-  static std::map<std::pair<int, int>, std::vector<cv::Mat>> cache;
-  auto& images = cache[{width, height}];
+// Frames along a circle in the default room, rendered once per size: `fast` a tight circle
+// that turns ~19° and moves 5 cm between frames (the zoo's wanders at their sharpest, where
+// the global fallback searches every shift), else Table 2's CIRCLE at 5 frames/s (~3°, 4 cm).
+const std::vector<cv::Mat>& frames(int width, int height, bool fast = false) {
+  static std::map<std::tuple<int, int, bool>, std::vector<cv::Mat>> cache;
+  auto& images = cache[{width, height, fast}];
   if (images.empty()) {
     const omninav::sim::World world = omninav::sim::make_room({});
     omninav::sim::RenderParams params;
@@ -54,7 +56,9 @@ const std::vector<cv::Mat>& frames(int width, int height) {
     params.geometry.height_px = height;
     const omninav::sim::Renderer renderer(world, params);
     const omninav::sim::Trajectory circle = omninav::sim::make_trajectory(
-        "circle:cx=1.5,cy=2.6,radius_m=0.9,turns=1,speed_m_s=0.2,fps=5", world);
+        fast ? "circle:cx=1.5,cy=2.6,radius_m=0.15,turns=2,speed_m_s=0.5,fps=10"
+             : "circle:cx=1.5,cy=2.6,radius_m=0.9,turns=1,speed_m_s=0.2,fps=5",
+        world);
     for (int i = 0; i < kFrames; ++i) {
       images.push_back(renderer.render(circle.poses[static_cast<std::size_t>(i)].pose));
     }
@@ -95,15 +99,26 @@ void pairs(benchmark::State& state, MinimiserKind kind, bool variant, int width,
       static_cast<double>(evaluations) / static_cast<double>(state.iterations());
 }
 
+// What an Algorithm 1 benchmark runs beyond compass.yaml's defaults.
+struct Alg1Options {
+  bool fixed_skip = false;  // Fx 0, the successive-pair compass
+  bool level = false;       // tilt.level
+  bool travel = false;      // travel_fit.enabled
+  bool fallback = true;     // minimiser.global_fallback
+  bool fast = false;        // the fast-turning circle of frames()
+};
+
 // Algorithm 1 (Table 2's parameters) over the sequence, frames made as a camera would hand
-// them over (fresh CompassFrames); Fx 0 is the successive-pair compass.
-void algorithm1(benchmark::State& state, MinimiserKind kind, int width, int height, bool fixed_skip,
-                bool level = false, bool travel = false) {
-  const std::vector<cv::Mat>& images = frames(width, height);
+// them over (fresh CompassFrames).
+void algorithm1(benchmark::State& state, MinimiserKind kind, int width, int height,
+                Alg1Options options) {
+  const std::vector<cv::Mat>& images = frames(width, height, options.fast);
   omninav::compass::CompassParams params;
   params.matcher.minimiser.kind = kind;
-  params.levelling.enabled = level;
-  params.travel.enabled = travel;
+  params.levelling.enabled = options.level;
+  params.travel.enabled = options.travel;
+  params.fast_turns.global_fallback = options.fallback;
+  const bool fixed_skip = options.fixed_skip;
   if (fixed_skip) {
     params.sampling.policy = omninav::compass::SamplingPolicy::kFixedSkip;
     params.sampling.fixed_skip_frames = 0;
@@ -171,21 +186,27 @@ void register_all() {
     for (const auto& [name, kind] : {std::make_pair("local_scan", MinimiserKind::kLocalScan),
                                      std::make_pair("fft", MinimiserKind::kFft)}) {
       benchmark::RegisterBenchmark(("algorithm1/" + std::string(name) + "/" + size).c_str(),
-                                   algorithm1, kind, width, height, false, false, false)
+                                   algorithm1, kind, width, height, Alg1Options{})
           ->Unit(benchmark::kMicrosecond);
     }
+    // The global fallback's cost: without it (the local scan alone), and on the fast circle with
+    // and without it.
+    const auto add_alg1 = [&](const std::string& name, Alg1Options options) {
+      benchmark::RegisterBenchmark((name + "/local_scan/" + size).c_str(), algorithm1,
+                                   MinimiserKind::kLocalScan, width, height, options)
+          ->Unit(benchmark::kMicrosecond);
+    };
+    add_alg1("algorithm1_no_fallback", {.fallback = false});
+    add_alg1("algorithm1_fast", {.fast = true});
+    add_alg1("algorithm1_fast_no_fallback", {.fallback = false, .fast = true});
     benchmark::RegisterBenchmark(("fx0/fft/" + size).c_str(), algorithm1, MinimiserKind::kFft,
-                                 width, height, true, false, false)
+                                 width, height, Alg1Options{.fixed_skip = true})
         ->Unit(benchmark::kMicrosecond);
     // Algorithm 1 with compass.yaml's tilt.level on: every frame pays the estimate, the warp
     // and a second match (the estimate is small on these level frames, but never exactly 0).
-    benchmark::RegisterBenchmark(("algorithm1_level/local_scan/" + size).c_str(), algorithm1,
-                                 MinimiserKind::kLocalScan, width, height, false, true, false)
-        ->Unit(benchmark::kMicrosecond);
+    add_alg1("algorithm1_level", {.level = true});
     // Algorithm 1 with compass.yaml's travel_fit.enabled on: the fit runs at each new reference.
-    benchmark::RegisterBenchmark(("algorithm1_travel/local_scan/" + size).c_str(), algorithm1,
-                                 MinimiserKind::kLocalScan, width, height, false, false, true)
-        ->Unit(benchmark::kMicrosecond);
+    add_alg1("algorithm1_travel", {.travel = true});
     for (const auto& [name, estimate, level] :
          {std::make_tuple("estimate", true, false), std::make_tuple("level", false, true),
           std::make_tuple("step", true, true)}) {
@@ -232,6 +253,19 @@ class RatioReporter : public benchmark::ConsoleReporter {
       if (alg1_local > 0) {
         std::printf("  %-15s Algorithm 1: local_scan %8.0f frames/s, fft %8.0f frames/s\n", size,
                     kFrames / alg1_local, kFrames / alg1_fft);
+      }
+      const double no_fallback = get(std::string("algorithm1_no_fallback/local_scan/") + size);
+      const double fast = get(std::string("algorithm1_fast/local_scan/") + size);
+      const double fast_no_fallback =
+          get(std::string("algorithm1_fast_no_fallback/local_scan/") + size);
+      if (alg1_local > 0 && no_fallback > 0) {
+        std::printf("  %-15s global fallback: circle %8.0f frames/s (%.2fx the local scan alone)",
+                    size, kFrames / alg1_local, no_fallback / alg1_local);
+        if (fast > 0 && fast_no_fallback > 0) {
+          std::printf(", fast circle %8.0f frames/s (%.2fx)", kFrames / fast,
+                      fast_no_fallback / fast);
+        }
+        std::printf("\n");
       }
       const double alg1_level = get(std::string("algorithm1_level/local_scan/") + size);
       if (alg1_level > 0) {

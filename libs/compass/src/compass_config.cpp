@@ -34,6 +34,8 @@ void load_compass_config(const ConfigReader& config, CompassConfig& out) {
   matcher.minimiser.fft_planning =
       planning == "measure" ? FftPlanning::kMeasure : FftPlanning::kEstimate;
 
+  minimiser.read("global_fallback", out.compass.fast_turns.global_fallback);
+
   const ConfigReader phase = config.section("phase");
   phase.read("components", matcher.minimiser.phase.components, 1, 4096);
 

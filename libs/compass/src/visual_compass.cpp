@@ -22,8 +22,30 @@ std::string describe(const SamplingParams& sampling) {
   return text;
 }
 
+namespace {
+
+// The global minimiser for FastTurns::global_fallback, or none when the configured one is already
+// global.
+std::unique_ptr<PairMatcher> make_global_matcher(const CompassParams& params) {
+  const MinimiserKind kind = params.matcher.minimiser.kind;
+  if (!params.fast_turns.global_fallback || kind == MinimiserKind::kFft ||
+      kind == MinimiserKind::kExhaustive) {
+    return nullptr;
+  }
+  PairMatcherParams global = params.matcher;
+  global.minimiser.kind = params.matcher.distance.metric == Metric::kL2
+                              ? MinimiserKind::kFft
+                              : MinimiserKind::kExhaustive;
+  return std::make_unique<PairMatcher>(global);
+}
+
+}  // namespace
+
 VisualCompass::VisualCompass(const CompassParams& params, double initial_heading_rad)
-    : params_(params), matcher_(params.matcher), initial_heading_rad_(initial_heading_rad) {
+    : params_(params),
+      matcher_(params.matcher),
+      global_matcher_(make_global_matcher(params)),
+      initial_heading_rad_(initial_heading_rad) {
   if (!(params.sampling.max_reference_rotation_rad >= 0.0) ||
       !(params.sampling.parallax_step_ratio >= 0.0)) {
     throw UsageError("the rotation cap of Algorithm 1 needs a rotation and a parallax ratio >= 0");
@@ -48,15 +70,36 @@ bool VisualCompass::beyond_rotation_cap(const PairMatch& match,
   return std::abs(rotation_rad) > sampling.max_reference_rotation_rad && parallax;
 }
 
+PairMatch VisualCompass::match_pair(const CompassFrame& first, const CompassFrame& second,
+                                    int start_shift, double predicted_rotation_rad) const {
+  PairMatch local = matcher_.match(first, second, start_shift);
+  if (!global_matcher_ || !(local.amplitude_norm < params_.sampling.threshold_norm_amp)) {
+    return local;
+  }
+  PairMatch global = global_matcher_->match(first, second, start_shift);
+  const int evaluations = local.evaluations + global.evaluations;
+  // The global minimum replaces the local one when it is lower and either a match by Algorithm
+  // 1's own test (𝒜_n >= t) or nearer the prediction.
+  const bool nearer = std::abs(signed_difference(global.rotation_rad, predicted_rotation_rad)) <
+                      std::abs(signed_difference(local.rotation_rad, predicted_rotation_rad));
+  const bool good = global.amplitude_norm >= params_.sampling.threshold_norm_amp;
+  PairMatch& best = global.distance_min < local.distance_min && (nearer || good) ? global : local;
+  best.evaluations = evaluations;
+  return best;
+}
+
 PairMatch VisualCompass::match_levelled(const CompassFrame& reference, const CompassFrame& frame,
-                                        int start_shift, CompassEstimate& estimate) const {
-  if (!params_.levelling.enabled) return matcher_.match(reference, frame, start_shift);
+                                        int start_shift, double predicted_rotation_rad,
+                                        CompassEstimate& estimate) const {
+  if (!params_.levelling.enabled) {
+    return match_pair(reference, frame, start_shift, predicted_rotation_rad);
+  }
   PanoramaGeometry geometry;
   geometry.width_px = frame.width();
   geometry.height_px = frame.height();
   geometry.elevation_min_rad = params_.levelling.elevation_min_rad;
   geometry.elevation_max_rad = params_.levelling.elevation_max_rad;
-  const PairMatch first = matcher_.match(reference, frame, start_shift);
+  const PairMatch first = match_pair(reference, frame, start_shift, predicted_rotation_rad);
   const TiltEstimate tilt = estimate_relative_tilt(reference.image(), frame.image(), geometry,
                                                    first.subpixel_shift_px, params_.levelling.tilt);
   estimate.pitch_rad = tilt.pitch_rad;
@@ -65,7 +108,7 @@ PairMatch VisualCompass::match_levelled(const CompassFrame& reference, const Com
   const CompassFrame levelled(
       level_panorama(frame.image(), geometry, tilt.pitch_rad, tilt.roll_rad), frame.index(),
       frame.source());
-  PairMatch second = matcher_.match(reference, levelled, first.shift_px);
+  PairMatch second = match_pair(reference, levelled, first.shift_px, predicted_rotation_rad);
   second.evaluations += first.evaluations;
   return second;
 }
@@ -113,6 +156,9 @@ CompassEstimate VisualCompass::push(const CompassFrame& frame) {
   const double shift_ref_previous_px = shift_ref_current_px_;
   const double previous_heading_rad = current_heading_rad_;
   const int width = frame.width();
+  // The turn expected between the previous frame and this one, for the global fallback's
+  // choice (FastTurns): the last frame's.
+  const double predicted_turn_rad = last_rotation_rad_;
 
   const bool previous_is_reference = frame_count_ - 2 == reference_position_;
   const bool fixed_skip = params_.sampling.policy == SamplingPolicy::kFixedSkip;
@@ -127,7 +173,8 @@ CompassEstimate VisualCompass::push(const CompassFrame& frame) {
     // Line 9, started from the shift of r_rp (§3.5, "In the actual implementation").
     const int start_shift =
         static_cast<int>(std::lround(-shift_px_of_rotation(rotation_ref_previous_rad, width)));
-    match = match_levelled(*reference_, frame, start_shift, estimate);
+    match = match_levelled(*reference_, frame, start_shift,
+                           rotation_ref_previous_rad + predicted_turn_rad, estimate);
     estimate.evaluations = match.evaluations;
     // Line 10, and the rotation cap (visual_compass.hpp: ours, not the paper's).
     switch_reference = !fixed_skip && (match.amplitude_norm < params_.sampling.threshold_norm_amp ||
@@ -139,7 +186,8 @@ CompassEstimate VisualCompass::push(const CompassFrame& frame) {
       reference_heading_rad_ +=
           refined_rotation(previous, rotation_ref_previous_rad, shift_ref_previous_px);
       const int evaluations = estimate.evaluations;
-      match = match_levelled(previous, frame, 0, estimate);  // line 12, started from 0
+      match = match_levelled(previous, frame, 0, predicted_turn_rad,
+                             estimate);  // line 12, started from 0
       estimate.evaluations = evaluations + match.evaluations;
       reference_ = previous;  // line 13
       reference_position_ = frame_count_ - 2;
@@ -163,6 +211,7 @@ CompassEstimate VisualCompass::push(const CompassFrame& frame) {
 
   estimate.heading_rad = current_heading_rad_;
   estimate.rotation_rad = current_heading_rad_ - previous_heading_rad;
+  last_rotation_rad_ = estimate.rotation_rad;
   estimate.amplitude_norm = match.amplitude_norm;
   estimate.reference_index = reference_->index();
   estimate.shift_px = match.subpixel_shift_px;

@@ -95,11 +95,27 @@ struct TravelFitting {
   TravelFitParams fit;
 };
 
+// Fast turns (ours; docs/compass.md "Fast turns"). The zoo's wanders turn 15-30° between
+// frames at 10 frames/s: the amplitude of every pair falls below t, Algorithm 1 takes a new
+// reference at every frame, and line 12 starts the local scan at 0, whose descent and ±10° scan
+// end in a wrong local minimum, 10-40° on the other side of 0. The global fallback: when a
+// local minimiser's (local_scan, phase) match has 𝒜_n below t, the whole d(α) is searched (fft,
+// exhaustive under l1), and its global minimum replaces the local one when it is lower and
+// either passes Algorithm 1's own test (𝒜_n >= t) or lies nearer the rotation the last frame's
+// turn predicts (a constant turn rate). Without that second condition the aliased grass at
+// 10 cm, whose pairs 1° apart have global minima 60-180° away, and the ofstad arena's
+// near-blank views close to its wall are lost. No threshold of its own: t is Table 2's; frames
+// whose local match passes t pay nothing.
+struct FastTurns {
+  bool global_fallback = true;  // measured on the zoo: docs/compass.md "Fast turns"
+};
+
 struct CompassParams {
   PairMatcherParams matcher;
   SamplingParams sampling;
   TiltLevellingParams levelling;
   TravelFitting travel;
+  FastTurns fast_turns;
 };
 
 // What the compass says about one frame.
@@ -141,16 +157,21 @@ class VisualCompass {
  private:
   // Whether the match of line 9 passes the rotation cap (ours, see above).
   bool beyond_rotation_cap(const PairMatch& match, double rotation_ref_previous_rad) const;
+  // The match of the local minimiser, or the global search's where it is poor (FastTurns).
+  PairMatch match_pair(const CompassFrame& first, const CompassFrame& second, int start_shift,
+                       double predicted_rotation_rad) const;
   // The match of lines 9 and 12; with levelling, of the frame levelled against `reference`
   // (the tilt goes into `estimate`).
   PairMatch match_levelled(const CompassFrame& reference, const CompassFrame& frame,
-                           int start_shift, CompassEstimate& estimate) const;
+                           int start_shift, double predicted_rotation_rad,
+                           CompassEstimate& estimate) const;
   // r_rp refined by the turn-and-travel fit of (I_r, I_p) (TravelFitting).
   double refined_rotation(const CompassFrame& previous, double rotation_ref_previous_rad,
                           double shift_ref_previous_px) const;
 
   CompassParams params_;
   PairMatcher matcher_;
+  std::unique_ptr<PairMatcher> global_matcher_;  // FastTurns, when the minimiser is local
   double initial_heading_rad_;
   std::optional<CompassFrame> reference_;
   std::optional<CompassFrame> current_;
@@ -161,6 +182,7 @@ class VisualCompass {
   double rotation_ref_current_rad_ = 0.0;  // r_rc
   double shift_ref_current_px_ = 0.0;      // α_m of the match that gave r_rc
   double current_heading_rad_ = 0.0;       // ω_c
+  double last_rotation_rad_ = 0.0;         // ω_c − ω_p of the last frame (FastTurns)
 };
 
 // How Tables 3-4 name the method: "Atm 0.6055", "Fx 3"; Algorithm 1 with the rotation cap on
