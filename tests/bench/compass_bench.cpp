@@ -56,7 +56,7 @@ const std::vector<cv::Mat>& frames(int width, int height, bool fast = false) {
     params.geometry.height_px = height;
     const omninav::sim::Renderer renderer(world, params);
     const omninav::sim::Trajectory circle = omninav::sim::make_trajectory(
-        fast ? "circle:cx=1.5,cy=2.6,radius_m=0.15,turns=2,speed_m_s=0.5,fps=10"
+        fast ? "circle:cx=2.5,cy=2.9,radius_m=0.15,turns=2,speed_m_s=0.5,fps=10"
              : "circle:cx=1.5,cy=2.6,radius_m=0.9,turns=1,speed_m_s=0.2,fps=5",
         world);
     for (int i = 0; i < kFrames; ++i) {
@@ -250,7 +250,7 @@ class RatioReporter : public benchmark::ConsoleReporter {
       }
       const double alg1_local = get(std::string("algorithm1/local_scan/") + size);
       const double alg1_fft = get(std::string("algorithm1/fft/") + size);
-      if (alg1_local > 0) {
+      if (alg1_local > 0 && alg1_fft > 0) {
         std::printf("  %-15s Algorithm 1: local_scan %8.0f frames/s, fft %8.0f frames/s\n", size,
                     kFrames / alg1_local, kFrames / alg1_fft);
       }
