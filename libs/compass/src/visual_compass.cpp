@@ -78,11 +78,12 @@ PairMatch VisualCompass::match_pair(const CompassFrame& first, const CompassFram
   }
   PairMatch global = global_matcher_->match(first, second, start_shift);
   const int evaluations = local.evaluations + global.evaluations;
-  // The global minimum replaces the local one when it is lower and either a match by Algorithm
-  // 1's own test (𝒜_n >= t) or nearer the prediction.
+  // The global minimum replaces the local one when it is lower and either a clear match
+  // (Algorithm 1's own test 𝒜_n >= t, and no competing minimum) or nearer the prediction.
   const bool nearer = std::abs(signed_difference(global.rotation_rad, predicted_rotation_rad)) <
                       std::abs(signed_difference(local.rotation_rad, predicted_rotation_rad));
-  const bool good = global.amplitude_norm >= params_.sampling.threshold_norm_amp;
+  const bool good = global.amplitude_norm >= params_.sampling.threshold_norm_amp &&
+                    !global.flags.competing_minima;
   PairMatch& best = global.distance_min < local.distance_min && (nearer || good) ? global : local;
   best.evaluations = evaluations;
   return best;

@@ -101,11 +101,11 @@ struct TravelFitting {
 // end in a wrong local minimum, 10-40° on the other side of 0. The global fallback: when a
 // local minimiser's (local_scan, phase) match has 𝒜_n below t, the whole d(α) is searched (fft,
 // exhaustive under l1), and its global minimum replaces the local one when it is lower and
-// either passes Algorithm 1's own test (𝒜_n >= t) or lies nearer the rotation the last frame's
-// turn predicts (a constant turn rate). Without that second condition the aliased grass at
-// 10 cm, whose pairs 1° apart have global minima 60-180° away, and the ofstad arena's
-// near-blank views close to its wall are lost. No threshold of its own: t is Table 2's; frames
-// whose local match passes t pay nothing.
+// either a clear match (𝒜_n >= t, Algorithm 1's own test, and no competing minimum) or nearer
+// the rotation the last frame's turn predicts (a constant turn rate). Without that second
+// condition the aliased grass at 10 cm, whose pairs 1° apart have global minima 60-180° away,
+// and the ofstad arena's near-blank views close to its wall are lost. No threshold of its own: t is
+// Table 2's; frames whose local match passes t pay nothing.
 struct FastTurns {
   bool global_fallback = true;  // measured on the zoo: docs/compass.md "Fast turns"
 };
