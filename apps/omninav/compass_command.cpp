@@ -291,7 +291,8 @@ void add_compass_command(CLI::App& app, const GlobalOptions& global) {
                    "      parallax, the rotation from the reference exceeds\n"
                    "      sampling.max_reference_rotation_deg (ours; 0 = the paper's alone);\n"
                    "alg1-paper: Algorithm 1 exactly as the 2006 paper writes it (no rotation\n"
-                   "      cap, no levelling, no travel fit), whatever compass.yaml says;\n"
+                   "      cap, no global fallback, no levelling, no travel fit), whatever\n"
+                   "      compass.yaml says;\n"
                    "fx:N: a new reference every N+1 frames (\"Fx N\"; fx:0 = successive frames);\n"
                    "exhaustive | fft | phase: Algorithm 1 with that minimiser instead of\n"
                    "      compass.yaml's (exhaustive search, FFT correlation, Fourier phase)")

@@ -74,6 +74,12 @@ void bind_compass_config(py::module_& m) {
       .def_property_readonly(
           "minimiser",
           [](compass::CompassConfig & c) -> auto& { return c.compass.matcher.minimiser; }, section)
+      .def_property(
+          "global_fallback",
+          [](const compass::CompassConfig& c) { return c.compass.fast_turns.global_fallback; },
+          [](compass::CompassConfig& c, bool on) { c.compass.fast_turns.global_fallback = on; },
+          "minimiser.global_fallback: search every shift where the local scan's match is "
+          "below t (fast turns); False: the local scan alone, as Algorithm 1.")
       .def_readwrite("width_px", &compass::CompassConfig::width_px,
                      "input.width_px: resample every panorama to this many columns first; None: "
                      "the input's own width.");

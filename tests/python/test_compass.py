@@ -68,3 +68,6 @@ def test_the_threshold_is_read_from_the_config_and_can_be_changed():
     assert config.sampling.policy == "threshold"
     config.sampling.max_reference_rotation_deg = 3
     assert np.isclose(config.sampling.max_reference_rotation_rad, math.radians(3))
+    assert config.global_fallback  # compass.yaml: the global search on fast turns
+    config.global_fallback = False
+    assert not config.global_fallback
