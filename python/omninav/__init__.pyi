@@ -59,6 +59,7 @@ class CompassConfig:
     def sampling(self) -> SamplingParams: ...
     @property
     def minimiser(self) -> MinimiserParams: ...
+    global_fallback: bool
     width_px: Optional[int]
 
 class SignatureParams:
