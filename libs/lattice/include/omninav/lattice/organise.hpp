@@ -32,6 +32,11 @@ struct OrganiseParams {
   double step_likeness = 1.5;      // consecutive images of an unordered input (a grid
                                    // database) are one step apart when their calibrated
                                    // distance is at most this many steps (a stream's always are)
+  // A stream's steps point where the robot was heading (the mean of the two places' headings,
+  // plus the camera's offset from the way it drives, measured over the steps) instead of where
+  // the phases' fit says: a robot drives forward, and in clutter or near the ground the fit of
+  // a 30 cm step is often tens of degrees off (docs/lattice.md).
+  bool steps_along_heading = true;
   // A neighbour motion whose fit leaves more than this many times the map's median residual
   // is a look-alike's and is dropped (motions.hpp).
   double look_alike_residual = 1.5;
