@@ -8,6 +8,7 @@
 #include <tuple>
 #include <utility>
 
+#include "headings.hpp"
 #include "omninav/core/angles.hpp"
 #include "omninav/core/statistics.hpp"
 #include "omninav/signature/motion.hpp"
@@ -106,6 +107,20 @@ class StepCheck {
   double step_stddev_m_;  // of one step's displacement
 };
 
+// The headings the motions are measured with: the map's (lattice_headings), those of the visual
+// compass made consistent across the map (headings.hpp) when asked.
+std::vector<std::optional<double>> motion_headings(
+    const memory::VisualMemory& memory, const std::vector<std::vector<SimilarPlace>>& ranking,
+    const OrganiseParams& params) {
+  std::vector<std::optional<double>> headings = lattice_headings(memory);
+  bool compass = params.synchronise_compass_headings;
+  for (std::size_t i = 0; i < memory.place_count() && compass; ++i) {
+    compass = memory.place(i).heading_source == memory::HeadingSource::kCompass;
+  }
+  if (!compass) return headings;
+  return synchronise_headings(memory, std::move(headings), ranking, params.motion_neighbours);
+}
+
 // measure_motions, as its steps: the candidates (steps, listed pairs, neighbours), the
 // screening of look-alikes, and the joins of what is left apart. Each pair is fitted once.
 class MotionMeasurer {
@@ -118,7 +133,7 @@ class MotionMeasurer {
         ranking_(ranking),
         calibration_(calibration),
         params_(params),
-        headings_(lattice_headings(memory)),
+        headings_(motion_headings(memory, ranking, params)),
         direction_stddev_(deg_to_rad(params.motion_direction_stddev_deg)),
         joined_(static_cast<int>(ranking.size())) {}
 

@@ -37,6 +37,10 @@ struct OrganiseParams {
   // the phases' fit says: a robot drives forward, and in clutter or near the ground the fit of
   // a 30 cm step is often tens of degrees off (docs/lattice.md).
   bool steps_along_heading = true;
+  // Headings from the visual compass are re-solved for the motions from the compass's turns
+  // between consecutive places and the phases' turns between each place and its most similar
+  // places (src/headings.hpp): the compass jumps where a robot turns on the spot.
+  bool synchronise_compass_headings = true;
   // A neighbour motion whose fit leaves more than this many times the map's median residual
   // is a look-alike's and is dropped (motions.hpp).
   double look_alike_residual = 1.5;
