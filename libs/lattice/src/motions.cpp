@@ -118,7 +118,8 @@ std::vector<std::optional<double>> motion_headings(
     compass = memory.place(i).heading_source == memory::HeadingSource::kCompass;
   }
   if (!compass) return headings;
-  return synchronise_headings(memory, std::move(headings), ranking, params.motion_neighbours);
+  return synchronise_headings(memory, std::move(headings), ranking, params.motion_neighbours,
+                              kStraightTurnRad);
 }
 
 // measure_motions, as its steps: the candidates (steps, listed pairs, neighbours), the
