@@ -246,15 +246,15 @@ TEST(Organise, TheQualityTellsAFoldedLatticeFromAGoodOneWithoutTheTruth) {
   EXPECT_EQ(map.lattice_quality()->motions, result.quality.motions);
   std::cout << "good lattice: " << result.quality.motions_off << " of motions off, residual "
             << result.quality.motion_residual_steps << " steps\n";
-  EXPECT_LT(result.quality.motions_off, 0.05);
+  EXPECT_LT(result.quality.motions_off, OrganiseParams{}.max_motions_off);
   std::vector<Eigen::Vector2d> folded = result.lattice.positions;
   double middle_x = 0.0;
   for (const Eigen::Vector2d& p : folded) middle_x += p.x() / static_cast<double>(folded.size());
   for (Eigen::Vector2d& p : folded) {
     if (p.x() > middle_x) p.x() = 2.0 * middle_x - p.x();
   }
-  const memory::LatticeQuality bad =
-      measure_quality(folded, result.motions, result.motion_joins, 0.3, 0.05);
+  const memory::LatticeQuality bad = measure_quality(folded, result.motions, result.motion_joins,
+                                                     0.3, OrganiseParams{}.max_motions_off);
   std::cout << "folded lattice: " << bad.motions_off << " of motions off, residual "
             << bad.motion_residual_steps << " steps\n";
   EXPECT_FALSE(bad.trustworthy);

@@ -58,7 +58,7 @@ struct OrganiseParams {
   // lattice is not trustworthy when more than this share of its motions point more than 45°
   // away from where the lattice puts their places, or when the motions that survived the
   // look-alike checks left the places in more than one piece (joined by look-alikes only).
-  double max_motions_off = 0.05;
+  double max_motions_off = 0.02;
 };
 
 // Reads the `organise:` section of lattice.yaml.
