@@ -51,7 +51,9 @@ void run_organise(const GlobalOptions& global, const OrganiseOptions& options) {
                   << " pairs of places (x1 = " << fixed(calibration.correlation_range_m, 3)
                   << " m; weaker than K = " << fixed(params.lattice.min_stiffness, 3)
                   << " dropped), " << organised.lattice.motion_constraints
-                  << " motions (directions from the phases)\n"
+                  << " motions (directions from the phases"
+                  << (params.steps_along_heading ? "; a stream's steps along the headings" : "")
+                  << ")\n"
                   << "  solver:   " << organised.lattice.summary << "\n";
   // The quality needs no ground truth: the lattice against the motions it was solved from.
   const memory::LatticeQuality& quality = organised.quality;

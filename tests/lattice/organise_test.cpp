@@ -117,6 +117,79 @@ TEST(Organise, AZigZagEverySixtyCentimetresDoesNotFold) {
   }
 }
 
+// A copy of `map` organised with `params`, scored against the truth.
+evaluation::LatticeScore organised_copy(memory::VisualMemory map, const OrganiseParams& params) {
+  organise(map, params);
+  return *evaluation::score_lattice(map, false);
+}
+
+TEST(Organise, StepsAlongTheHeadingsHoldAZigZagAmongBoxes) {
+  // The full suite's room-plain-s1 zig-zag every 60 cm (10 x 8 m, 16 boxes, plain walls), with
+  // headings from the truth: among boxes the phases' fit of a 60 cm step is often tens of
+  // degrees off, and the stream bends where it does. A robot drives forward, so with headings
+  // good to a few degrees the steps along them hold the stream's shape.
+  sim::RoomParams params;
+  params.size_x_m = 10.0;
+  params.size_y_m = 8.0;
+  params.furniture_count = 16;
+  params.plain_walls = true;
+  params.seed = 1;
+  const sim::World room = sim::make_room(params);
+  sim::RenderParams render;
+  render.geometry.width_px = 360;
+  render.geometry.height_px = 45;
+  const memory::VisualMemory explored = testing::rendered_run_map(
+      room, render, "zigzag:x0=3.65,y0=2.95,x1=6.35,y1=4.75,rows=4,speed_m_s=0.2,fps=10,z_m=1", 0.6,
+      "organise_test.cpp");
+  ASSERT_EQ(explored.place_count(), 22u);
+  OrganiseParams from_phases;
+  from_phases.steps_along_heading = false;
+  const evaluation::LatticeScore phases = organised_copy(explored, from_phases);
+  const evaluation::LatticeScore headings = organised_copy(explored, {});
+  std::cout << "zig-zag among boxes: steps from the phases " << phases.rmse.all << " spacings, "
+            << phases.folded.size() << " folds; along the headings " << headings.rmse.all << ", "
+            << headings.folded.size() << " of " << headings.neighbour_triangles << "\n";
+  EXPECT_GT(phases.rmse.all, 1.0);  // the map is one the phases' steps get wrong
+  EXPECT_LT(headings.rmse.all, 0.4);
+  EXPECT_EQ(headings.folded.size(), 0u);
+}
+
+TEST(Organise, CompassHeadingsAreMadeConsistentAlongAZigZag) {
+  // The full suite's room-s1 zig-zag every 30 cm, explored with the visual compass: it turns on
+  // the spot at each row's end and the compass loses part of each turn (its headings end a
+  // median 18 deg off, the 90th percentile 120 deg). Re-solved from the phases' turns between
+  // near places, the headings hold the lattice.
+  const sim::World world = sim::load_world("room:seed=1", sim::WorldsConfig{});
+  sim::RenderParams render;
+  render.geometry.width_px = 360;
+  render.geometry.height_px = 45;
+  memory::VisualMemory explored{memory::MapParameters{}};
+  memory::ExplorationParams exploration;
+  exploration.heading_source = memory::HeadingPolicy::kCompass;
+  exploration.new_place_dissimilarity = 0.0;
+  exploration.every_m = 0.3;
+  memory::Explorer explorer(explored, exploration, "run", "organise_test.cpp",
+                            memory::FrameOrder::kStream);
+  for (const io::Frame& frame : testing::rendered_frames(
+           world, render,
+           "zigzag:x0=1.65,y0=1.45,x1=4.35,y1=3.55,rows=8,speed_m_s=0.2,fps=10,z_m=1", "run")) {
+    explorer.add(frame);
+  }
+  ASSERT_EQ(explored.place_count(), 80u);
+  ASSERT_EQ(explored.place(40).heading_source, memory::HeadingSource::kCompass);
+  OrganiseParams as_measured;
+  as_measured.synchronise_compass_headings = false;
+  const evaluation::LatticeScore compass = organised_copy(explored, as_measured);
+  const evaluation::LatticeScore synchronised = organised_copy(explored, {});
+  std::cout << "zig-zag with the compass's headings: " << compass.rmse.all << " spacings ("
+            << compass.rmse.interior << " interior); synchronised " << synchronised.rmse.all << " ("
+            << synchronised.rmse.interior << "), " << synchronised.folded.size() << " of "
+            << synchronised.neighbour_triangles << " folds\n";
+  EXPECT_GT(compass.rmse.all, 1.5);  // the compass's headings bend the lattice
+  EXPECT_LT(synchronised.rmse.all, 0.7);
+  EXPECT_LT(synchronised.rmse.interior, 0.45);
+}
+
 TEST(Organise, AGridDatabaseStatesItsSpacing) {
   // `omninav render` writes a grid database with BoB's `grid` metadata (separationMM); explored,
   // the map records the spacing, and organise takes its scale from it with no step given. The
@@ -173,15 +246,15 @@ TEST(Organise, TheQualityTellsAFoldedLatticeFromAGoodOneWithoutTheTruth) {
   EXPECT_EQ(map.lattice_quality()->motions, result.quality.motions);
   std::cout << "good lattice: " << result.quality.motions_off << " of motions off, residual "
             << result.quality.motion_residual_steps << " steps\n";
-  EXPECT_LT(result.quality.motions_off, 0.05);
+  EXPECT_LT(result.quality.motions_off, OrganiseParams{}.max_motions_off);
   std::vector<Eigen::Vector2d> folded = result.lattice.positions;
   double middle_x = 0.0;
   for (const Eigen::Vector2d& p : folded) middle_x += p.x() / static_cast<double>(folded.size());
   for (Eigen::Vector2d& p : folded) {
     if (p.x() > middle_x) p.x() = 2.0 * middle_x - p.x();
   }
-  const memory::LatticeQuality bad =
-      measure_quality(folded, result.motions, result.motion_joins, 0.3, 0.05);
+  const memory::LatticeQuality bad = measure_quality(folded, result.motions, result.motion_joins,
+                                                     0.3, OrganiseParams{}.max_motions_off);
   std::cout << "folded lattice: " << bad.motions_off << " of motions off, residual "
             << bad.motion_residual_steps << " steps\n";
   EXPECT_FALSE(bad.trustworthy);

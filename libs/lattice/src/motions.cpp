@@ -8,6 +8,7 @@
 #include <tuple>
 #include <utility>
 
+#include "headings.hpp"
 #include "omninav/core/angles.hpp"
 #include "omninav/core/statistics.hpp"
 #include "omninav/signature/motion.hpp"
@@ -44,6 +45,22 @@ std::optional<DirectionFit> fit_direction(const memory::VisualMemory& memory,
   const double back = wrap_angle(*headings[b] + backward.bearing_rad + kPi);
   return DirectionFit{wrap_angle(there + 0.5 * signed_difference(back, there)),
                       std::max(forward.residual, backward.residual)};
+}
+
+// A step between places whose headings differ by more than this went round a bend.
+constexpr double kStraightTurnRad = 0.35;  // 20°
+
+// The median of angles: the median of their differences from their circular mean, about it.
+double circular_median(const std::vector<double>& angles_rad) {
+  double sine = 0.0, cosine = 0.0;
+  for (const double angle : angles_rad) {
+    sine += std::sin(angle);
+    cosine += std::cos(angle);
+  }
+  const double mean = std::atan2(sine, cosine);
+  std::vector<double> around;
+  for (const double angle : angles_rad) around.push_back(signed_difference(angle, mean));
+  return wrap_angle(mean + median(std::move(around)));
 }
 
 // From the motion's first place to its second, metres in the lattice frame.
@@ -90,6 +107,21 @@ class StepCheck {
   double step_stddev_m_;  // of one step's displacement
 };
 
+// The headings the motions are measured with: the map's (lattice_headings), those of the visual
+// compass made consistent across the map (headings.hpp) when asked.
+std::vector<std::optional<double>> motion_headings(
+    const memory::VisualMemory& memory, const std::vector<std::vector<SimilarPlace>>& ranking,
+    const OrganiseParams& params) {
+  std::vector<std::optional<double>> headings = lattice_headings(memory);
+  bool compass = params.synchronise_compass_headings;
+  for (std::size_t i = 0; i < memory.place_count() && compass; ++i) {
+    compass = memory.place(i).heading_source == memory::HeadingSource::kCompass;
+  }
+  if (!compass) return headings;
+  return synchronise_headings(memory, std::move(headings), ranking, params.motion_neighbours,
+                              kStraightTurnRad);
+}
+
 // measure_motions, as its steps: the candidates (steps, listed pairs, neighbours), the
 // screening of look-alikes, and the joins of what is left apart. Each pair is fitted once.
 class MotionMeasurer {
@@ -102,13 +134,14 @@ class MotionMeasurer {
         ranking_(ranking),
         calibration_(calibration),
         params_(params),
-        headings_(lattice_headings(memory)),
+        headings_(motion_headings(memory, ranking, params)),
         direction_stddev_(deg_to_rad(params.motion_direction_stddev_deg)),
         joined_(static_cast<int>(ranking.size())) {}
 
   MeasuredMotions measure() {
-    const std::vector<Candidate> candidates = candidate_motions();
+    std::vector<Candidate> candidates = candidate_motions();
     if (candidates.empty()) return result_;
+    if (params_.steps_along_heading) steer_steps_by_headings(candidates);
     const std::vector<Candidate> dropped = keep_all_but_look_alikes(candidates);
     result_.look_alikes_dropped = static_cast<int>(dropped.size());
     if (joined_.count() > 1) join_what_is_apart(dropped);
@@ -156,6 +189,39 @@ class MotionMeasurer {
       }
     }
     return candidates;
+  }
+
+  // A stream's steps along the robot's headings: the direction from one place to the next is
+  // the mean of the two places' headings plus the offset between the camera's front and the
+  // way the robot drives (the median over the steps of the phases' direction against the
+  // headings'; 0 for a robot that drives forward with its camera's front ahead).
+  void steer_steps_by_headings(std::vector<Candidate>& candidates) const {
+    std::vector<double> offsets;
+    for (const Candidate& candidate : candidates) {
+      if (candidate.motion.step && !turned(candidate.motion)) {
+        offsets.push_back(
+            signed_difference(candidate.motion.direction_rad, heading_between(candidate.motion)));
+      }
+    }
+    if (offsets.empty()) return;
+    const double offset = circular_median(offsets);
+    for (Candidate& candidate : candidates) {
+      if (candidate.motion.step && !turned(candidate.motion)) {
+        candidate.motion.direction_rad = wrap_angle(heading_between(candidate.motion) + offset);
+      }
+    }
+  }
+
+  // Whether the robot turned between the motion's places by more than kStraightTurnRad: then
+  // the path between them bends and the mean heading is no better than the phases' fit.
+  bool turned(const MotionMeasurement& motion) const {
+    return std::abs(signed_difference(*headings_[motion.to], *headings_[motion.from])) >
+           kStraightTurnRad;
+  }
+
+  double heading_between(const MotionMeasurement& motion) const {
+    const double from = *headings_[motion.from], to = *headings_[motion.to];
+    return wrap_angle(from + 0.5 * signed_difference(to, from));
   }
 
   // Keeps the steps and the neighbour motions that are no look-alike's (by their residual, or

@@ -70,6 +70,8 @@ void load_organise_params(const ConfigReader& section, OrganiseParams& params) {
   section.read("at_least_beyond_steps", params.at_least_beyond_steps, 1.0, 1000.0);
   section.read("motion_constraints", params.motion_constraints);
   section.read("motion_neighbours", params.motion_neighbours, 0, 100);
+  section.read("steps_along_heading", params.steps_along_heading);
+  section.read("synchronise_compass_headings", params.synchronise_compass_headings);
   section.read("step_likeness", params.step_likeness, 1.0, 10.0);
   section.read("look_alike_residual", params.look_alike_residual, 1.0, 100.0);
   section.read("step_check_steps", params.step_check_steps, 0, 1000);

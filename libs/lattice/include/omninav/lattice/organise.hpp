@@ -32,6 +32,15 @@ struct OrganiseParams {
   double step_likeness = 1.5;      // consecutive images of an unordered input (a grid
                                    // database) are one step apart when their calibrated
                                    // distance is at most this many steps (a stream's always are)
+  // A stream's steps point where the robot was heading (the mean of the two places' headings,
+  // plus the camera's offset from the way it drives, measured over the steps) instead of where
+  // the phases' fit says: a robot drives forward, and in clutter or near the ground the fit of
+  // a 30 cm step is often tens of degrees off (docs/lattice.md).
+  bool steps_along_heading = true;
+  // Headings from the visual compass are re-solved for the motions from the compass's turns
+  // between consecutive places and the phases' turns between each place and its most similar
+  // places (src/headings.hpp): the compass jumps where a robot turns on the spot.
+  bool synchronise_compass_headings = true;
   // A neighbour motion whose fit leaves more than this many times the map's median residual
   // is a look-alike's and is dropped (motions.hpp).
   double look_alike_residual = 1.5;
@@ -49,7 +58,7 @@ struct OrganiseParams {
   // lattice is not trustworthy when more than this share of its motions point more than 45°
   // away from where the lattice puts their places, or when the motions that survived the
   // look-alike checks left the places in more than one piece (joined by look-alikes only).
-  double max_motions_off = 0.05;
+  double max_motions_off = 0.02;
 };
 
 // Reads the `organise:` section of lattice.yaml.
