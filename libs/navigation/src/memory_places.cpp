@@ -190,7 +190,8 @@ std::vector<MeasuredLink> motion_links(const memory::VisualMemory& memory,
   const double parallax_limit = params.motion_parallax_ratio * median(std::move(parallaxes));
   const double disagreement_limit = deg_to_rad(params.motion_disagreement_deg);
   const auto trusted = [&](const MotionCandidate& candidate) {
-    return candidate.residual <= residual_limit && candidate.parallax_rad <= parallax_limit &&
+    return candidate.residual <= residual_limit &&
+           (params.motion_parallax_ratio <= 0.0 || candidate.parallax_rad <= parallax_limit) &&
            candidate.disagreement_rad <= disagreement_limit;
   };
   std::vector<int> rank(count, 0), parent(count, 0);

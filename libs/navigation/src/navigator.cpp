@@ -71,12 +71,27 @@ double map_extent_m(const std::vector<PlaceNode>& places, const RoutePlan& plan)
   return std::max(lattice_m, 2.0 * longest_m);
 }
 
-// Whether `a` and `b` are the same place or joined by one of `links`.
-bool linked(const std::vector<MeasuredLink>& links, int a, int b) {
+// Each place's neighbours over `links`.
+std::vector<std::vector<int>> neighbours_over(const std::vector<MeasuredLink>& links,
+                                              std::size_t count) {
+  std::vector<std::vector<int>> neighbours(count);
+  for (const MeasuredLink& link : links) {
+    neighbours[link.places.first].push_back(link.places.second);
+    neighbours[link.places.second].push_back(link.places.first);
+  }
+  return neighbours;
+}
+
+// Whether `a` and `b` are at most two links apart.
+bool within_two_links(const std::vector<std::vector<int>>& neighbours, int a, int b) {
   if (a == b) return true;
-  return std::any_of(links.begin(), links.end(), [&](const MeasuredLink& link) {
-    return link.places == Edge(a, b) || link.places == Edge(b, a);
-  });
+  for (const int c : neighbours[a]) {
+    if (c == b) return true;
+    for (const int d : neighbours[c]) {
+      if (d == b) return true;
+    }
+  }
+  return false;
 }
 
 // Where the localiser puts the robot between places on the lattice, when it can tell (the best
@@ -177,6 +192,7 @@ class NavigationRun {
                                     ? params.look_ahead_tolerance_spacings * lattice_spacing(places)
                                     : 0.0),
         entries_(places.size(), 0),
+        link_neighbours_(neighbours_over(plan.measured, places.size())),
         extent_m_(params.stay_within_map_extent ? map_extent_m(places, plan)
                                                 : std::numeric_limits<double>::infinity()) {
     if (!places.empty()) {
@@ -280,9 +296,10 @@ class NavigationRun {
     if (expected_ < 0) return;
     const int previous = previous_place();
     if (!plan_.measured.empty()) {
-      // Over measured links the lattice is not trusted: next to means linked.
-      step.jump = !linked(plan_.measured, place, expected_) &&
-                  (previous < 0 || !linked(plan_.measured, place, previous));
+      // Over measured links the lattice is not trusted: near means at most two links away (two
+      // steps of the robot are about one link).
+      step.jump = !within_two_links(link_neighbours_, place, expected_) &&
+                  (previous < 0 || !within_two_links(link_neighbours_, place, previous));
       result_.jumps += step.jump ? 1 : 0;
       return;
     }
@@ -618,7 +635,9 @@ class NavigationRun {
   int escape_turn_ = 0;        // the escape turn in use (sidestep_turn's count)
   std::vector<Edge> blocked_;  // links found blocked: the look-ahead keeps away from them
   const double look_ahead_tolerance_m_;
-  std::vector<int> entries_;      // times each place was entered (loops)
+  std::vector<int> entries_;  // times each place was entered (loops)
+  // Each place's neighbours over the plan's measured links, as planned (none over the lattice).
+  const std::vector<std::vector<int>> link_neighbours_;
   const double extent_m_;         // the diagonal of the lattice's bounding box (or ∞)
   GoalCue homing_from_ = kNoCue;  // homing: the cue of the last view that moved
 

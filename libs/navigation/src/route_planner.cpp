@@ -46,7 +46,7 @@ void load_route_params(const ConfigReader& section, RouteParams& params) {
                                       : RouteParams::Links::kAuto;
   section.read("motion_neighbours", params.motion_neighbours, 1, 100);
   section.read("motion_residual_ratio", params.motion_residual_ratio, 0.1, 100.0);
-  section.read("motion_parallax_ratio", params.motion_parallax_ratio, 0.1, 100.0);
+  section.read("motion_parallax_ratio", params.motion_parallax_ratio, 0.0, 100.0);
   section.read("motion_disagreement_deg", params.motion_disagreement_deg, 0.0, 180.0);
 }
 

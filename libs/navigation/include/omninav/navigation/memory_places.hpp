@@ -54,7 +54,8 @@ HomingScale homing_scale(const memory::VisualMemory& memory, const std::vector<P
 // the lattice's motions are) and the two averaged. A link is a look-alike's, and dropped, when
 // either fit fails, or its fit leaves more than params.motion_residual_ratio times the median
 // residual of the candidates, or its parallax (distance over depth) is more than
-// params.motion_parallax_ratio times their median, or the two fits disagree by more than
+// params.motion_parallax_ratio times their median (when that is > 0), or the two fits disagree by
+// more than
 // params.motion_disagreement_deg (docs/navigation.md has the measurements); steps along a
 // stream are kept, and dropped links join, most similar first, places the others leave apart.
 // A link's length is map_spacing times the pair's dissimilarity over the geometric mean of the

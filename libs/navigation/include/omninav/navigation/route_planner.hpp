@@ -39,10 +39,10 @@ struct RouteParams {
   //   kAuto: kMotions when the map's stored lattice quality says the lattice is not
   //     trustworthy (lattice/organise.hpp), else kLattice.
   enum class Links { kLattice, kMotions, kAuto };
-  Links links = Links::kLattice;
+  Links links = Links::kAuto;
   int motion_neighbours = 4;
   double motion_residual_ratio = 1.5;
-  double motion_parallax_ratio = 1.5;
+  double motion_parallax_ratio = 0.0;  // 0: the parallax is not checked
   double motion_disagreement_deg = 20.0;
 };
 
