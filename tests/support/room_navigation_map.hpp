@@ -100,7 +100,8 @@ class RoomNavigation : public ::testing::Test {
             homing(),
             navigation::RouteParams{},
             navigation::NavigatorParams{},
-            navigation::recognition_limit(map().memory, navigation::NavigatorParams{})};
+            navigation::recognition_limit(map().memory, navigation::NavigatorParams{}),
+            {}};
   }
   // The place nearest to (x, y) by truth.
   static int nearest_place(double x_m, double y_m) {

@@ -8,7 +8,7 @@ GoalRun navigate_to_image(NavigationWorld& world, const cv::Mat& goal_image,
                           const std::string& what, const GoalNavigationSetup& setup) {
   GoalRun run;
   run.goal = match_image(setup.localise, goal_image, setup.match_limit, what);
-  run.plan = plan_over_lattice(setup.places, setup.route, static_cast<int>(run.goal.place));
+  run.plan = plan_route(setup, static_cast<int>(run.goal.place));
   run.result = navigate(world, setup.places, run.plan, setup.localise, setup.navigator,
                         goal_homing(goal_image, setup.homing), setup.recognition_limit);
   return run;

@@ -1,14 +1,21 @@
 #include "omninav/navigation/memory_places.hpp"
 
 #include <algorithm>
+#include <boost/pending/disjoint_sets.hpp>
+#include <cmath>
 #include <limits>
+#include <set>
+#include <tuple>
 
+#include "omninav/core/angles.hpp"
 #include "omninav/core/errors.hpp"
 #include "omninav/core/format.hpp"
 #include "omninav/core/log.hpp"
 #include "omninav/core/panorama.hpp"
 #include "omninav/core/statistics.hpp"
 #include "omninav/lattice/organise.hpp"
+#include "omninav/lattice/similar_places.hpp"
+#include "omninav/signature/motion.hpp"
 
 namespace omninav::navigation {
 
@@ -99,6 +106,143 @@ HomingScale homing_scale(const memory::VisualMemory& memory, const std::vector<P
   return scale;
 }
 
+namespace {
+
+// A link of motion_links before it is kept or dropped.
+struct MotionCandidate {
+  MeasuredLink link;
+  double dissimilarity = 0.0;     // Eq. 2/6 between its places
+  double residual = 0.0;          // the worse of the two fits' (MotionEstimate::residual)
+  double parallax_rad = 0.0;      // the two fits' mean (MotionEstimate::parallax_rad)
+  double disagreement_rad = 0.0;  // between the fit from a and the one from b, reversed
+  bool step = false;              // consecutive places of a stream
+};
+
+// The direction from a to b relative to a's heading, fitted from a's view and from b's
+// reversed, with the turn held at the headings' difference; none when either fit fails.
+std::optional<MotionCandidate> fit_link(const memory::VisualMemory& memory,
+                                        const std::vector<PlaceNode>& places, int a, int b) {
+  const double turn = signed_difference(places[b].heading_rad, places[a].heading_rad);
+  const signature::MotionEstimate there =
+      signature::estimate_motion(memory.place(a).signature, memory.place(b).signature, -1, turn);
+  const signature::MotionEstimate back =
+      signature::estimate_motion(memory.place(b).signature, memory.place(a).signature, -1, -turn);
+  if (!there.valid || !back.valid) return std::nullopt;
+  // b's view of a, turned round and into a's frame.
+  const double back_at_a = wrap_angle(back.bearing_rad + kPi + turn);
+  const double disagreement = signed_difference(back_at_a, there.bearing_rad);
+  const double at_a = wrap_angle(there.bearing_rad + 0.5 * disagreement);
+  MotionCandidate candidate;
+  candidate.link.places = {a, b};
+  candidate.link.direction_at_first_rad = at_a;
+  candidate.link.direction_at_second_rad = wrap_angle(at_a + kPi - turn);
+  candidate.residual = std::max(there.residual, back.residual);
+  candidate.parallax_rad = 0.5 * (there.parallax_rad + back.parallax_rad);
+  candidate.disagreement_rad = std::abs(disagreement);
+  return candidate;
+}
+
+}  // namespace
+
+std::vector<MeasuredLink> motion_links(const memory::VisualMemory& memory,
+                                       const std::vector<PlaceNode>& places,
+                                       const RouteParams& params) {
+  const int count = static_cast<int>(places.size());
+  const lattice::PlaceDissimilarities dissimilarity(memory);
+  const std::vector<std::vector<lattice::SimilarPlace>> ranking =
+      dissimilarity.most_similar(params.motion_neighbours);
+  // Each place's dissimilarity to its most similar place: one step there (the calibration's s_a).
+  std::vector<double> local_step(count, 0.0);
+  for (int a = 0; a < count; ++a) {
+    if (!ranking[a].empty()) local_step[a] = ranking[a].front().dissimilarity;
+  }
+  const double spacing_m = map_spacing(memory, places);
+
+  std::set<Edge> tried;
+  std::vector<MotionCandidate> candidates;
+  const auto offer = [&](int a, int b, bool step) {
+    if (a == b || !tried.insert({std::min(a, b), std::max(a, b)}).second) return;
+    std::optional<MotionCandidate> candidate = fit_link(memory, places, a, b);
+    if (!candidate) return;
+    candidate->dissimilarity = dissimilarity(a, b);
+    const double scale = std::sqrt(local_step[a] * local_step[b]);
+    candidate->link.length_m =
+        scale > 0.0 ? spacing_m * candidate->dissimilarity / scale : spacing_m;
+    candidate->step = step;
+    candidates.push_back(*candidate);
+  };
+  for (const memory::VisualMemory::EdgeRef& edge : memory.edges()) {
+    if (edge.edge->kind == memory::EdgeKind::kSequence) {
+      offer(static_cast<int>(edge.from), static_cast<int>(edge.to), true);
+    }
+  }
+  for (int a = 0; a < count; ++a) {
+    for (const lattice::SimilarPlace& similar : ranking[a]) offer(a, similar.place, false);
+  }
+  if (candidates.empty()) return {};
+
+  std::vector<double> residuals, parallaxes;
+  for (const MotionCandidate& candidate : candidates) {
+    residuals.push_back(candidate.residual);
+    parallaxes.push_back(candidate.parallax_rad);
+  }
+  const double residual_limit = params.motion_residual_ratio * median(std::move(residuals));
+  const double parallax_limit = params.motion_parallax_ratio * median(std::move(parallaxes));
+  const double disagreement_limit = deg_to_rad(params.motion_disagreement_deg);
+  const auto trusted = [&](const MotionCandidate& candidate) {
+    return candidate.residual <= residual_limit &&
+           (params.motion_parallax_ratio <= 0.0 || candidate.parallax_rad <= parallax_limit) &&
+           candidate.disagreement_rad <= disagreement_limit;
+  };
+  std::vector<int> rank(count, 0), parent(count, 0);
+  boost::disjoint_sets<int*, int*> pieces(rank.data(), parent.data());
+  for (int place = 0; place < count; ++place) pieces.make_set(place);
+  std::vector<MeasuredLink> links;
+  std::vector<const MotionCandidate*> dropped;
+  for (const MotionCandidate& candidate : candidates) {
+    if (candidate.step || trusted(candidate)) {
+      links.push_back(candidate.link);
+      pieces.union_set(candidate.link.places.first, candidate.link.places.second);
+    } else {
+      dropped.push_back(&candidate);
+    }
+  }
+  // Joins: the most similar dropped pairs first, those that join places left apart.
+  std::sort(dropped.begin(), dropped.end(), [](const MotionCandidate* x, const MotionCandidate* y) {
+    return std::tie(x->dissimilarity, x->link.places) < std::tie(y->dissimilarity, y->link.places);
+  });
+  for (const MotionCandidate* candidate : dropped) {
+    const auto [a, b] = candidate->link.places;
+    if (pieces.find_set(a) == pieces.find_set(b)) continue;
+    links.push_back(candidate->link);
+    pieces.union_set(a, b);
+  }
+  return links;
+}
+
+double map_spacing(const memory::VisualMemory& memory, const std::vector<PlaceNode>& places) {
+  if (const std::optional<double> grid = memory.grid_spacing_m()) return *grid;
+  if (const std::optional<double> every = memory.exploration_spacing_m()) return *every;
+  return lattice_spacing(places);
+}
+
+bool plans_over_motions(const memory::VisualMemory& memory, const RouteParams& params) {
+  switch (params.links) {
+    case RouteParams::Links::kLattice:
+      return false;
+    case RouteParams::Links::kMotions:
+      return true;
+    case RouteParams::Links::kAuto:
+      return memory.lattice_quality() && !memory.lattice_quality()->trustworthy;
+  }
+  return false;
+}
+
+RoutePlan plan_route(const GoalNavigationSetup& setup, int goal) {
+  if (!setup.links.empty()) return plan_to_goal(setup.places, setup.links, goal);
+  return plan_over_lattice(setup.places, setup.route, goal);
+}
+
 GoalNavigationSetup goal_navigation_setup(const memory::VisualMemory& memory,
                                           PanoramaLocaliser localise, const RouteParams& route,
                                           const NavigatorParams& navigator) {
@@ -108,6 +252,17 @@ GoalNavigationSetup goal_navigation_setup(const memory::VisualMemory& memory,
   setup.match_limit = match_limit(memory, route);
   setup.homing = homing_scale(memory, setup.places);
   setup.route = route;
+  if (plans_over_motions(memory, route)) {
+    setup.links = motion_links(memory, setup.places, route);
+    // Homing's scale from the map's own spacing: a lattice not trusted may be shrunk or folded.
+    if (setup.homing.metres_per_dissimilarity > 0.0) {
+      setup.homing.metres_per_dissimilarity *=
+          map_spacing(memory, setup.places) / lattice_spacing(setup.places);
+    }
+    log_info("routes run over " + std::to_string(setup.links.size()) +
+             " motions measured between places (navigation.yaml route.links: " +
+             to_string(route.links) + ")");
+  }
   setup.navigator = navigator;
   setup.recognition_limit = recognition_limit(memory, navigator);
   return setup;

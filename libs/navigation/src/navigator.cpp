@@ -35,11 +35,7 @@ double sidestep_turn(int sidestep, double step) {
 bool replan_without_link(const std::vector<PlaceNode>& places, int place, RoutePlan& plan) {
   const int next = plan.next[place];
   if (next < 0) return false;
-  std::vector<Edge> edges;
-  for (const Edge& edge : plan.edges) {
-    if (edge != Edge(place, next) && edge != Edge(next, place)) edges.push_back(edge);
-  }
-  RoutePlan replanned = plan_to_goal(places, edges, plan.goal);
+  RoutePlan replanned = plan_without_link(places, plan, place, next);
   if (!replanned.reaches_goal(place)) return false;
   plan = std::move(replanned);
   return true;
@@ -60,6 +56,42 @@ double lattice_extent_m(const std::vector<PlaceNode>& places) {
     high = high.cwiseMax(place.position_m);
   }
   return (high - low).norm();
+}
+
+// How far apart two places of the map can be: the lattice's extent, or over measured links (the
+// lattice not trusted: it may be shrunk or folded) twice the longest route to the goal, at
+// least.
+double map_extent_m(const std::vector<PlaceNode>& places, const RoutePlan& plan) {
+  const double lattice_m = lattice_extent_m(places);
+  if (plan.measured.empty()) return lattice_m;
+  double longest_m = 0.0;
+  for (const double cost_m : plan.cost_m) {
+    if (std::isfinite(cost_m)) longest_m = std::max(longest_m, cost_m);
+  }
+  return std::max(lattice_m, 2.0 * longest_m);
+}
+
+// Each place's neighbours over `links`.
+std::vector<std::vector<int>> neighbours_over(const std::vector<MeasuredLink>& links,
+                                              std::size_t count) {
+  std::vector<std::vector<int>> neighbours(count);
+  for (const MeasuredLink& link : links) {
+    neighbours[link.places.first].push_back(link.places.second);
+    neighbours[link.places.second].push_back(link.places.first);
+  }
+  return neighbours;
+}
+
+// Whether `a` and `b` are at most two links apart.
+bool within_two_links(const std::vector<std::vector<int>>& neighbours, int a, int b) {
+  if (a == b) return true;
+  for (const int c : neighbours[a]) {
+    if (c == b) return true;
+    for (const int d : neighbours[c]) {
+      if (d == b) return true;
+    }
+  }
+  return false;
 }
 
 // Where the localiser puts the robot between places on the lattice, when it can tell (the best
@@ -160,7 +192,8 @@ class NavigationRun {
                                     ? params.look_ahead_tolerance_spacings * lattice_spacing(places)
                                     : 0.0),
         entries_(places.size(), 0),
-        extent_m_(params.stay_within_map_extent ? lattice_extent_m(places)
+        link_neighbours_(neighbours_over(plan.measured, places.size())),
+        extent_m_(params.stay_within_map_extent ? map_extent_m(places, plan)
                                                 : std::numeric_limits<double>::infinity()) {
     if (!places.empty()) {
       box_low_ = box_high_ = places.front().position_m;
@@ -262,6 +295,14 @@ class NavigationRun {
   void note_jump(NavigationStep& step, int place) {
     if (expected_ < 0) return;
     const int previous = previous_place();
+    if (!plan_.measured.empty()) {
+      // Over measured links the lattice is not trusted: near means at most two links away (two
+      // steps of the robot are about one link).
+      step.jump = !within_two_links(link_neighbours_, place, expected_) &&
+                  (previous < 0 || !within_two_links(link_neighbours_, place, previous));
+      result_.jumps += step.jump ? 1 : 0;
+      return;
+    }
     const Eigen::Vector2d here = places_[place].position_m;
     const double near_m = 2.0 * params_.step_m + 1e-9;
     step.jump = (here - places_[expected_].position_m).norm() > near_m &&
@@ -541,9 +582,10 @@ class NavigationRun {
                          const memory::Localisation& localisation) const {
     if (place == plan_.goal || !plan_.reaches_goal(place)) return step.match->relative_heading_rad;
     const std::optional<Eigen::Vector2d> position = lattice_position(localisation);
-    if (params_.look_ahead_links > 0 && position && sidestep_ == 0) {
+    if (params_.look_ahead_links > 0 && position && sidestep_ == 0 && plan_.measured.empty()) {
       // Sidesteps turn from the place's own direction instead: the line ahead led into the
-      // obstacle, and turning from the place's next link measured better.
+      // obstacle, and turning from the place's next link measured better. A plan over measured
+      // links does not trust the lattice: the look-ahead's line is drawn on it.
       const int target = look_ahead_place(places_, plan_, place, params_.look_ahead_links,
                                           look_ahead_tolerance_m_, blocked_);
       const Eigen::Vector2d to = places_[target].position_m - *position;
@@ -593,7 +635,9 @@ class NavigationRun {
   int escape_turn_ = 0;        // the escape turn in use (sidestep_turn's count)
   std::vector<Edge> blocked_;  // links found blocked: the look-ahead keeps away from them
   const double look_ahead_tolerance_m_;
-  std::vector<int> entries_;      // times each place was entered (loops)
+  std::vector<int> entries_;  // times each place was entered (loops)
+  // Each place's neighbours over the plan's measured links, as planned (none over the lattice).
+  const std::vector<std::vector<int>> link_neighbours_;
   const double extent_m_;         // the diagonal of the lattice's bounding box (or ∞)
   GoalCue homing_from_ = kNoCue;  // homing: the cue of the last view that moved
 

@@ -39,6 +39,15 @@ double distance_to_segment(const Eigen::Vector2d& point, const Eigen::Vector2d& 
 void load_route_params(const ConfigReader& section, RouteParams& params) {
   section.read("neighbour_spacings", params.neighbour_spacings, 1.0, 10.0);
   section.read("match_dissimilarity_ratio", params.match_dissimilarity_ratio, 0.1, 100.0);
+  std::string links = to_string(params.links);
+  section.read("links", links, {"lattice", "motions", "auto"});
+  params.links = links == "lattice"   ? RouteParams::Links::kLattice
+                 : links == "motions" ? RouteParams::Links::kMotions
+                                      : RouteParams::Links::kAuto;
+  section.read("motion_neighbours", params.motion_neighbours, 1, 100);
+  section.read("motion_residual_ratio", params.motion_residual_ratio, 0.1, 100.0);
+  section.read("motion_parallax_ratio", params.motion_parallax_ratio, 0.0, 100.0);
+  section.read("motion_disagreement_deg", params.motion_disagreement_deg, 0.0, 180.0);
 }
 
 double lattice_spacing(const std::vector<PlaceNode>& places) {
@@ -70,22 +79,36 @@ std::vector<int> RoutePlan::route_from(int start) const {
   return route;
 }
 
-RoutePlan plan_to_goal(const std::vector<PlaceNode>& places, const std::vector<Edge>& edges,
-                       int goal) {
+namespace {
+
+// Dijkstra from the goal over `edges` weighted by `lengths`: in an undirected graph, each
+// place's predecessor on its shortest path from the goal is its next step towards the goal
+// (§3.5's search tree). `direction_in_place(place, next, edge)` gives the direction from the
+// place to its next one, relative to the place's heading.
+template <typename Direction>
+RoutePlan search_tree(const std::vector<PlaceNode>& places, const std::vector<Edge>& edges,
+                      const std::vector<double>& lengths, int goal, Direction direction_in_place) {
   require_place(goal, places.size(), "the goal");
   Graph graph(places.size());
-  for (const auto& [a, b] : edges) {
+  for (std::size_t i = 0; i < edges.size(); ++i) {
+    const auto& [a, b] = edges[i];
     require_place(a, places.size(), "an edge's place");
     require_place(b, places.size(), "an edge's place");
-    boost::add_edge(a, b, (places[a].position_m - places[b].position_m).norm(), graph);
+    boost::add_edge(a, b, lengths[i], graph);
   }
-  // Dijkstra from the goal: in an undirected graph, each place's predecessor on its shortest
-  // path from the goal is its next step towards the goal (§3.5's search tree).
   std::vector<Graph::vertex_descriptor> predecessor(places.size());
   std::vector<double> distance(places.size());
   boost::dijkstra_shortest_paths(
       graph, static_cast<Graph::vertex_descriptor>(goal),
       boost::predecessor_map(predecessor.data()).distance_map(distance.data()));
+  // The edge between each place and its predecessor (the shortest of them when several).
+  std::vector<std::size_t> via(places.size(), edges.size());
+  for (std::size_t i = 0; i < edges.size(); ++i) {
+    for (const auto& [place, other] : {edges[i], Edge(edges[i].second, edges[i].first)}) {
+      if (static_cast<int>(predecessor[place]) != other) continue;
+      if (via[place] == edges.size() || lengths[i] < lengths[via[place]]) via[place] = i;
+    }
+  }
 
   RoutePlan plan;
   plan.goal = goal;
@@ -99,13 +122,74 @@ RoutePlan plan_to_goal(const std::vector<PlaceNode>& places, const std::vector<E
     plan.cost_m[place] = distance[place];
     if (static_cast<int>(place) == goal) continue;
     const int next = static_cast<int>(predecessor[place]);
-    const Eigen::Vector2d step = places[next].position_m - places[place].position_m;
     plan.next[place] = next;
-    plan.direction_rad[place] = std::atan2(step.y(), step.x());
     plan.direction_in_place_rad[place] =
-        signed_difference(plan.direction_rad[place], places[place].heading_rad);
+        wrap_angle(direction_in_place(static_cast<int>(place), next, via[place]));
+    plan.direction_rad[place] =
+        wrap_angle(places[place].heading_rad + plan.direction_in_place_rad[place]);
   }
   return plan;
+}
+
+}  // namespace
+
+std::string to_string(RouteParams::Links links) {
+  switch (links) {
+    case RouteParams::Links::kLattice:
+      return "lattice";
+    case RouteParams::Links::kMotions:
+      return "motions";
+    case RouteParams::Links::kAuto:
+      return "auto";
+  }
+  return "?";
+}
+
+RoutePlan plan_to_goal(const std::vector<PlaceNode>& places, const std::vector<Edge>& edges,
+                       int goal) {
+  std::vector<double> lengths;
+  for (const auto& [a, b] : edges) {
+    require_place(a, places.size(), "an edge's place");
+    require_place(b, places.size(), "an edge's place");
+    lengths.push_back((places[a].position_m - places[b].position_m).norm());
+  }
+  return search_tree(places, edges, lengths, goal, [&](int place, int next, std::size_t) {
+    const Eigen::Vector2d step = places[next].position_m - places[place].position_m;
+    return signed_difference(std::atan2(step.y(), step.x()), places[place].heading_rad);
+  });
+}
+
+RoutePlan plan_to_goal(const std::vector<PlaceNode>& places, const std::vector<MeasuredLink>& links,
+                       int goal) {
+  std::vector<Edge> edges;
+  std::vector<double> lengths;
+  for (const MeasuredLink& link : links) {
+    edges.push_back(link.places);
+    lengths.push_back(link.length_m);
+  }
+  RoutePlan plan = search_tree(places, edges, lengths, goal, [&](int place, int, std::size_t edge) {
+    const MeasuredLink& link = links[edge];
+    return place == link.places.first ? link.direction_at_first_rad : link.direction_at_second_rad;
+  });
+  plan.measured = links;
+  return plan;
+}
+
+RoutePlan plan_without_link(const std::vector<PlaceNode>& places, const RoutePlan& plan, int a,
+                            int b) {
+  const auto other = [&](const Edge& edge) { return edge != Edge(a, b) && edge != Edge(b, a); };
+  if (!plan.measured.empty()) {
+    std::vector<MeasuredLink> links;
+    for (const MeasuredLink& link : plan.measured) {
+      if (other(link.places)) links.push_back(link);
+    }
+    return plan_to_goal(places, links, plan.goal);
+  }
+  std::vector<Edge> edges;
+  for (const Edge& edge : plan.edges) {
+    if (other(edge)) edges.push_back(edge);
+  }
+  return plan_to_goal(places, edges, plan.goal);
 }
 
 int look_ahead_place(const std::vector<PlaceNode>& places, const RoutePlan& plan, int place,

@@ -27,6 +27,9 @@ struct GoalNavigationSetup {
   // The robot's views must match a place within this, or it finds itself lost
   // (recognition_limit, NavigatorParams::lost_views).
   double recognition_limit = std::numeric_limits<double>::infinity();
+  // The links plans run over (motion_links) when they do not rest on the lattice; empty: the
+  // lattice neighbours (RouteParams::links).
+  std::vector<MeasuredLink> links;
 };
 
 // One navigation: the goal image's place, the plan to it and the run.
@@ -37,7 +40,7 @@ struct GoalRun {
 };
 
 // Matches `goal_image` (named `what` in messages) to a place (match_image with
-// setup.match_limit: InputError when it matches none), plans to it over the lattice and drives
+// setup.match_limit: InputError when it matches none), plans to it (plan_route) and drives
 // `world`'s robot there, homing on the goal image at the end.
 GoalRun navigate_to_image(NavigationWorld& world, const cv::Mat& goal_image,
                           const std::string& what, const GoalNavigationSetup& setup);

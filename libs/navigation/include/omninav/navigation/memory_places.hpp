@@ -47,8 +47,39 @@ double recognition_limit(const memory::VisualMemory& memory, const NavigatorPara
 // is 0 (homing never moves), with a warning in the log.
 HomingScale homing_scale(const memory::VisualMemory& memory, const std::vector<PlaceNode>& places);
 
+// The memory graph of motions measured from the phases (§3.4), which rests on no lattice
+// position: each place linked to its params.motion_neighbours most similar places and, along a
+// stream, to the places before and after it. Each link's direction is fitted both ways
+// (signature::estimate_motion with the turn held at the difference of the places' headings, as
+// the lattice's motions are) and the two averaged. A link is a look-alike's, and dropped, when
+// either fit fails, or its fit leaves more than params.motion_residual_ratio times the median
+// residual of the candidates, or its parallax (distance over depth) is more than
+// params.motion_parallax_ratio times their median (when that is > 0), or the two fits disagree by
+// more than
+// params.motion_disagreement_deg (docs/navigation.md has the measurements); steps along a
+// stream are kept, and dropped links join, most similar first, places the others leave apart.
+// A link's length is map_spacing times the pair's dissimilarity over the geometric mean of the
+// two places' dissimilarity to their most similar place (the organiser's calibration,
+// lattice/organise.hpp, without its saturation: links are short). Homing's scale then comes
+// from map_spacing too (goal_navigation_setup).
+std::vector<MeasuredLink> motion_links(const memory::VisualMemory& memory,
+                                       const std::vector<PlaceNode>& places,
+                                       const RouteParams& params);
+
+// The distance between neighbouring places the map states (a grid database's grid spacing, else
+// the exploration's spacing), else the lattice spacing of `places`.
+double map_spacing(const memory::VisualMemory& memory, const std::vector<PlaceNode>& places);
+
+// Whether plans on `memory` run over motion_links: params.links says so, or is auto and the
+// map's stored lattice quality says its lattice is not trustworthy.
+bool plans_over_motions(const memory::VisualMemory& memory, const RouteParams& params);
+
+// The plan to `goal` over setup.links when it has them, else over the lattice.
+RoutePlan plan_route(const GoalNavigationSetup& setup, int goal);
+
 // What navigating to goal images on `memory` needs: its places (places_from_memory), its match
-// and recognition limits and homing scale, with `localise` and the settings.
+// and recognition limits and homing scale, its motion_links when plans_over_motions, with
+// `localise` and the settings.
 GoalNavigationSetup goal_navigation_setup(const memory::VisualMemory& memory,
                                           PanoramaLocaliser localise, const RouteParams& route,
                                           const NavigatorParams& navigator);

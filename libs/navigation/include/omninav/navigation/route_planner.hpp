@@ -8,6 +8,7 @@
 
 #include <Eigen/Core>
 #include <optional>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -29,7 +30,24 @@ struct RouteParams {
   // tests/navigation (MatchThreshold) checks the margin on a 30 cm grid of the built-in room:
   // views anywhere between the places lie well below the limit, noise well above it.
   double match_dissimilarity_ratio = 1.3;
+  // What the plan runs over (docs/navigation.md, "Links from the phases"):
+  //   kLattice: §3.5's lattice neighbours, each place's direction read off the lattice;
+  //   kMotions: the motions measured from the phases (§3.4) between each place and its
+  //     motion_neighbours most similar places, those whose fits pass the look-alike checks
+  //     (memory_places.hpp, motion_links), each link's direction the measured one: no lattice
+  //     position enters the plan;
+  //   kAuto: kMotions when the map's stored lattice quality says the lattice is not
+  //     trustworthy (lattice/organise.hpp), else kLattice.
+  enum class Links { kLattice, kMotions, kAuto };
+  Links links = Links::kAuto;
+  int motion_neighbours = 4;
+  double motion_residual_ratio = 1.5;
+  double motion_parallax_ratio = 0.0;  // 0: the parallax is not checked
+  double motion_disagreement_deg = 20.0;
 };
+
+// "lattice", "motions", "auto".
+std::string to_string(RouteParams::Links links);
 
 // Reads the `route:` section of navigation.yaml.
 void load_route_params(const ConfigReader& section, RouteParams& params);
@@ -49,9 +67,20 @@ double lattice_spacing(const std::vector<PlaceNode>& places);
 // Links every pair of places closer than `radius_m` on the lattice (the lattice neighbours).
 std::vector<Edge> lattice_neighbours(const std::vector<PlaceNode>& places, double radius_m);
 
+// A link of the memory graph whose direction was measured from the phases at both ends (§3.4's
+// motion estimate) instead of read off the lattice.
+struct MeasuredLink {
+  Edge places;                           // (a, b)
+  double length_m = 0.0;                 // what the link adds to a route
+  double direction_at_first_rad = 0.0;   // from a towards b, relative to a's stored heading
+  double direction_at_second_rad = 0.0;  // from b towards a, relative to b's stored heading
+};
+
 struct RoutePlan {
   int goal = -1;
   std::vector<Edge> edges;                     // the memory graph it was planned over
+  std::vector<MeasuredLink> measured;          // the same with their measured directions, when
+                                               // planned over them; empty: the lattice's
   std::vector<int> next;                       // the neighbour to go to next; -1 for the goal and
                                                // for places that cannot reach it
   std::vector<double> cost_m;                  // length of the route to the goal (∞ if none)
@@ -67,6 +96,16 @@ struct RoutePlan {
 // for a goal or an edge that names no place.
 RoutePlan plan_to_goal(const std::vector<PlaceNode>& places, const std::vector<Edge>& edges,
                        int goal);
+
+// plan_to_goal over measured links: each link weighted by its length, each place's direction
+// the measured one towards its next place (direction_rad: that, plus the place's heading). The
+// lattice positions are not read. Throws UsageError as plan_to_goal.
+RoutePlan plan_to_goal(const std::vector<PlaceNode>& places, const std::vector<MeasuredLink>& links,
+                       int goal);
+
+// The plan without the link between `a` and `b`, from the same goal, over the same kind of links.
+RoutePlan plan_without_link(const std::vector<PlaceNode>& places, const RoutePlan& plan, int a,
+                            int b);
 
 // plan_to_goal over the lattice neighbours within params.neighbour_spacings lattice spacings.
 RoutePlan plan_over_lattice(const std::vector<PlaceNode>& places, const RouteParams& params,
