@@ -35,9 +35,9 @@ struct Shares {
   double defaults = 0.0;  // memory.yaml's defaults
 };
 
-// World `spec`, a 10 × 8 grid from (x0, y0) at camera height z_m, `queries` random free poses.
+// World `spec`, an nx × ny grid from (x0, y0) at camera height z_m, `queries` random free poses.
 Shares within_one_spacing(const std::string& spec, double x0_m, double y0_m, double z_m,
-                          int queries) {
+                          int queries, int nx = 10, int ny = 8) {
   const sim::World world = sim::load_world(spec, sim::WorldsConfig{});
   sim::RenderParams render;
   render.geometry.width_px = 360;
@@ -54,7 +54,8 @@ Shares within_one_spacing(const std::string& spec, double x0_m, double y0_m, dou
 
   const sim::Trajectory grid =
       sim::make_trajectory("grid:x0=" + std::to_string(x0_m) + ",y0=" + std::to_string(y0_m) +
-                               ",nx=10,ny=8,spacing_m=0.3,z_m=" + std::to_string(z_m),
+                               ",nx=" + std::to_string(nx) + ",ny=" + std::to_string(ny) +
+                               ",spacing_m=0.3,z_m=" + std::to_string(z_m),
                            world);
   VisualMemory memory{MapParameters{}};
   Explorer explorer(memory, {}, "grid", "zoo_localisation_test.cpp", FrameOrder::kUnordered);
@@ -73,8 +74,8 @@ Shares within_one_spacing(const std::string& spec, double x0_m, double y0_m, dou
   signature::SignatureExtractor extractor(memory.parameters().signature);
 
   std::mt19937 random(11);
-  std::uniform_real_distribution<double> x(x0_m, x0_m + 9 * kSpacing_m);
-  std::uniform_real_distribution<double> y(y0_m, y0_m + 7 * kSpacing_m);
+  std::uniform_real_distribution<double> x(x0_m, x0_m + (nx - 1) * kSpacing_m);
+  std::uniform_real_distribution<double> y(y0_m, y0_m + (ny - 1) * kSpacing_m);
   std::uniform_real_distribution<double> heading(-kPi, kPi);
   int scored = 0, within_papers = 0, within_defaults = 0;
   for (int drawn = 0; scored < queries && drawn < 100 * queries; ++drawn) {
@@ -114,9 +115,17 @@ TEST(ZooLocalisation, FieldFromTenCentimetres) {
 }
 
 TEST(ZooLocalisation, RoomWithFurniture) {
-  const Shares s = within_one_spacing("room:seed=2", 1.65, 1.45, 1.0, 150);
+  const Shares s = within_one_spacing("room:seed=2", 1.65, 1.45, 1.0, 300);
   EXPECT_LT(s.papers, 0.955);
   EXPECT_GE(s.defaults, 0.955);
+}
+
+// Three rooms and their doors: places in other rooms that look alike.
+TEST(ZooLocalisation, HouseOfThreeRooms) {
+  const Shares s = within_one_spacing("house:rooms=3,room_min_m=2.5,room_max_m=3.5,seed=1", 0.321,
+                                      0.446, 1.0, 150, 20, 23);
+  EXPECT_LT(s.papers, 0.97);
+  EXPECT_GE(s.defaults, 0.97);
 }
 
 // The office repeats desks every 2 m: its failures are look-alikes ~6.5 spacings away that

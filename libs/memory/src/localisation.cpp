@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <numeric>
 
@@ -18,6 +19,7 @@ void load_localisation_params(const ConfigReader& section, LocalisationParams& p
   signature::load_hierarchy_params(section, params.hierarchy);
   section.read("top_k", params.top_k, 1, 100000);
   section.read("fine_candidates", params.fine_candidates, 0, 100000);
+  section.read("fine_rotational_weight", params.fine_rotational_weight, 0.0, 1000.0);
   section.read("learn_line_weights", params.learn_line_weights);
 }
 
@@ -98,10 +100,12 @@ std::vector<double> learn_line_weights(const VisualMemory& memory, int component
 
 namespace {
 
-// The fine level's order: each of the first fine_magnitude.size() matches scores its rotational
-// dissimilarity over the least among them plus its (line-weighted) magnitude dissimilarity over
-// the least among them, lowest first; the rest keep their order behind.
-void rerank_fine(std::vector<PlaceMatch>& best, const std::vector<double>& fine_magnitude) {
+// The fine level's order: each of the first fine_magnitude.size() matches scores
+// `rotational_weight` times its rotational dissimilarity over the least among them plus its
+// (line-weighted) magnitude dissimilarity over the least among them, lowest first; the rest keep
+// their order behind.
+void rerank_fine(std::vector<PlaceMatch>& best, const std::vector<double>& fine_magnitude,
+                 double rotational_weight) {
   const std::size_t fine = fine_magnitude.size();
   if (fine < 2) return;
   double least_rotational = std::numeric_limits<double>::infinity();
@@ -117,8 +121,8 @@ void rerank_fine(std::vector<PlaceMatch>& best, const std::vector<double>& fine_
   std::iota(order.begin(), order.end(), 0);
   std::vector<double> score(fine);
   for (std::size_t i = 0; i < fine; ++i) {
-    score[i] =
-        *best[i].rotational_dissimilarity / least_rotational + fine_magnitude[i] / least_magnitude;
+    score[i] = rotational_weight * *best[i].rotational_dissimilarity / least_rotational +
+               fine_magnitude[i] / least_magnitude;
   }
   std::stable_sort(order.begin(), order.end(),
                    [&](std::size_t a, std::size_t b) { return score[a] < score[b]; });
@@ -199,7 +203,7 @@ Localisation Localiser::finish(const signature::Signature& query,
     }
     result.best.push_back(match);
   }
-  rerank_fine(result.best, fine_score);
+  rerank_fine(result.best, fine_score, params_.fine_rotational_weight);
   if (result.best.size() > static_cast<std::size_t>(params_.top_k)) {
     result.best.resize(static_cast<std::size_t>(params_.top_k));
   }

@@ -26,6 +26,10 @@ struct LocalisationParams {
   // magnitudes and phases, at the turn the phases give) beside their magnitude dissimilarity,
   // each relative to the least among them; 0 = off, the finest level's order stands.
   int fine_candidates = 10;
+  // The rotational term's weight in the fine level's score, beside the magnitudes' 1 (each over
+  // the least among the candidates). Chosen across the zoo (docs/memory.md): 1 gains more in
+  // the field but loses look-alike desks in the office; 0.5 loses nowhere.
+  double fine_rotational_weight = 0.5;
   // Beyond the papers: weight each line (panorama row × channel) of every comparison by how
   // well it tells near places from far ones in this map (learn_line_weights); false = every
   // line 1, as Eq. 6.
@@ -33,7 +37,7 @@ struct LocalisationParams {
 };
 
 // Reads the `localisation:` section of memory.yaml (levels, candidate_similarity, max_probes,
-// top_k, fine_candidates, learn_line_weights).
+// top_k, fine_candidates, fine_rotational_weight, learn_line_weights).
 void load_localisation_params(const ConfigReader& section, LocalisationParams& params);
 
 // One of the best places for a query, best first in Localisation::best.
