@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <limits>
 #include <numeric>
 
@@ -176,7 +175,7 @@ Localisation Localiser::finish(const signature::Signature& query,
   const int m = params_.hierarchy.levels.back();
   const std::size_t fine =
       std::min(search.best.size(), static_cast<std::size_t>(params_.fine_candidates));
-  std::vector<double> fine_score;  // the fine level's, for the first `fine` places
+  std::vector<double> fine_magnitude;  // the finest level's Dis of the first `fine` places
   for (const signature::Candidate& c : search.best) {
     PlaceMatch match;
     match.place = c.place;
@@ -199,11 +198,11 @@ Localisation Localiser::finish(const signature::Signature& query,
     if (result.best.size() < fine) {
       match.rotational_dissimilarity = signature::rotational_dissimilarity(
           place.signature, query, heading.turn_rad, m, memory_.parameters().weights, line_weights_);
-      fine_score.push_back(c.dissimilarity);
+      fine_magnitude.push_back(c.dissimilarity);  // with the line weights
     }
     result.best.push_back(match);
   }
-  rerank_fine(result.best, fine_score, params_.fine_rotational_weight);
+  rerank_fine(result.best, fine_magnitude, params_.fine_rotational_weight);
   if (result.best.size() > static_cast<std::size_t>(params_.top_k)) {
     result.best.resize(static_cast<std::size_t>(params_.top_k));
   }

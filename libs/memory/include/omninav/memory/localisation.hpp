@@ -44,7 +44,7 @@ void load_localisation_params(const ConfigReader& section, LocalisationParams& p
 struct PlaceMatch {
   PlaceIndex place = 0;
   double dissimilarity = 0.0;  // Eq. 6 (the map's weights, no line weights) at the finest level
-  double similarity = 0.0;     // Eq. 3, 0..1000
+  double similarity = 0.0;     // Eq. 3, 0..1000, of the finest level's (line-weighted) Dis
   // The finest level's dissimilarity (Eq. 2/6) per compared value (lines × components), grey
   // levels: unlike the similarity, which Eq. 3 rescales so that the best place always scores
   // 1000, it tells whether the query matches any place at all.
