@@ -127,9 +127,10 @@ TEST(LearnedLineWeights, TellNearFromFarAndPutEveryLineOnItsOwnScale) {
   EXPECT_EQ(w[2], 0.0);
   EXPECT_NEAR(10.0 * w[3], w[1], 1e-6 * w[1]);
   EXPECT_NEAR(w[0] + w[1] + w[2] + w[3], 4.0, 1e-9);  // a mean of 1
-  // The localiser uses them by default and not when told.
+  // The localiser uses them when told and not otherwise.
   LocalisationParams defaults;
   defaults.hierarchy.levels = {1, 2};
+  defaults.learn_line_weights = true;
   EXPECT_EQ(Localiser(memory, defaults).line_weights(), w);
   LocalisationParams papers = defaults;
   papers.learn_line_weights = false;
@@ -146,8 +147,8 @@ TEST(GridLocalisation, FineLevelKeepsEquationSixAndTopK) {
   const VisualMemory memory = testing::grid_memory();
   LocalisationParams params;
   params.top_k = 3;
+  params.fine_candidates = 10;
   const Localiser localiser(memory, params);
-  ASSERT_EQ(params.fine_candidates, 10);
   signature::SignatureExtractor extractor(memory.parameters().signature);
   const testing::Query q = testing::random_queries(1).front();
   const signature::Signature query = extractor.compute(q.frame.image);

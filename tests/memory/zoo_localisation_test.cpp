@@ -65,7 +65,9 @@ Shares within_one_spacing(const std::string& spec, double x0_m, double y0_m, dou
     places.push_back(grid.poses[i].pose.floor_position());
   }
 
-  LocalisationParams defaults;
+  LocalisationParams defaults;  // the fine level and the learned weights, measured in docs/memory.md
+  defaults.fine_candidates = 10;
+  defaults.learn_line_weights = true;
   LocalisationParams papers;
   papers.fine_candidates = 0;
   papers.learn_line_weights = false;

@@ -25,7 +25,8 @@ struct LocalisationParams {
   // re-ranked by their rotational dissimilarity to the query (signature/dissimilarity.hpp:
   // magnitudes and phases, at the turn the phases give) beside their magnitude dissimilarity,
   // each relative to the least among them; 0 = off, the finest level's order stands.
-  int fine_candidates = 10;
+  // Off by default until the navigator's lost check is re-measured with it (docs/memory.md).
+  int fine_candidates = 0;
   // The rotational term's weight in the fine level's score, beside the magnitudes' 1 (each over
   // the least among the candidates). Chosen across the zoo (docs/memory.md): 1 gains more in
   // the field but loses look-alike desks in the office; 0.5 loses nowhere.
@@ -33,7 +34,7 @@ struct LocalisationParams {
   // Beyond the papers: weight each line (panorama row × channel) of every comparison by how
   // well it tells near places from far ones in this map (learn_line_weights); false = every
   // line 1, as Eq. 6.
-  bool learn_line_weights = true;
+  bool learn_line_weights = false;  // off by default, as fine_candidates
 };
 
 // Reads the `localisation:` section of memory.yaml (levels, candidate_similarity, max_probes,
