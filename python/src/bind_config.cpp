@@ -129,7 +129,13 @@ void bind_memory_config(py::module_& m) {
       .def_property(
           "max_probes", [](const LocalisationParams& p) { return p.hierarchy.max_probes; },
           [](LocalisationParams& p, int v) { p.hierarchy.max_probes = v; })
-      .def_readwrite("top_k", &LocalisationParams::top_k);
+      .def_readwrite("top_k", &LocalisationParams::top_k)
+      .def_readwrite("fine_candidates", &LocalisationParams::fine_candidates,
+                     "Best places re-ranked by the fine level (0 = off).")
+      .def_readwrite("fine_rotational_weight", &LocalisationParams::fine_rotational_weight,
+                     "The rotational term's weight in the fine level's score.")
+      .def_readwrite("learn_line_weights", &LocalisationParams::learn_line_weights,
+                     "Weight each panorama row by how well it tells near from far in the map.");
 
   py::class_<memory::MemoryConfig>(
       m, "MemoryConfig",

@@ -21,7 +21,9 @@
 #include "../signature/rendered_room.hpp"
 #include "../signature/synthetic_signatures.hpp"
 #include "omninav/memory/exploration.hpp"
+#include "omninav/memory/localisation.hpp"
 #include "omninav/memory/map_store.hpp"
+#include "omninav/memory/visual_memory.hpp"
 #include "omninav/signature/hierarchy.hpp"
 #include "omninav/signature/motion.hpp"
 #include "omninav/signature/phase_heading.hpp"
@@ -193,6 +195,55 @@ BENCHMARK_CAPTURE(query_time, exhaustive_luminance, true, 1)
 BENCHMARK_CAPTURE(query_time, pruned_per_channel, false, 3)
     ->Arg(1000)
     ->Arg(10000)
+    ->Arg(100000)
+    ->Unit(benchmark::kMillisecond);
+
+// A query through memory::Localiser on a map of N synthetic places (as query_time's), as the
+// papers (`papers`: no learned line weights, no fine level) or with memory.yaml's defaults (the
+// learned line weights folded into the index, the fine level over the best 10): the cost of the
+// fine level per query, in one run. The map (magnitudes and phases) and both localisers are
+// built once per (N, papers).
+void localiser_query_time(benchmark::State& state, bool papers) {
+  const std::size_t n = static_cast<std::size_t>(state.range(0));
+  static std::map<std::size_t, std::unique_ptr<memory::VisualMemory>> maps;
+  static std::map<std::pair<std::size_t, bool>, std::unique_ptr<memory::Localiser>> localisers;
+  const int per_side = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(n))));
+  const signature::testing::SyntheticPlaces field(0.3 * per_side, 45, 1, 15, 7);
+  std::unique_ptr<memory::VisualMemory>& map = maps[n];
+  if (!map) {
+    map = std::make_unique<memory::VisualMemory>();
+    for (std::size_t i = 0; i < n; ++i) {
+      memory::Place place;
+      place.signature = field.at(0.3 * (i % per_side), 0.3 * (i / per_side));
+      map->add_place(std::move(place));
+    }
+  }
+  std::unique_ptr<memory::Localiser>& localiser = localisers[{n, papers}];
+  if (!localiser) {
+    memory::LocalisationParams params;
+    if (papers) {
+      params.fine_candidates = 0;
+      params.learn_line_weights = false;
+    }
+    localiser = std::make_unique<memory::Localiser>(*map, params);
+  }
+  std::mt19937 random(3);
+  std::uniform_real_distribution<double> coordinate(0.0, 0.3 * (per_side - 1));
+  std::vector<signature::Signature> queries;
+  for (int i = 0; i < 64; ++i) {
+    queries.push_back(field.at(coordinate(random), coordinate(random), &random, 1.0));
+  }
+  std::size_t q = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(localiser->localise(queries[q++ % queries.size()]));
+  }
+}
+BENCHMARK_CAPTURE(localiser_query_time, papers, true)
+    ->Arg(1000)
+    ->Arg(100000)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(localiser_query_time, defaults, false)
+    ->Arg(1000)
     ->Arg(100000)
     ->Unit(benchmark::kMillisecond);
 

@@ -3,11 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
 
 #include "omninav/core/angles.hpp"
 #include "omninav/core/config.hpp"
 #include "omninav/core/errors.hpp"
 #include "omninav/core/statistics.hpp"
+#include "omninav/signature/dissimilarity.hpp"
 #include "omninav/signature/phase_heading.hpp"
 
 namespace omninav::memory {
@@ -15,6 +17,9 @@ namespace omninav::memory {
 void load_localisation_params(const ConfigReader& section, LocalisationParams& params) {
   signature::load_hierarchy_params(section, params.hierarchy);
   section.read("top_k", params.top_k, 1, 100000);
+  section.read("fine_candidates", params.fine_candidates, 0, 100000);
+  section.read("fine_rotational_weight", params.fine_rotational_weight, 0.0, 1000.0);
+  section.read("learn_line_weights", params.learn_line_weights);
 }
 
 std::string to_string(PositionFrame frame) {
@@ -53,6 +58,82 @@ double typical_spacing(const std::vector<Eigen::Vector2d>& points) {
   return spacing > 0.0 ? spacing : 1.0;
 }
 
+std::vector<double> learn_line_weights(const VisualMemory& memory, int components) {
+  const std::size_t n = memory.place_count();
+  if (n < 4) return {};
+  const int lines = memory.place(0).signature.lines();
+  components = std::min(components, memory.place(0).signature.components);
+  // Near pairs: places one after the other; far pairs: places half the listing apart. At most
+  // kPairs of each, spread evenly over the map, so that large maps cost no more.
+  constexpr std::size_t kPairs = 2000;
+  const std::size_t step = std::max<std::size_t>(1, n / kPairs);
+  std::vector<std::vector<double>> near(static_cast<std::size_t>(lines));
+  std::vector<std::vector<double>> far(static_cast<std::size_t>(lines));
+  const auto add_pair = [&](std::size_t a, std::size_t b, std::vector<std::vector<double>>& to) {
+    const signature::Signature& sa = memory.place(static_cast<PlaceIndex>(a)).signature;
+    const signature::Signature& sb = memory.place(static_cast<PlaceIndex>(b)).signature;
+    for (int line = 0; line < lines; ++line) {
+      double sum = 0.0;
+      for (int k = 0; k < components; ++k) {
+        sum += std::fabs(static_cast<double>(sa.magnitude[sa.at(line, k)]) -
+                         static_cast<double>(sb.magnitude[sb.at(line, k)]));
+      }
+      to[static_cast<std::size_t>(line)].push_back(sum);
+    }
+  };
+  for (std::size_t i = 0; i + 1 < n; i += step) add_pair(i, i + 1, near);
+  for (std::size_t i = 0; i < n; i += step) add_pair(i, (i + n / 2) % n, far);
+  std::vector<double> weights(static_cast<std::size_t>(lines), 0.0);
+  double total = 0.0;
+  for (std::size_t line = 0; line < weights.size(); ++line) {
+    const double far_m = median(far[line]);
+    if (!(far_m > 0.0)) continue;  // a line that never changes says nothing
+    const double near_m = std::max(median(near[line]), 1e-3 * far_m);
+    weights[line] = std::max(0.0, far_m - near_m) / (near_m * far_m);
+    total += weights[line];
+  }
+  if (!(total > 0.0)) return {};  // nothing tells near from far: every line alike
+  for (double& w : weights) w *= static_cast<double>(weights.size()) / total;
+  return weights;
+}
+
+namespace {
+
+// The fine level's order: each of the first fine_magnitude.size() matches scores
+// `rotational_weight` times its rotational dissimilarity over the least among them plus its
+// (line-weighted) magnitude dissimilarity over the least among them, lowest first; the rest keep
+// their order behind.
+void rerank_fine(std::vector<PlaceMatch>& best, const std::vector<double>& fine_magnitude,
+                 double rotational_weight) {
+  const std::size_t fine = fine_magnitude.size();
+  if (fine < 2) return;
+  double least_rotational = std::numeric_limits<double>::infinity();
+  double least_magnitude = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < fine; ++i) {
+    least_rotational = std::min(least_rotational, *best[i].rotational_dissimilarity);
+    least_magnitude = std::min(least_magnitude, fine_magnitude[i]);
+  }
+  // An exact match (0) ranks first by either term; the floor only avoids dividing by 0.
+  least_rotational = std::max(least_rotational, 1e-12);
+  least_magnitude = std::max(least_magnitude, 1e-12);
+  std::vector<std::size_t> order(fine);
+  std::iota(order.begin(), order.end(), 0);
+  std::vector<double> score(fine);
+  for (std::size_t i = 0; i < fine; ++i) {
+    score[i] = rotational_weight * *best[i].rotational_dissimilarity / least_rotational +
+               fine_magnitude[i] / least_magnitude;
+  }
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return score[a] < score[b]; });
+  std::vector<PlaceMatch> sorted;
+  sorted.reserve(best.size());
+  for (std::size_t i : order) sorted.push_back(best[i]);
+  for (std::size_t i = fine; i < best.size(); ++i) sorted.push_back(best[i]);
+  best = std::move(sorted);
+}
+
+}  // namespace
+
 Localiser::Localiser(const VisualMemory& memory, LocalisationParams params)
     : memory_(memory),
       params_(std::move(params)),
@@ -65,41 +146,65 @@ Localiser::Localiser(const VisualMemory& memory, LocalisationParams params)
                      " components but the map's signatures hold " +
                      std::to_string(memory.parameters().signature.components));
   }
+  if (params_.learn_line_weights) {
+    line_weights_ = learn_line_weights(memory, params_.hierarchy.levels.back());
+    index_.set_line_weights(line_weights_);
+  }
   index_.reserve(memory.place_count());
   for (PlaceIndex i = 0; i < memory.place_count(); ++i) index_.add(memory.place(i).signature);
   positions_ = place_positions(memory);
 }
 
+std::size_t Localiser::searched_top() const {
+  return static_cast<std::size_t>(std::max(params_.top_k, params_.fine_candidates));
+}
+
 Localisation Localiser::localise(const signature::Signature& query) const {
-  return finish(
-      query, index_.search(query, params_.hierarchy.candidate_similarity,
-                           static_cast<std::size_t>(params_.top_k), params_.hierarchy.max_probes));
+  return finish(query, index_.search(query, params_.hierarchy.candidate_similarity, searched_top(),
+                                     params_.hierarchy.max_probes));
 }
 
 Localisation Localiser::localise_exhaustive(const signature::Signature& query) const {
   return finish(query, index_.search_exhaustive(query, params_.hierarchy.candidate_similarity,
-                                                static_cast<std::size_t>(params_.top_k)));
+                                                searched_top()));
 }
 
 Localisation Localiser::finish(const signature::Signature& query,
                                signature::SearchResult search) const {
   Localisation result;
+  const int m = params_.hierarchy.levels.back();
+  const std::size_t fine =
+      std::min(search.best.size(), static_cast<std::size_t>(params_.fine_candidates));
+  std::vector<double> fine_magnitude;  // the finest level's Dis of the first `fine` places
   for (const signature::Candidate& c : search.best) {
     PlaceMatch match;
     match.place = c.place;
-    match.dissimilarity = c.dissimilarity;
     match.similarity = c.similarity;
     const Place& place = memory_.place(c.place);
+    // Eq. 6 with the map's weights but not the learned line weights, so that it compares with
+    // the map's links (navigation's match limit).
+    match.dissimilarity =
+        line_weights_.empty()
+            ? c.dissimilarity
+            : signature::dissimilarity(place.signature, query, m, memory_.parameters().weights);
     match.dissimilarity_per_value =
-        c.dissimilarity /
-        (static_cast<double>(place.signature.lines()) * params_.hierarchy.levels.back());
+        match.dissimilarity / (static_cast<double>(place.signature.lines()) * m);
     // The place's signature is `from`, the query `to`: turn = heading(query) − heading(place).
     const signature::PhaseHeading heading = signature::relative_heading(
         place.signature, query, std::min(place.signature.components, query.components));
     match.relative_heading_rad = heading.turn_rad;
     match.heading_confidence = heading.confidence;
     if (place.heading_rad) match.heading_rad = wrap_angle(*place.heading_rad + heading.turn_rad);
+    if (result.best.size() < fine) {
+      match.rotational_dissimilarity = signature::rotational_dissimilarity(
+          place.signature, query, heading.turn_rad, m, memory_.parameters().weights, line_weights_);
+      fine_magnitude.push_back(c.dissimilarity);  // with the line weights
+    }
     result.best.push_back(match);
+  }
+  rerank_fine(result.best, fine_magnitude, params_.fine_rotational_weight);
+  if (result.best.size() > static_cast<std::size_t>(params_.top_k)) {
+    result.best.resize(static_cast<std::size_t>(params_.top_k));
   }
   if (positions_ && !result.best.empty()) {
     const auto& [frame, points] = *positions_;

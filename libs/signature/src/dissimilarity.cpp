@@ -42,8 +42,11 @@ std::string to_string(const ComponentWeights& weights) {
   return text;
 }
 
-double dissimilarity(const Signature& a, const Signature& b, int components,
-                     const ComponentWeights& weights) {
+namespace {
+
+// The components two signatures are compared on: `components`, or all both hold when < 0.
+// Throws UsageError when their layouts differ or they hold fewer.
+int compared_components(const Signature& a, const Signature& b, int components) {
   if (!a.same_layout(b)) {
     throw UsageError("cannot compare signatures of " + std::to_string(a.rows) + "x" +
                      std::to_string(a.channels) + " and " + std::to_string(b.rows) + "x" +
@@ -54,12 +57,46 @@ double dissimilarity(const Signature& a, const Signature& b, int components,
     throw UsageError("asked for " + std::to_string(m) + " components of signatures holding " +
                      std::to_string(std::min(a.components, b.components)));
   }
+  return m;
+}
+
+}  // namespace
+
+double dissimilarity(const Signature& a, const Signature& b, int components,
+                     const ComponentWeights& weights) {
+  const int m = compared_components(a, b, components);
   double total = 0.0;
   for (int k = 0; k < m; ++k) {
     double sum_k = 0.0;
     for (int line = 0; line < a.lines(); ++line) {
       sum_k += std::fabs(static_cast<double>(a.magnitude[a.at(line, k)]) -
                          static_cast<double>(b.magnitude[b.at(line, k)]));
+    }
+    total += weights[k] * sum_k;
+  }
+  return total;
+}
+
+double rotational_dissimilarity(const Signature& from, const Signature& to, double turn_rad,
+                                int components, const ComponentWeights& weights,
+                                std::span<const double> line_weights) {
+  const int m = compared_components(from, to, components);
+  if (!line_weights.empty() && line_weights.size() != static_cast<std::size_t>(from.lines())) {
+    throw UsageError(std::to_string(line_weights.size()) + " line weights for signatures of " +
+                     std::to_string(from.lines()) + " lines");
+  }
+  double total = 0.0;
+  for (int k = 0; k < m; ++k) {
+    // |b − e^{−ik·turn}·a|² = |a|² + |b|² − 2|a||b|·cos(φ_b − φ_a + k·turn).
+    const double k_turn = static_cast<double>(k) * turn_rad;
+    double sum_k = 0.0;
+    for (int line = 0; line < from.lines(); ++line) {
+      const double a = from.magnitude[from.at(line, k)];
+      const double b = to.magnitude[to.at(line, k)];
+      const double angle = static_cast<double>(to.phase_rad[to.at(line, k)]) -
+                           static_cast<double>(from.phase_rad[from.at(line, k)]) + k_turn;
+      const double term = std::sqrt(std::max(0.0, a * a + b * b - 2.0 * a * b * std::cos(angle)));
+      sum_k += line_weights.empty() ? term : line_weights[static_cast<std::size_t>(line)] * term;
     }
     total += weights[k] * sum_k;
   }

@@ -21,17 +21,31 @@ namespace omninav::memory {
 struct LocalisationParams {
   signature::HierarchyParams hierarchy;
   int top_k = 5;  // best places reported at the finest level
+  // Beyond the papers, the fine level: the best `fine_candidates` places of the finest level
+  // re-ranked by their rotational dissimilarity to the query (signature/dissimilarity.hpp:
+  // magnitudes and phases, at the turn the phases give) beside their magnitude dissimilarity,
+  // each relative to the least among them; 0 = off, the finest level's order stands.
+  // Off by default until the navigator's lost check is re-measured with it (docs/memory.md).
+  int fine_candidates = 0;
+  // The rotational term's weight in the fine level's score, beside the magnitudes' 1 (each over
+  // the least among the candidates). Chosen across the zoo (docs/memory.md): 1 gains more in
+  // the field but loses look-alike desks in the office; 0.5 loses nowhere.
+  double fine_rotational_weight = 0.5;
+  // Beyond the papers: weight each line (panorama row × channel) of every comparison by how
+  // well it tells near places from far ones in this map (learn_line_weights); false = every
+  // line 1, as Eq. 6.
+  bool learn_line_weights = false;  // off by default, as fine_candidates
 };
 
 // Reads the `localisation:` section of memory.yaml (levels, candidate_similarity, max_probes,
-// top_k).
+// top_k, fine_candidates, fine_rotational_weight, learn_line_weights).
 void load_localisation_params(const ConfigReader& section, LocalisationParams& params);
 
 // One of the best places for a query, best first in Localisation::best.
 struct PlaceMatch {
   PlaceIndex place = 0;
-  double dissimilarity = 0.0;  // at the finest level
-  double similarity = 0.0;     // Eq. 3, 0..1000
+  double dissimilarity = 0.0;  // Eq. 6 (the map's weights, no line weights) at the finest level
+  double similarity = 0.0;     // Eq. 3, 0..1000, of the finest level's (line-weighted) Dis
   // The finest level's dissimilarity (Eq. 2/6) per compared value (lines × components), grey
   // levels: unlike the similarity, which Eq. 3 rescales so that the best place always scores
   // 1000, it tells whether the query matches any place at all.
@@ -41,6 +55,8 @@ struct PlaceMatch {
   double heading_confidence = 0.0;
   // The query's heading in the map's frame, when the place has a heading.
   std::optional<double> heading_rad;
+  // The fine level's rotational dissimilarity (Σ over lines × components), when it ran.
+  std::optional<double> rotational_dissimilarity;
 };
 
 // Where the places' positions come from.
@@ -72,6 +88,18 @@ std::optional<std::pair<PositionFrame, std::vector<Eigen::Vector2d>>> place_posi
 // spacing" of DESIGN.md's evaluation). 1 for fewer than two points.
 double typical_spacing(const std::vector<Eigen::Vector2d>& points);
 
+// A weight per line (rows × channels) learned from the map without ground truth: places listed
+// one after the other (a stream's consecutive places, a grid database's consecutive images) are
+// near, places half the listing apart mostly far. With N and F a line's median magnitude
+// difference (Eq. 2 over the first `components`) over near and far pairs, its weight is
+// max(0, F − N) / (N·F): 1/F puts every line on the scale of its own variation (per-row
+// normalisation) and (F − N)/N is how far above the noise between neighbours that variation
+// lies. Rows of grass a few centimetres from a 10 cm camera change as much between neighbours
+// as across the map and get ~0; the horizon gets the most. Scaled to a mean of 1. Empty (every
+// line alike) for fewer than 4 places or when no line tells near from far. At most 2,000 pairs
+// of each kind, spread over the map.
+std::vector<double> learn_line_weights(const VisualMemory& memory, int components);
+
 class Localiser {
  public:
   // Builds the search index of `memory` (which must outlive the localiser) for params'
@@ -87,14 +115,18 @@ class Localiser {
   const signature::SignatureIndex& index() const { return index_; }
   const VisualMemory& memory() const { return memory_; }
   const LocalisationParams& params() const { return params_; }
+  // The learned line weights in use (empty: every line 1).
+  const std::vector<double>& line_weights() const { return line_weights_; }
 
  private:
+  std::size_t searched_top() const;  // top_k, or the fine level's candidates when more
   Localisation finish(const signature::Signature& query, signature::SearchResult search) const;
 
   const VisualMemory& memory_;
   LocalisationParams params_;
   signature::SignatureIndex index_;
   std::optional<std::pair<PositionFrame, std::vector<Eigen::Vector2d>>> positions_;
+  std::vector<double> line_weights_;
 };
 
 }  // namespace omninav::memory

@@ -44,6 +44,20 @@ std::string to_string(const ComponentWeights& weights);
 double dissimilarity(const Signature& a, const Signature& b, int components = -1,
                      const ComponentWeights& weights = {});
 
+// Beyond the papers: the dissimilarity of the coefficients themselves, magnitudes and phases,
+// once `from` is turned by `turn_rad` (phase_heading.hpp's sign: heading(to) − heading(from)):
+//     Σ_y Σ_{k<m} α_k |F_to,y(k) − e^{−ik·turn} F_from,y(k)|.
+// Eq. 2 compares magnitudes only, which forgets where along the horizon each row's structure
+// lies, so places whose rows hold the same mix of features in another arrangement look alike;
+// the phases, aligned by the turn, keep the arrangement. By Parseval it is the image-space
+// distance of the low-pass panoramas at that rotation (the visual compass's, 000 §2), in L1 over
+// the coefficients. ≥ Eq. 6's value for the same weights (|a − b| ≥ ||a| − |b||). Throws as
+// dissimilarity().
+// `line_weights`, when not empty, weights each line's terms (one per line, ≥ 0).
+double rotational_dissimilarity(const Signature& from, const Signature& to, double turn_rad,
+                                int components = -1, const ComponentWeights& weights = {},
+                                std::span<const double> line_weights = {});
+
 // Eq. 3 for one value, given the range of the reference set; clamped to [0, 1000]. A
 // degenerate range (max ≤ min) gives 1000.
 double similarity_0_1000(double dissimilarity, double min_dissimilarity, double max_dissimilarity);
