@@ -81,6 +81,9 @@ class LocalisationParams:
     candidate_similarity: float
     max_probes: int
     top_k: int
+    fine_candidates: int
+    fine_rotational_weight: float
+    learn_line_weights: bool
 
 class MemoryConfig:
     def __init__(self) -> None: ...
