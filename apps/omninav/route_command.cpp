@@ -54,11 +54,7 @@ void run_route(const GlobalOptions& global, const RouteOptions& options) {
   // §3.5: the search tree grows from the goal, so every place gets its direction at once.
   const bool over_motions = navigation::plans_over_motions(memory, navigation.route);
   const navigation::RoutePlan plan =
-      over_motions
-          ? navigation::plan_to_goal(places,
-                                     navigation::motion_links(memory, places, navigation.route),
-                                     static_cast<int>(to.place))
-          : navigation::plan_over_lattice(places, navigation.route, static_cast<int>(to.place));
+      navigation::plan_route(memory, places, navigation.route, static_cast<int>(to.place));
   if (!plan.reaches_goal(from.place)) {
     throw InputError(options.map.string() + ": no route from place " + std::to_string(from.place) +
                      " to place " + std::to_string(to.place) +

@@ -98,6 +98,11 @@ class MemoryConfig:
 class RouteParams:
     neighbour_spacings: float
     match_dissimilarity_ratio: float
+    links: str  # "lattice" | "motions" | "auto"
+    motion_neighbours: int
+    motion_residual_ratio: float
+    motion_parallax_ratio: float
+    motion_disagreement_deg: float
 
 class NavigatorParams:
     step_m: float

@@ -170,7 +170,17 @@ void bind_navigation_config(py::module_& m) {
   using navigation::RouteParams;
   py::class_<RouteParams>(m, "RouteParams", "navigation.yaml's route section.")
       .def_readwrite("neighbour_spacings", &RouteParams::neighbour_spacings)
-      .def_readwrite("match_dissimilarity_ratio", &RouteParams::match_dissimilarity_ratio);
+      .def_readwrite("match_dissimilarity_ratio", &RouteParams::match_dissimilarity_ratio)
+      .def_property(
+          "links", [](const RouteParams& p) { return navigation::to_string(p.links); },
+          [](RouteParams& p, const std::string& links) {
+            p.links = navigation::route_links_from_string(links);
+          },
+          "lattice, motions or auto: what plans run over.")
+      .def_readwrite("motion_neighbours", &RouteParams::motion_neighbours)
+      .def_readwrite("motion_residual_ratio", &RouteParams::motion_residual_ratio)
+      .def_readwrite("motion_parallax_ratio", &RouteParams::motion_parallax_ratio)
+      .def_readwrite("motion_disagreement_deg", &RouteParams::motion_disagreement_deg);
 
   using navigation::NavigatorParams;
   py::class_<NavigatorParams>(m, "NavigatorParams", "navigation.yaml's navigator section.")

@@ -328,11 +328,12 @@ void bind_memory(py::module_& m) {
           [](const Map& map, int goal, std::optional<evaluation::NavigationConfig> config,
              std::optional<fs::path> config_dir) {
             const navigation::RouteParams params = navigation_config(config, config_dir).route;
-            return navigation::plan_over_lattice(navigation::places_from_memory(map.memory), params,
-                                                 goal);
+            return navigation::plan_route(map.memory, navigation::places_from_memory(map.memory),
+                                          params, goal);
           },
           py::arg("goal"), py::arg("config") = py::none(), py::arg("config_dir") = py::none(),
-          "Directions from every place to place `goal` over the lattice (needs organise()).")
+          "Directions from every place to place `goal`, over the links route.links chooses: the "
+          "lattice's neighbours (needs organise()) or the motions measured between places.")
       .def("__len__", [](const Map& map) { return map.memory.place_count(); })
       .def_property_readonly("place_count", [](const Map& map) { return map.memory.place_count(); })
       .def_property_readonly("edge_count", [](const Map& map) { return map.memory.edge_count(); })

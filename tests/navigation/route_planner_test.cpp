@@ -129,5 +129,13 @@ TEST(RoutePlanner, BadGoalOrEdgeIsAClearError) {
   EXPECT_THROW(plan_to_goal(grid_places(), {{0, 40}}, 0), UsageError);
 }
 
+TEST(RoutePlanner, LinksNamesReadBackAndAnyOtherIsAUsageError) {
+  for (const RouteParams::Links links :
+       {RouteParams::Links::kLattice, RouteParams::Links::kMotions, RouteParams::Links::kAuto}) {
+    EXPECT_EQ(route_links_from_string(to_string(links)), links);
+  }
+  EXPECT_THROW(route_links_from_string("graph"), UsageError);
+}
+
 }  // namespace
 }  // namespace omninav::navigation

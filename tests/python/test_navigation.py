@@ -75,6 +75,25 @@ def test_a_route_joins_neighbouring_places(organised_grid):
         assert distance_m(places[a].truth, places[b].truth) < 0.3 * 1.6
 
 
+def test_routes_run_over_the_links_the_config_chooses(organised_grid):
+    places = organised_grid.places()
+    goal = len(places) - 1
+    config = omninav.NavigationConfig.load()
+    config.route.links = "motions"  # the phases' measured motions, no lattice position
+    over_motions = organised_grid.plan_route(goal, config=config)
+    config.route.links = "lattice"
+    over_lattice = organised_grid.plan_route(goal, config=config)
+    assert over_motions.direction_rad != over_lattice.direction_rad
+    route = over_motions.route_from(0)
+    assert route[0] == 0 and route[-1] == goal
+    # Each link joins places the truth puts near: the grid's 8-neighbourhood, or one more step
+    # for a most similar place two spacings off in the right direction.
+    for a, b in zip(route, route[1:]):
+        assert distance_m(places[a].truth, places[b].truth) < 0.3 * 2.3
+    with pytest.raises(omninav.UsageError, match="nowhere"):
+        config.route.links = "nowhere"
+
+
 def test_the_navigator_drives_a_python_robot_to_the_goal_image(organised_grid):
     world = omninav.World(WORLD, width_px=WIDTH_PX, height_px=HEIGHT_PX, rays_per_pixel=1)
     renderer = omninav.Renderer(world)

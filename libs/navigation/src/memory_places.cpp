@@ -243,6 +243,14 @@ RoutePlan plan_route(const GoalNavigationSetup& setup, int goal) {
   return plan_over_lattice(setup.places, setup.route, goal);
 }
 
+RoutePlan plan_route(const memory::VisualMemory& memory, const std::vector<PlaceNode>& places,
+                     const RouteParams& params, int goal) {
+  if (plans_over_motions(memory, params)) {
+    return plan_to_goal(places, motion_links(memory, places, params), goal);
+  }
+  return plan_over_lattice(places, params, goal);
+}
+
 GoalNavigationSetup goal_navigation_setup(const memory::VisualMemory& memory,
                                           PanoramaLocaliser localise, const RouteParams& route,
                                           const NavigatorParams& navigator) {

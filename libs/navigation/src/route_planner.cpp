@@ -41,9 +41,7 @@ void load_route_params(const ConfigReader& section, RouteParams& params) {
   section.read("match_dissimilarity_ratio", params.match_dissimilarity_ratio, 0.1, 100.0);
   std::string links = to_string(params.links);
   section.read("links", links, {"lattice", "motions", "auto"});
-  params.links = links == "lattice"   ? RouteParams::Links::kLattice
-                 : links == "motions" ? RouteParams::Links::kMotions
-                                      : RouteParams::Links::kAuto;
+  params.links = route_links_from_string(links);
   section.read("motion_neighbours", params.motion_neighbours, 1, 100);
   section.read("motion_residual_ratio", params.motion_residual_ratio, 0.1, 100.0);
   section.read("motion_parallax_ratio", params.motion_parallax_ratio, 0.0, 100.0);
@@ -143,6 +141,14 @@ std::string to_string(RouteParams::Links links) {
       return "auto";
   }
   return "?";
+}
+
+RouteParams::Links route_links_from_string(std::string_view name) {
+  if (name == "lattice") return RouteParams::Links::kLattice;
+  if (name == "motions") return RouteParams::Links::kMotions;
+  if (name == "auto") return RouteParams::Links::kAuto;
+  throw UsageError("unknown route links '" + std::string(name) +
+                   "': expected lattice, motions or auto");
 }
 
 RoutePlan plan_to_goal(const std::vector<PlaceNode>& places, const std::vector<Edge>& edges,

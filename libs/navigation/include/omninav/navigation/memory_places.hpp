@@ -77,6 +77,11 @@ bool plans_over_motions(const memory::VisualMemory& memory, const RouteParams& p
 // The plan to `goal` over setup.links when it has them, else over the lattice.
 RoutePlan plan_route(const GoalNavigationSetup& setup, int goal);
 
+// The plan to `goal` over the links plans_over_motions chooses for `memory`: motion_links or the
+// lattice neighbours. `places` are places_from_memory(memory).
+RoutePlan plan_route(const memory::VisualMemory& memory, const std::vector<PlaceNode>& places,
+                     const RouteParams& params, int goal);
+
 // What navigating to goal images on `memory` needs: its places (places_from_memory), its match
 // and recognition limits and homing scale, its motion_links when plans_over_motions, with
 // `localise` and the settings.

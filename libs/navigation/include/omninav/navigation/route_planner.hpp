@@ -9,6 +9,7 @@
 #include <Eigen/Core>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -48,6 +49,8 @@ struct RouteParams {
 
 // "lattice", "motions", "auto".
 std::string to_string(RouteParams::Links links);
+// The inverse of to_string; throws UsageError for any other name.
+RouteParams::Links route_links_from_string(std::string_view name);
 
 // Reads the `route:` section of navigation.yaml.
 void load_route_params(const ConfigReader& section, RouteParams& params);
