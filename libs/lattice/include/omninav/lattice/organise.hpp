@@ -62,7 +62,7 @@ struct OrganiseParams {
   bool spring_weight_from_map = false;
   // Pieces that the checked motions leave apart are joined by the pairs across whose fit
   // explains the two views best (the smallest residual), not by the most similar pairs.
-  bool joins_by_residual = false;
+  bool joins_by_residual = true;
   // Before that, pieces are joined where at least two pairs across agree on where one lies
   // from the other (motions.cpp); a look-alike's pair agrees with nothing.
   bool joins_by_agreement = false;
