@@ -55,19 +55,6 @@ constexpr double kAgreementSteps = 1.5;
 // A step between places whose headings differ by more than this went round a bend.
 constexpr double kStraightTurnRad = 0.35;  // 20°
 
-// The median of angles: the median of their differences from their circular mean, about it.
-double circular_median(const std::vector<double>& angles_rad) {
-  double sine = 0.0, cosine = 0.0;
-  for (const double angle : angles_rad) {
-    sine += std::sin(angle);
-    cosine += std::cos(angle);
-  }
-  const double mean = std::atan2(sine, cosine);
-  std::vector<double> around;
-  for (const double angle : angles_rad) around.push_back(signed_difference(angle, mean));
-  return wrap_angle(mean + median(std::move(around)));
-}
-
 // From the motion's first place to its second, metres in the lattice frame.
 Eigen::Vector2d displacement(const MotionMeasurement& motion) {
   return motion.length_m *
@@ -124,7 +111,7 @@ std::vector<std::optional<double>> motion_headings(
   }
   if (!compass) return headings;
   return synchronise_headings(memory, std::move(headings), ranking, params.motion_neighbours,
-                              kStraightTurnRad);
+                              kStraightTurnRad, params.one_phase_turn_per_stretch_pair);
 }
 
 // measure_motions, as its steps: the candidates (steps, listed pairs, neighbours), the

@@ -73,6 +73,7 @@ void load_organise_params(const ConfigReader& section, OrganiseParams& params) {
   section.read("motion_neighbours", params.motion_neighbours, 0, 100);
   section.read("steps_along_heading", params.steps_along_heading);
   section.read("synchronise_compass_headings", params.synchronise_compass_headings);
+  section.read("one_phase_turn_per_stretch_pair", params.one_phase_turn_per_stretch_pair);
   section.read("step_likeness", params.step_likeness, 1.0, 10.0);
   section.read("look_alike_residual", params.look_alike_residual, 1.0, 100.0);
   section.read("step_check_steps", params.step_check_steps, 0, 1000);

@@ -41,6 +41,9 @@ struct OrganiseParams {
   // between consecutive places and the phases' turns between each place and its most similar
   // places (src/headings.hpp): the compass jumps where a robot turns on the spot.
   bool synchronise_compass_headings = true;
+  // There, the phases' turns between two stretches count as one measurement (their median), not
+  // one per pair of places (src/headings.hpp).
+  bool one_phase_turn_per_stretch_pair = false;
   // A neighbour motion whose fit leaves more than this many times the map's median residual
   // is a look-alike's and is dropped (motions.hpp).
   double look_alike_residual = 1.5;
