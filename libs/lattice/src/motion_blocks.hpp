@@ -13,15 +13,20 @@
 namespace omninav::lattice::detail {
 
 // One MotionResidual per motion over `positions` (which must outlive `problem`), all sharing
-// `loss` (nullptr: plain least squares).
+// `loss` (nullptr: plain least squares). `bearings`: a bearing-only motion becomes a
+// BearingResidual; otherwise (the start's linear problem) every motion keeps its length.
 inline void add_motion_blocks(ceres::Problem& problem,
                               const std::vector<MotionMeasurement>& motions,
-                              std::vector<Eigen::Vector2d>& positions, ceres::LossFunction* loss) {
+                              std::vector<Eigen::Vector2d>& positions, ceres::LossFunction* loss,
+                              bool bearings = false) {
   for (const MotionMeasurement& motion : motions) {
-    problem.AddResidualBlock(
-        MotionResidual::Create(motion.direction_rad, motion.length_m, motion.direction_stddev_rad,
-                               motion.length_stddev_m),
-        loss, positions[motion.from].data(), positions[motion.to].data());
+    ceres::CostFunction* cost =
+        bearings && motion.bearing_only
+            ? BearingResidual::Create(motion.direction_rad, motion.direction_stddev_rad)
+            : MotionResidual::Create(motion.direction_rad, motion.length_m,
+                                     motion.direction_stddev_rad, motion.length_stddev_m);
+    problem.AddResidualBlock(cost, loss, positions[motion.from].data(),
+                             positions[motion.to].data());
   }
 }
 

@@ -35,6 +35,7 @@ struct MeasuredMotions {
   std::vector<MotionMeasurement> motions;
   int look_alikes_dropped = 0;  // neighbour motions dropped (residual, or against the steps)
   int joins = 0;                // motions added to join places the others left apart
+  int pieces = 1;               // how many pieces the checked motions left the places in
 };
 
 MeasuredMotions measure_motions(const memory::VisualMemory& memory,

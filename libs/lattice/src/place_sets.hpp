@@ -27,7 +27,8 @@ class PlaceSets {
     --count_;
   }
   bool joined(int a, int b) { return sets_.find_set(a) == sets_.find_set(b); }
-  int count() const { return count_; }  // sets left
+  int find(int a) { return sets_.find_set(a); }  // the set's representative
+  int count() const { return count_; }           // sets left
 
  private:
   std::vector<int> rank_, parent_;

@@ -43,7 +43,8 @@ std::size_t add_springs(ceres::Problem& problem, const std::vector<SpringMeasure
   const double negligible = negligible_length_m(params.correlation_range_m, params.min_stiffness);
   for (const SpringMeasurement& spring : springs) {
     if (spring.a == spring.b || spring.length_m > negligible) continue;  // Eq. 5: K < min_stiffness
-    const double stiffness = spring_stiffness(spring.length_m, params.correlation_range_m);
+    const double stiffness =
+        params.spring_weight * spring_stiffness(spring.length_m, params.correlation_range_m);
     problem.AddResidualBlock(SpringResidual::Create(spring.length_m, stiffness, spring.at_least),
                              loss, positions[spring.a].data(), positions[spring.b].data());
     ++kept;
@@ -116,7 +117,7 @@ LatticeResult solve_lattice(int place_count, const std::vector<SpringMeasurement
   problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   ceres::Problem problem(problem_options);
   result.springs_kept = add_springs(problem, springs, params, &spring_loss, result.positions);
-  detail::add_motion_blocks(problem, motions, result.positions, &motion_loss);
+  detail::add_motion_blocks(problem, motions, result.positions, &motion_loss, true);
   for (int place = 0; place < place_count; ++place) {
     if (!problem.HasParameterBlock(result.positions[place].data())) {
       throw UsageError("lattice: place " + std::to_string(place) +

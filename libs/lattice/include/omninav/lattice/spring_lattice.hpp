@@ -33,6 +33,10 @@ struct MotionMeasurement {
   // Between consecutive places of a stream: the robot went from one to the other, so the two
   // are surely near; the start is built on such steps (initial_positions).
   bool step = false;
+  // Only the direction is trusted (BearingResidual): the length is the calibrated distance of a
+  // most similar place, which saturates beyond about one step. The start still uses the length
+  // (a linear problem needs one).
+  bool bearing_only = false;
 };
 
 struct LatticeParams {
@@ -41,6 +45,9 @@ struct LatticeParams {
   double loss_scale_m = 0.15;        // Cauchy loss on spring residuals: beyond ~this, a spring's
                                      // pull is discounted as an outlier (aliased places)
   double motion_loss_scale = 1.0;    // Cauchy loss on motion residuals, in standard deviations
+  // Every spring's stiffness is multiplied by this (0..1): how much the dissimilarity says about
+  // distance on this map (OrganiseParams::spring_weight).
+  double spring_weight = 1.0;
   int max_iterations = 200;
   int threads = 1;
 };
