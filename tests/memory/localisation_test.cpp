@@ -135,6 +135,11 @@ TEST(LearnedLineWeights, TellNearFromFarAndPutEveryLineOnItsOwnScale) {
   LocalisationParams papers = defaults;
   papers.learn_line_weights = false;
   EXPECT_TRUE(Localiser(memory, papers).line_weights().empty());
+  // The scale that puts line-weighted dissimilarities on Eq. 6's: 1 for weights that change
+  // nothing, the inverse of a common factor, and 1 without weights.
+  EXPECT_NEAR(line_weighted_scale(memory, 2, std::vector<double>(4, 1.0)), 1.0, 1e-12);
+  EXPECT_NEAR(line_weighted_scale(memory, 2, std::vector<double>(4, 4.0)), 0.25, 1e-12);
+  EXPECT_EQ(line_weighted_scale(memory, 2, {}), 1.0);
   // Too few places to learn from: every line alike.
   VisualMemory small(parameters);
   for (int i = 0; i < 3; ++i) small.add_place(memory.place(static_cast<PlaceIndex>(i)));
