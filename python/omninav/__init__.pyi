@@ -285,6 +285,7 @@ class Localisation:
     position_frame: Optional[str]  # "lattice" | "truth"
     position: Optional[tuple[float, float]]
     interpolated_position: Optional[tuple[float, float]]
+    between_places: Optional[tuple[float, float]]
 
 class RoutePlan:
     goal: int

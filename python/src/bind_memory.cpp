@@ -130,7 +130,16 @@ void bind_localisation(py::module_& m) {
                 l.position ? std::optional<Eigen::Vector2d>(l.position->interpolated_position)
                            : std::nullopt);
           },
-          "The best places' positions weighted by similarity (x_m, y_m), or None.");
+          "The best places' positions weighted by similarity (x_m, y_m), or None.")
+      .def_property_readonly(
+          "between_places",
+          [](const Localisation& l) {
+            return optional_position(
+                l.position ? std::optional<Eigen::Vector2d>(l.position->between_places)
+                           : std::nullopt);
+          },
+          "The best place and its neighbours among the best, weighted by dissimilarity "
+          "(x_m, y_m), or None.");
 
   // The localiser, the extractor of the map's signatures, and the largest dissimilarity at
   // which a query still matches a place (route, navigate and localise's one criterion).

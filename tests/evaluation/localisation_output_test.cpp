@@ -26,8 +26,8 @@ QueryLocalisation query() {
   best.relative_heading_rad = 10.0 * M_PI / 180.0;
   best.heading_confidence = 0.5;
   q.result.best = {best};
-  q.result.position =
-      memory::PositionEstimate{memory::PositionFrame::kLattice, {1.5, 2.0}, {1.25, 2.0}};
+  q.result.position = memory::PositionEstimate{
+      memory::PositionFrame::kLattice, {1.5, 2.0}, {1.25, 2.0}, {1.125, 2.0}};
   q.truth = CameraPose{1.0, 2.0, 1.0, M_PI / 2, 0.0, 0.0};
   LocalisationScore::Query score;
   score.nearest_place = 5;
@@ -69,6 +69,7 @@ TEST(LocalisationOutput, JsonHasLevelsBestPositionAndTruth) {
   EXPECT_TRUE(json["best"][0]["heading_deg"].is_null());
   EXPECT_EQ(json["position"]["frame"], "lattice");
   EXPECT_DOUBLE_EQ(json["position"]["interpolated_x"].get<double>(), 1.25);
+  EXPECT_DOUBLE_EQ(json["position"]["between_x"].get<double>(), 1.125);
   EXPECT_EQ(json["truth"]["nearest_place"], 5);
   EXPECT_DOUBLE_EQ(json["truth"]["heading_deg"].get<double>(), 90.0);
 

@@ -10,6 +10,7 @@
 #include "grid_fixture.hpp"
 #include "omninav/core/angles.hpp"
 #include "omninav/core/errors.hpp"
+#include "omninav/core/statistics.hpp"
 #include "omninav/signature/dissimilarity.hpp"
 #include "omninav/signature/signature.hpp"
 
@@ -29,6 +30,8 @@ struct GridScores {
   std::vector<double> level_mean_size;
   int pruned_equals_exhaustive = 0;
   std::vector<double> heading_errors_deg;  // query heading from the best place's, vs truth
+  // Position errors against the truth, metres: the best place's, and the estimate between places.
+  std::vector<double> place_errors_m, between_errors_m;
 };
 
 GridScores score(signature::ColourMode colour, std::size_t query_count) {
@@ -49,6 +52,12 @@ GridScores score(signature::ColourMode colour, std::size_t query_count) {
       ++s.within_spacing;
     }
     if (best.place == exhaustive.best.front().place) ++s.pruned_equals_exhaustive;
+    EXPECT_TRUE(pruned.position.has_value());
+    if (pruned.position) {
+      const Eigen::Vector2d truth = q.frame.truth->floor_position();
+      s.place_errors_m.push_back((pruned.position->position - truth).norm());
+      s.between_errors_m.push_back((pruned.position->between_places - truth).norm());
+    }
     for (std::size_t l = 0; l < pruned.search.levels.size(); ++l) {
       const auto& candidates = pruned.search.levels[l].candidates;
       s.level_mean_size[l] += static_cast<double>(candidates.size()) / queries.size();
@@ -65,7 +74,9 @@ GridScores score(signature::ColourMode colour, std::size_t query_count) {
   std::sort(s.heading_errors_deg.begin(), s.heading_errors_deg.end());
   std::cout << signature::to_string(colour) << ": " << s.within_spacing << "/" << s.queries
             << " within one spacing; pruned = exhaustive " << s.pruned_equals_exhaustive
-            << "; median heading error " << s.heading_errors_deg[s.queries / 2] << " deg\n";
+            << "; median heading error " << s.heading_errors_deg[s.queries / 2]
+            << " deg; median position error " << median(s.place_errors_m)
+            << " m at the best place, " << median(s.between_errors_m) << " m between places\n";
   for (std::size_t l = 0; l < s.level_mean_size.size(); ++l) {
     std::cout << "  level m=" << localiser.params().hierarchy.levels[l] << ": contains nearest "
               << s.level_contains_nearest[l] << "/" << s.queries << ", mean size "
@@ -90,6 +101,9 @@ TEST(GridLocalisation, RandomPosesBetweenGridPointsLocaliseWithinOneSpacing) {
   }
   // The query's heading, from the best place's (ground-truth) heading and the phases.
   EXPECT_LT(s.heading_errors_deg[s.queries / 2], 3.0);
+  // Between places the position is nearer the truth than at the best place (queries lie
+  // anywhere in the cells: the best place alone is off by up to half a diagonal).
+  EXPECT_LT(median(s.between_errors_m), 0.8 * median(s.place_errors_m));
 }
 
 TEST(GridLocalisation, ColourPerChannel) {
@@ -135,6 +149,11 @@ TEST(LearnedLineWeights, TellNearFromFarAndPutEveryLineOnItsOwnScale) {
   LocalisationParams papers = defaults;
   papers.learn_line_weights = false;
   EXPECT_TRUE(Localiser(memory, papers).line_weights().empty());
+  // The scale that puts line-weighted dissimilarities on Eq. 6's: 1 for weights that change
+  // nothing, the inverse of a common factor, and 1 without weights.
+  EXPECT_NEAR(line_weighted_scale(memory, 2, std::vector<double>(4, 1.0)), 1.0, 1e-12);
+  EXPECT_NEAR(line_weighted_scale(memory, 2, std::vector<double>(4, 4.0)), 0.25, 1e-12);
+  EXPECT_EQ(line_weighted_scale(memory, 2, {}), 1.0);
   // Too few places to learn from: every line alike.
   VisualMemory small(parameters);
   for (int i = 0; i < 3; ++i) small.add_place(memory.place(static_cast<PlaceIndex>(i)));

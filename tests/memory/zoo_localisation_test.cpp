@@ -3,8 +3,8 @@
 // rendered at random free poses and headings in the grid's rectangle, scored as `evaluate` scores
 // them (evaluation/localisation_score.hpp): the best place within one spacing of the truth,
 // queries farther than half a cell's diagonal from every place not scored. Each world is
-// localised twice, with the defaults (learned line weights and the fine level) and as the papers
-// do (neither), so that each test states what the defaults buy.
+// localised twice, with the defaults (the fine level) and as the papers do (neither the fine level
+// nor learned line weights), so that each test states what the defaults buy.
 
 #include <gtest/gtest.h>
 
@@ -65,9 +65,7 @@ Shares within_one_spacing(const std::string& spec, double x0_m, double y0_m, dou
     places.push_back(grid.poses[i].pose.floor_position());
   }
 
-  LocalisationParams defaults;  // the fine level and the learned weights, measured in docs/memory.md
-  defaults.fine_candidates = 10;
-  defaults.learn_line_weights = true;
+  const LocalisationParams defaults;  // the fine level, measured in docs/memory.md
   LocalisationParams papers;
   papers.fine_candidates = 0;
   papers.learn_line_weights = false;

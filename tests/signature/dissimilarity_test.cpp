@@ -50,6 +50,17 @@ TEST(Dissimilarity, EquationSixWeightsEachComponent) {
   EXPECT_THROW(parse_component_weights("1, x", "memory.yaml"), ConfigError);
 }
 
+// Line weights scale each row's terms (the search index's learned weights, computed directly).
+TEST(Dissimilarity, LineWeightsScaleEachRow) {
+  const Signature a = tiny({10, 4, 1, 20, 2, 0}, 2, 3);
+  const Signature b = tiny({12, 1, 1, 15, 2, 3}, 2, 3);
+  const ComponentWeights weights = parse_component_weights("0.5, 2", "test");
+  const std::vector<double> rows{3.0, 0.0};  // the second row ignored
+  EXPECT_DOUBLE_EQ(dissimilarity(a, b, -1, weights, rows), 3.0 * (0.5 * 2 + 2 * 3 + 2 * 0));
+  EXPECT_DOUBLE_EQ(dissimilarity(a, b, -1, {}, std::vector<double>{1.0, 1.0}), dissimilarity(a, b));
+  EXPECT_THROW(dissimilarity(a, b, -1, {}, std::vector<double>{1.0}), UsageError);
+}
+
 TEST(Similarity, EquationThreeRescalesToZeroToAThousand) {
   const std::vector<double> dis{10.0, 30.0, 20.0, 50.0};
   const std::vector<double> sim = rescale_similarities(dis);

@@ -145,7 +145,9 @@ Json localisation_json(const QueryLocalisation& q) {
                 {"x", json_number(r.position->position.x(), 4)},
                 {"y", json_number(r.position->position.y(), 4)},
                 {"interpolated_x", json_number(r.position->interpolated_position.x(), 4)},
-                {"interpolated_y", json_number(r.position->interpolated_position.y(), 4)}};
+                {"interpolated_y", json_number(r.position->interpolated_position.y(), 4)},
+                {"between_x", json_number(r.position->between_places.x(), 4)},
+                {"between_y", json_number(r.position->between_places.y(), 4)}};
   }
   Json truth = nullptr;
   if (q.truth && q.score) {

@@ -44,10 +44,14 @@ std::optional<std::pair<PositionFrame, std::vector<Eigen::Vector2d>>> place_posi
   return std::nullopt;
 }
 
-double typical_spacing(const std::vector<Eigen::Vector2d>& points) {
+namespace {
+
+// The median distance from every `stride`-th point to its nearest other point (each against
+// every point); 1 for fewer than two points or a median of 0.
+double nearest_distance_median(const std::vector<Eigen::Vector2d>& points, std::size_t stride) {
   if (points.size() < 2) return 1.0;
   std::vector<double> nearest;
-  for (std::size_t i = 0; i < points.size(); ++i) {
+  for (std::size_t i = 0; i < points.size(); i += stride) {
     double best = std::numeric_limits<double>::infinity();
     for (std::size_t j = 0; j < points.size(); ++j) {
       if (i != j) best = std::min(best, (points[i] - points[j]).norm());
@@ -56,6 +60,19 @@ double typical_spacing(const std::vector<Eigen::Vector2d>& points) {
   }
   const double spacing = median(std::move(nearest));
   return spacing > 0.0 ? spacing : 1.0;
+}
+
+// typical_spacing over at most 200 points spread over the listing, so that a map of 100,000
+// places costs milliseconds, not minutes.
+double sampled_spacing(const std::vector<Eigen::Vector2d>& points) {
+  constexpr std::size_t kSampled = 200;
+  return nearest_distance_median(points, std::max<std::size_t>(1, points.size() / kSampled));
+}
+
+}  // namespace
+
+double typical_spacing(const std::vector<Eigen::Vector2d>& points) {
+  return nearest_distance_median(points, 1);
 }
 
 std::vector<double> learn_line_weights(const VisualMemory& memory, int components) {
@@ -97,7 +114,59 @@ std::vector<double> learn_line_weights(const VisualMemory& memory, int component
   return weights;
 }
 
+double line_weighted_scale(const VisualMemory& memory, int components,
+                           std::span<const double> line_weights) {
+  const std::size_t n = memory.place_count();
+  if (n < 2 || line_weights.empty()) return 1.0;
+  const int m = std::min(components, memory.place(0).signature.components);
+  const signature::ComponentWeights& alpha = memory.parameters().weights;
+  constexpr std::size_t kPairs = 2000;  // as learn_line_weights
+  const std::size_t step = std::max<std::size_t>(1, n / kPairs);
+  std::vector<double> plain, weighted;
+  for (std::size_t i = 0; i + 1 < n; i += step) {
+    const signature::Signature& a = memory.place(static_cast<PlaceIndex>(i)).signature;
+    const signature::Signature& b = memory.place(static_cast<PlaceIndex>(i + 1)).signature;
+    plain.push_back(signature::dissimilarity(a, b, m, alpha));
+    weighted.push_back(signature::dissimilarity(a, b, m, alpha, line_weights));
+  }
+  const double weighted_m = median(weighted);
+  return weighted_m > 0.0 ? median(plain) / weighted_m : 1.0;
+}
+
 namespace {
+
+// The exponent of the weights between places, (least Dis / Dis)^p. Chosen across the zoo leaving
+// one family out (docs/memory.md): over p = 1, 2, 3, 4, 6, 8, 12, every fold (field, house,
+// office, room, Ofstad left out) picks 3 by the mean over the other rows of the median position
+// error relative to the best place's.
+constexpr double kBetweenPlacesPower = 3.0;
+
+// The position between places: the mean of the positions of the best place and those of the
+// matches within 1.5 spacings of it (its neighbours, diagonals included), weighted by
+// (least Dis / Dis)^kBetweenPlacesPower over Eq. 6's dissimilarities. Places farther away are
+// other candidates, not neighbours: averaging across a look-alike would put the estimate
+// between the two, where neither is.
+Eigen::Vector2d between_places(const std::vector<PlaceMatch>& best,
+                               const std::vector<Eigen::Vector2d>& points, double spacing_m) {
+  const Eigen::Vector2d at = points[best.front().place];
+  const auto neighbour = [&](const PlaceMatch& match) {
+    return (points[match.place] - at).norm() <= 1.5 * spacing_m;
+  };
+  double least = std::numeric_limits<double>::infinity();
+  for (const PlaceMatch& match : best) {
+    if (neighbour(match)) least = std::min(least, match.dissimilarity);
+  }
+  if (!(least > 0.0)) return at;  // an exact match
+  Eigen::Vector2d sum(0.0, 0.0);
+  double weight_sum = 0.0;
+  for (const PlaceMatch& match : best) {
+    if (!neighbour(match)) continue;
+    const double weight = std::pow(least / match.dissimilarity, kBetweenPlacesPower);
+    sum += weight * points[match.place];
+    weight_sum += weight;
+  }
+  return sum / weight_sum;
+}
 
 // The fine level's order: each of the first fine_magnitude.size() matches scores
 // `rotational_weight` times its rotational dissimilarity over the least among them plus its
@@ -149,10 +218,13 @@ Localiser::Localiser(const VisualMemory& memory, LocalisationParams params)
   if (params_.learn_line_weights) {
     line_weights_ = learn_line_weights(memory, params_.hierarchy.levels.back());
     index_.set_line_weights(line_weights_);
+    recognition_scale_ =
+        line_weighted_scale(memory, params_.hierarchy.levels.back(), line_weights_);
   }
   index_.reserve(memory.place_count());
   for (PlaceIndex i = 0; i < memory.place_count(); ++i) index_.add(memory.place(i).signature);
   positions_ = place_positions(memory);
+  if (positions_) spacing_m_ = sampled_spacing(positions_->second);
 }
 
 std::size_t Localiser::searched_top() const {
@@ -188,7 +260,8 @@ Localisation Localiser::finish(const signature::Signature& query,
             ? c.dissimilarity
             : signature::dissimilarity(place.signature, query, m, memory_.parameters().weights);
     match.dissimilarity_per_value =
-        match.dissimilarity / (static_cast<double>(place.signature.lines()) * m);
+        (line_weights_.empty() ? c.dissimilarity : c.dissimilarity * recognition_scale_) /
+        (static_cast<double>(place.signature.lines()) * m);
     // The place's signature is `from`, the query `to`: turn = heading(query) − heading(place).
     const signature::PhaseHeading heading = signature::relative_heading(
         place.signature, query, std::min(place.signature.components, query.components));
@@ -203,14 +276,19 @@ Localisation Localiser::finish(const signature::Signature& query,
     result.best.push_back(match);
   }
   rerank_fine(result.best, fine_magnitude, params_.fine_rotational_weight);
+  std::optional<Eigen::Vector2d> between;  // over every searched match, before the cut to top_k
+  if (positions_ && !result.best.empty()) {
+    between = between_places(result.best, positions_->second, spacing_m_);
+  }
   if (result.best.size() > static_cast<std::size_t>(params_.top_k)) {
     result.best.resize(static_cast<std::size_t>(params_.top_k));
   }
-  if (positions_ && !result.best.empty()) {
+  if (between) {
     const auto& [frame, points] = *positions_;
     PositionEstimate estimate;
     estimate.frame = frame;
     estimate.position = points[result.best.front().place];
+    estimate.between_places = *between;
     const double threshold = params_.hierarchy.candidate_similarity;
     double weight_sum = 0.0;
     Eigen::Vector2d sum(0.0, 0.0);

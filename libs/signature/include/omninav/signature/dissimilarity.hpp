@@ -41,8 +41,11 @@ std::string to_string(const ComponentWeights& weights);
 
 // Eq. 2 / Eq. 6 over the first `components` components of both (−1: all of them). Throws
 // UsageError when the two differ in lines or have fewer components than asked for.
+// `line_weights`, when not empty, weights each line's terms (one per line, ≥ 0), as the search
+// index's SignatureIndex::set_line_weights does.
 double dissimilarity(const Signature& a, const Signature& b, int components = -1,
-                     const ComponentWeights& weights = {});
+                     const ComponentWeights& weights = {},
+                     std::span<const double> line_weights = {});
 
 // Beyond the papers: the dissimilarity of the coefficients themselves, magnitudes and phases,
 // once `from` is turned by `turn_rad` (phase_heading.hpp's sign: heading(to) − heading(from)):
