@@ -79,6 +79,15 @@ struct PairMatch {
                            // at most half a column from a whole shift); the compass's run-time
                            // floor for parallax (visual_compass.hpp)
   ConfidenceFlags flags;
+  // The uncertainty of the minimum, columns: the residual d_m over the distance function's
+  // slope at the minimum, s = max(d(a_m − 1), d(a_m + 1)) − d(a_m) per column. d_m is what the
+  // rotation cannot explain (parallax, tilt, noise); a shift that raises d by as much is as
+  // plausible as α_m. Infinite when the function is flat (featureless).
+  double shift_sigma_px = 0.0;
+  // The rotation of the other reading when there is one (competing_minima: the lowest other
+  // local minimum found at least competing_separation away; the compass's global fallback sets
+  // the candidate it rejected).
+  std::optional<double> competing_rotation_rad;
   int evaluations = 0;  // distance evaluations by the fast kernel (FFT: the shifts it left to
                         // evaluate exactly and the sub-pixel fit's; the oracle: W)
 };
