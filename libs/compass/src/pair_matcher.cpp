@@ -194,11 +194,9 @@ PairMatch PairMatcher::match(const CompassFrame& first, const CompassFrame& seco
           wrap_angle(-rotation_of_shift_px(signed_shift(*competing, width), width));
     }
   }
-  // The minimum's uncertainty: the shift that raises d by the residual d_m.
-  const double slope = std::max(d_minus, d_plus) - d_0;
-  match.shift_sigma_px = !match.flags.featureless && slope > 0.0
-                             ? match.distance_min / slope
-                             : std::numeric_limits<double>::infinity();
+  // The minimum's uncertainty: the residual d_m as the roll of the first image that costs as much.
+  match.shift_sigma_px = match.self_step > 0.0 ? match.distance_min / match.self_step
+                                               : std::numeric_limits<double>::infinity();
   match.evaluations = table.evaluations();
   return match;
 }

@@ -121,12 +121,12 @@ struct FastTurns {
 
 // The heading's standard deviation (ours; docs/compass.md "Uncertainty"). Each match's variance
 // is (PairMatch::shift_sigma_px in radians)² plus (half the gap to its other reading)² when it has
-// one (a two-point distribution's variance); a featureless pair's is π²/3 (uniform on the
-// circle). The heading is ω_r + r_rc, and ω_r a sum of the r_rp of every reference change, so
-// the variances of those add up along the chain of references. `scale` multiplies the standard
-// deviation: it is the one number calibrated against ground truth (compass.yaml says how).
+// one (a two-point distribution's variance), at most π²/3 (uniform on the circle). The heading is
+// ω_r + r_rc, and ω_r a sum of the r_rp of every reference change, so the variances of those add up
+// along the chain of references. `scale` multiplies the standard deviation: it is the one number
+// calibrated against ground truth (compass.yaml says how).
 struct UncertaintyParams {
-  double scale = 0.242;  // compass.yaml's uncertainty.scale
+  double scale = 0.472;  // compass.yaml's uncertainty.scale
 };
 
 struct CompassParams {
