@@ -183,6 +183,8 @@ class CompassEstimate:
     pitch_rad: float
     roll_rad: float
     evaluations: int
+    heading_sigma_rad: float  # the heading's standard deviation
+    alternative_taken: bool  # the previous frame's other reading replaced it
     confidence: str  # "ok" or flags joined by '+'
     featureless: bool
     competing_minima: bool

@@ -35,6 +35,7 @@ void load_compass_config(const ConfigReader& config, CompassConfig& out) {
       planning == "measure" ? FftPlanning::kMeasure : FftPlanning::kEstimate;
 
   minimiser.read("global_fallback", out.compass.fast_turns.global_fallback);
+  minimiser.read("keep_alternative", out.compass.fast_turns.keep_alternative);
 
   const ConfigReader phase = config.section("phase");
   phase.read("components", matcher.minimiser.phase.components, 1, 4096);
@@ -80,6 +81,9 @@ void load_compass_config(const ConfigReader& config, CompassConfig& out) {
   travel.read("columns", travel_columns, {"whole", "bands"});
   out.compass.travel.fit.whole = travel_columns == "whole";
   travel.read_deg("max_correction_deg", out.compass.travel.fit.max_correction_rad, 0.0, 180.0);
+
+  const ConfigReader uncertainty = config.section("uncertainty");
+  uncertainty.read("scale", out.compass.uncertainty.scale, 0.0, 1000.0);
 
   const ConfigReader input = config.section("input");
   std::optional<double> width = out.width_px ? std::optional<double>(*out.width_px) : std::nullopt;

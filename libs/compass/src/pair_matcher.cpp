@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <limits>
+#include <optional>
 
 #include "frame_caches.hpp"
 #include "omninav/core/angles.hpp"
@@ -27,23 +29,30 @@ int circular_gap(int a, int b, int width) {
   return std::min(gap, width - gap);
 }
 
-// Another local minimum at least `separation` columns from `best` and below `ceiling`.
-bool has_competing_minimum(CostTable& table, int best, int separation, double ceiling) {
+// Another local minimum at least `separation` columns from `best` and below `ceiling`: its shift
+// (the lowest such minimum of a complete table, the first descent's end otherwise).
+std::optional<int> competing_minimum(CostTable& table, int best, int separation, double ceiling) {
   const int width = table.width_px();
-  if (2 * separation > width) return false;
+  if (2 * separation > width) return std::nullopt;
   if (table.complete()) {
     // With the FFT's estimates where no exact cost is known: they err by at most the bound of
     // fft_correlation.cpp, ~10⁻³ of the amplitude at 1080×135 (the errors measured, ~10⁻⁶),
     // far below the 15 % this test looks for.
+    std::optional<int> lowest;
+    Cost lowest_cost = 0;
     for (int s = 0; s < width; ++s) {
       if (circular_gap(s, best, width) < separation) continue;
       const Cost here = table.cost_or_estimate(s);
       const Cost left = table.cost_or_estimate(s - 1);
       const Cost right = table.cost_or_estimate(s + 1);
       // Strict on the left, so that a plateau counts once.
-      if (here < left && here <= right && table.distance().distance(here) < ceiling) return true;
+      if (here < left && here <= right && table.distance().distance(here) < ceiling &&
+          (!lowest || here < lowest_cost)) {
+        lowest = s;
+        lowest_cost = here;
+      }
     }
-    return false;
+    return lowest;
   }
   // Only some shifts are known (local_scan): descend from the lowest known ones that come
   // close enough, and flag a descent that ends far from the best.
@@ -59,10 +68,10 @@ bool has_competing_minimum(CostTable& table, int best, int separation, double ce
   for (std::size_t i = 0; i < std::min(candidates.size(), kMaxDescents); ++i) {
     const int minimum = descend(table, candidates[i].second);
     if (circular_gap(minimum, best, width) >= separation && table.distance_at(minimum) < ceiling) {
-      return true;
+      return minimum;
     }
   }
-  return false;
+  return std::nullopt;
 }
 
 // The FFT and the phase leave only a few shifts to evaluate (the FFT's candidates, the sub-pixel
@@ -177,9 +186,17 @@ PairMatch PairMatcher::match(const CompassFrame& first, const CompassFrame& seco
   if (!match.flags.featureless) {
     const int separation = std::max(
         2, static_cast<int>(std::lround(confidence.competing_separation_rad * width / kTwoPi)));
-    match.flags.competing_minima = has_competing_minimum(
+    const std::optional<int> competing = competing_minimum(
         table, a, separation, d_0 + confidence.competing_depth_ratio * amplitude_px);
+    match.flags.competing_minima = competing.has_value();
+    if (competing) {
+      match.competing_rotation_rad =
+          wrap_angle(-rotation_of_shift_px(signed_shift(*competing, width), width));
+    }
   }
+  // The minimum's uncertainty: the residual d_m as the roll of the first image that costs as much.
+  match.shift_sigma_px = match.self_step > 0.0 ? match.distance_min / match.self_step
+                                               : std::numeric_limits<double>::infinity();
   match.evaluations = table.evaluations();
   return match;
 }

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "omninav/core/angles.hpp"
@@ -40,6 +41,18 @@ std::unique_ptr<PairMatcher> make_global_matcher(const CompassParams& params) {
 }
 
 }  // namespace
+
+double match_variance_rad2(const PairMatch& match, int width_px) {
+  constexpr double kUniform = kPi * kPi / 3.0;  // a heading uniform on the circle
+  if (!std::isfinite(match.shift_sigma_px)) return kUniform;
+  const double sigma_rad = match.shift_sigma_px * kTwoPi / width_px;
+  double variance = sigma_rad * sigma_rad;
+  if (match.competing_rotation_rad) {
+    const double gap_rad = signed_difference(*match.competing_rotation_rad, match.rotation_rad);
+    variance += gap_rad * gap_rad / 4.0;
+  }
+  return std::min(variance, kUniform);
+}
 
 VisualCompass::VisualCompass(const CompassParams& params, double initial_heading_rad)
     : params_(params),
@@ -84,8 +97,15 @@ PairMatch VisualCompass::match_pair(const CompassFrame& first, const CompassFram
                       std::abs(signed_difference(local.rotation_rad, predicted_rotation_rad));
   const bool good = global.amplitude_norm >= params_.sampling.threshold_norm_amp &&
                     !global.flags.competing_minima;
-  PairMatch& best = global.distance_min < local.distance_min && (nearer || good) ? global : local;
+  const bool take_global = global.distance_min < local.distance_min && (nearer || good);
+  PairMatch& best = take_global ? global : local;
+  const PairMatch& other = take_global ? local : global;
   best.evaluations = evaluations;
+  // Two readings far apart: the other one is kept (FastTurns::keep_alternative, the uncertainty).
+  const double separation_rad = params_.matcher.confidence.competing_separation_rad;
+  if (std::abs(signed_difference(other.rotation_rad, best.rotation_rad)) >= separation_rad) {
+    best.competing_rotation_rad = other.rotation_rad;
+  }
   return best;
 }
 
@@ -140,6 +160,9 @@ CompassEstimate VisualCompass::push(const CompassFrame& frame) {
     reference_count_ = 1;
     reference_heading_rad_ = initial_heading_rad_;
     current_heading_rad_ = initial_heading_rad_;
+    alternative_ref_current_rad_.reset();
+    reference_variance_rad2_ = 0.0;
+    current_variance_rad2_ = 0.0;
     rotation_ref_current_rad_ = 0.0;
     shift_ref_current_px_ = 0.0;
     estimate.heading_rad = current_heading_rad_;
@@ -153,13 +176,15 @@ CompassEstimate VisualCompass::push(const CompassFrame& frame) {
   const CompassFrame previous = *current_;  // line 6
   current_ = frame;                         // line 7
   ++frame_count_;
-  const double rotation_ref_previous_rad = rotation_ref_current_rad_;  // line 8
+  double rotation_ref_previous_rad = rotation_ref_current_rad_;  // line 8
   const double shift_ref_previous_px = shift_ref_current_px_;
   const double previous_heading_rad = current_heading_rad_;
   const int width = frame.width();
   // The turn expected between the previous frame and this one, for the global fallback's
   // choice (FastTurns): the last frame's.
   const double predicted_turn_rad = last_rotation_rad_;
+  const std::optional<double> alternative_rad = alternative_ref_current_rad_;
+  alternative_ref_current_rad_.reset();
 
   const bool previous_is_reference = frame_count_ - 2 == reference_position_;
   const bool fixed_skip = params_.sampling.policy == SamplingPolicy::kFixedSkip;
@@ -177,12 +202,34 @@ CompassEstimate VisualCompass::push(const CompassFrame& frame) {
     match = match_levelled(*reference_, frame, start_shift,
                            rotation_ref_previous_rad + predicted_turn_rad, estimate);
     estimate.evaluations = match.evaluations;
+    if (alternative_rad && params_.fast_turns.keep_alternative) {
+      // The previous frame's other reading (FastTurns): line 9 minimised from its shift too.
+      const int other_start =
+          static_cast<int>(std::lround(-shift_px_of_rotation(*alternative_rad, width)));
+      PairMatch other = matcher_.match(*reference_, frame, other_start);
+      estimate.evaluations += other.evaluations;
+      // The lower of the two minima decides which reading the pair (I_r, I_c) agrees with.
+      const PairMatch& lower = other.distance_min < match.distance_min ? other : match;
+      const double to_other = std::abs(signed_difference(lower.rotation_rad, *alternative_rad));
+      const double to_given =
+          std::abs(signed_difference(lower.rotation_rad, rotation_ref_previous_rad));
+      if (to_other < to_given) {
+        rotation_ref_previous_rad = *alternative_rad;
+        if (&lower == &other) {
+          const int evaluations = estimate.evaluations;
+          match = other;
+          estimate.evaluations = evaluations;
+        }
+        estimate.alternative_taken = true;
+      }
+    }
     // Line 10, and the rotation cap (visual_compass.hpp: ours, not the paper's).
     switch_reference = !fixed_skip && (match.amplitude_norm < params_.sampling.threshold_norm_amp ||
                                        beyond_rotation_cap(match, rotation_ref_previous_rad));
   }
   if (switch_reference) {
     if (!previous_is_reference) {
+      reference_variance_rad2_ += current_variance_rad2_;  // var(r_rp) joins var(ω_r)
       // Line 11, the firewall (with r_rp refined by the turn-and-travel fit).
       reference_heading_rad_ +=
           refined_rotation(previous, rotation_ref_previous_rad, shift_ref_previous_px);
@@ -209,6 +256,14 @@ CompassEstimate VisualCompass::push(const CompassFrame& frame) {
                                    signed_difference(match.rotation_rad, rotation_ref_previous_rad);
   shift_ref_current_px_ = match.subpixel_shift_px;
   current_heading_rad_ = reference_heading_rad_ + rotation_ref_current_rad_;  // line 15
+  current_variance_rad2_ = match_variance_rad2(match, width);
+  if (match.competing_rotation_rad) {
+    alternative_ref_current_rad_ =
+        rotation_ref_current_rad_ +
+        signed_difference(*match.competing_rotation_rad, match.rotation_rad);
+  }
+  estimate.heading_sigma_rad =
+      params_.uncertainty.scale * std::sqrt(reference_variance_rad2_ + current_variance_rad2_);
 
   estimate.heading_rad = current_heading_rad_;
   estimate.rotation_rad = current_heading_rad_ - previous_heading_rad;

@@ -44,6 +44,9 @@ CompassEvaluation evaluate_compass(const std::vector<compass::CompassEstimate>& 
     evaluation.distance_m.push_back(travelled);
     const double error_deg = rad_to_deg(signed_difference(estimate_rad.back(), truth_rad.back()));
     evaluation.errors_deg.push_back(error_deg);
+    const double sigma_deg = rad_to_deg(estimates[i].heading_sigma_rad);
+    evaluation.within_1_sigma += std::abs(error_deg) <= sigma_deg ? 1 : 0;
+    evaluation.within_2_sigma += std::abs(error_deg) <= 2.0 * sigma_deg ? 1 : 0;
     if (truth[i].time_s) {
       times.push_back(*truth[i].time_s);
       timed_errors.push_back(error_deg);

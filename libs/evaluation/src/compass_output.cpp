@@ -10,10 +10,20 @@ namespace omninav::evaluation {
 
 void write_compass_csv(std::ostream& out, const std::vector<CompassFrame>& frames,
                        bool with_truth) {
-  std::vector<std::string> columns{
-      "frame",        "source",         "time_s",          "heading_deg", "heading_unwrapped_deg",
-      "rotation_deg", "amplitude_norm", "reference_frame", "confidence",  "shift_px",
-      "evaluations",  "pitch_deg",      "roll_deg"};
+  std::vector<std::string> columns{"frame",
+                                   "source",
+                                   "time_s",
+                                   "heading_deg",
+                                   "heading_unwrapped_deg",
+                                   "rotation_deg",
+                                   "amplitude_norm",
+                                   "reference_frame",
+                                   "confidence",
+                                   "shift_px",
+                                   "evaluations",
+                                   "pitch_deg",
+                                   "roll_deg",
+                                   "heading_sigma_deg"};
   if (with_truth) columns.insert(columns.end(), {"truth_heading_deg", "error_deg", "distance_m"});
   write_csv_line(out, columns);
   double travelled = 0.0;
@@ -28,7 +38,7 @@ void write_compass_csv(std::ostream& out, const std::vector<CompassFrame>& frame
         shortest(rad_to_deg(e.rotation_rad)), fixed(e.amplitude_norm, 4),
         std::to_string(e.reference_index), e.flags.describe(), fixed(e.shift_px, 4),
         std::to_string(e.evaluations), fixed(rad_to_deg(e.pitch_rad), 4),
-        fixed(rad_to_deg(e.roll_rad), 4)};
+        fixed(rad_to_deg(e.roll_rad), 4), fixed(rad_to_deg(e.heading_sigma_rad), 4)};
     if (with_truth) {
       if (row.truth) {
         if (last_truth) {

@@ -211,6 +211,9 @@ class WorldRun {
       set("compass_" + name + "_max_deg", evaluation.error_deg.max_abs);
       set("compass_" + name + "_mean_deg", evaluation.error_deg.mean);
       set("compass_" + name + "_end_deg", evaluation.final_error_deg);
+      sigma_frames_ += evaluation.total_frames;
+      within_1_sigma_ += evaluation.within_1_sigma;
+      within_2_sigma_ += evaluation.within_2_sigma;
       log_stage("compass " + name + ": max |e| " + num(evaluation.error_deg.max_abs, 2) + ", end " +
                 num(evaluation.final_error_deg, 2) + " deg, " +
                 std::to_string(run.reference_count()) + " references in " +
@@ -240,6 +243,10 @@ class WorldRun {
     compass_route("bumpy", with_height(wander + ",pitch_noise_deg=" + num(params_.tilt_noise_deg) +
                                        ",roll_noise_deg=" + num(params_.tilt_noise_deg) +
                                        ",noise_seed=" + std::to_string(suite_world_.seed)));
+    if (sigma_frames_ > 0) {
+      set("compass_within_1_sigma", static_cast<double>(within_1_sigma_) / sigma_frames_);
+      set("compass_within_2_sigma", static_cast<double>(within_2_sigma_) / sigma_frames_);
+    }
   }
 
   // The wandering route (sim's `wander`) of wander_length_m from the centre, kept as clear of
@@ -476,6 +483,10 @@ class WorldRun {
   WorldLayout layout_;
   Row row_;
   std::map<std::size_t, bool> done_;
+  // Frames of the compass routes, and those within 1 and 2 heading standard deviations.
+  int sigma_frames_ = 0;
+  int within_1_sigma_ = 0;
+  int within_2_sigma_ = 0;
   std::vector<std::string> commands_;
 };
 

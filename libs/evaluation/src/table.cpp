@@ -62,6 +62,10 @@ const std::vector<Measure>& measures() {
       m.push_back(
           {"compass_" + route + "_end_deg", "compass", title + " end", Worse::kAbsHigher, 1});
     }
+    // The heading's standard deviation: the share of frames of the four routes within 1 and 2 of
+    // it (ideally 0.68 and 0.95; lower means overconfident).
+    m.push_back({"compass_within_1_sigma", "compass", "in 1 sd", Worse::kLower, 2});
+    m.push_back({"compass_within_2_sigma", "compass", "in 2 sd", Worse::kLower, 2});
     m.push_back({"memory_within_spacing", "memory", "within 1 sp", Worse::kLower, 3});
     m.push_back({"memory_at_nearest", "memory", "at nearest", Worse::kLower, 3});
     m.push_back({"memory_heading_error_deg", "memory", "heading err", Worse::kHigher, 1});

@@ -54,7 +54,15 @@ cv::Mat plot_compass_run(const std::vector<compass::CompassEstimate>& estimates,
     }
     eval::LinePlot error(title + ": error (estimate - truth)", "frame", "error (deg)",
                          cv::Size(900, 320));
-    error.add_series("", frames, errors).show_zero_line();
+    error.add_series("error", frames, errors).show_zero_line();
+    // The band of ±1 standard deviation (CompassEstimate::heading_sigma_rad).
+    std::vector<double> upper, lower;
+    for (const compass::CompassEstimate& estimate : estimates) {
+      upper.push_back(rad_to_deg(estimate.heading_sigma_rad));
+      lower.push_back(-upper.back());
+    }
+    error.add_series("+1 sigma", frames, upper);
+    error.add_series("-1 sigma", frames, std::move(lower));
     cv::vconcat(picture, error.render(), picture);
   }
   return picture;

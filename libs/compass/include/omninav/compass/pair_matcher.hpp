@@ -79,6 +79,19 @@ struct PairMatch {
                            // at most half a column from a whole shift); the compass's run-time
                            // floor for parallax (visual_compass.hpp)
   ConfidenceFlags flags;
+  // The uncertainty of the minimum, columns: d_m / self_step, the residual expressed as the roll
+  // of the first image against itself that costs as much (d grows about linearly with a small
+  // roll). d_m is what the rotation cannot explain (parallax, tilt, noise). The slope is the
+  // first image's own, not the pair's: parallax flattens the pair's function and would make the
+  // ratio depend on the scene's texture (grass: 10° against 2-4° elsewhere for the same hop
+  // errors, docs/compass.md "Uncertainty"). Infinite when the first image is uniform (a
+  // featureless pair of textured images keeps its ratio: on the zoo such frames did not lose
+  // the heading, and a uniform variance for them over-covered the rest of the route).
+  double shift_sigma_px = 0.0;
+  // The rotation of the other reading when there is one (competing_minima: the lowest other
+  // local minimum found at least competing_separation away; the compass's global fallback sets
+  // the candidate it rejected).
+  std::optional<double> competing_rotation_rad;
   int evaluations = 0;  // distance evaluations by the fast kernel (FFT: the shifts it left to
                         // evaluate exactly and the sub-pixel fit's; the oracle: W)
 };

@@ -108,6 +108,25 @@ struct TravelFitting {
 // Table 2's; frames whose local match passes t pay nothing.
 struct FastTurns {
   bool global_fallback = true;  // measured on the zoo: docs/compass.md "Fast turns"
+  // Two readings until the next frame decides (ours; docs/compass.md "Two readings"). When the
+  // match that gave r_rc had another reading (PairMatch::competing_rotation_rad: the candidate
+  // the global fallback rejected, or a competing minimum), the next frame's line 9 is also
+  // minimised from that reading's shift against the same reference; when that descent ends
+  // lower and nearer the other reading than the first, the other reading was the right one: r_rp
+  // becomes it before line 11 adds it to ω_r. A single pair cannot tell a 105° turn in one frame
+  // from a wrong minimum; two pairs with a common reference can. No threshold: the lower distance
+  // decides.
+  bool keep_alternative = false;  // measured on the zoo: docs/compass.md "Two readings"
+};
+
+// The heading's standard deviation (ours; docs/compass.md "Uncertainty"). Each match's variance
+// is (PairMatch::shift_sigma_px in radians)² plus (half the gap to its other reading)² when it has
+// one (a two-point distribution's variance), at most π²/3 (uniform on the circle). The heading is
+// ω_r + r_rc, and ω_r a sum of the r_rp of every reference change, so the variances of those add up
+// along the chain of references. `scale` multiplies the standard deviation: it is the one number
+// calibrated against ground truth (compass.yaml says how).
+struct UncertaintyParams {
+  double scale = 0.472;  // compass.yaml's uncertainty.scale
 };
 
 struct CompassParams {
@@ -116,6 +135,7 @@ struct CompassParams {
   TiltLevellingParams levelling;
   TravelFitting travel;
   FastTurns fast_turns;
+  UncertaintyParams uncertainty;
 };
 
 // What the compass says about one frame.
@@ -133,6 +153,11 @@ struct CompassEstimate {
   double roll_rad = 0.0;
   ConfidenceFlags flags;
   int evaluations = 0;  // distance evaluations spent on this frame
+  // The heading's standard deviation, radians (UncertaintyParams): 0 for the first frame, then
+  // growing with every reference change.
+  double heading_sigma_rad = 0.0;
+  // The other reading of r_rc replaced the one given for the previous frame (FastTurns).
+  bool alternative_taken = false;
 };
 
 class VisualCompass {
@@ -183,7 +208,14 @@ class VisualCompass {
   double shift_ref_current_px_ = 0.0;      // α_m of the match that gave r_rc
   double current_heading_rad_ = 0.0;       // ω_c
   double last_rotation_rad_ = 0.0;         // ω_c − ω_p of the last frame (FastTurns)
+  // The other reading of r_rc, unwrapped like r_rc, while the reference has not changed since.
+  std::optional<double> alternative_ref_current_rad_;
+  double reference_variance_rad2_ = 0.0;  // var(ω_r): the r_rp of every reference change
+  double current_variance_rad2_ = 0.0;    // var(r_rc)
 };
+
+// A match's variance, radians² (UncertaintyParams), before the scale.
+double match_variance_rad2(const PairMatch& match, int width_px);
 
 // How Tables 3-4 name the method: "Atm 0.6055", "Fx 3"; Algorithm 1 with the rotation cap on
 // says so: "Atm 0.6055 cap 6°".

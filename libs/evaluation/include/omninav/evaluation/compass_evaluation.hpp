@@ -36,6 +36,10 @@ struct CompassEvaluation {
   std::optional<double> slope_deg_per_s;  // absent without times
   std::optional<double> slope_deg_per_m;  // absent when the camera did not travel (on the spot)
   double final_error_deg = 0.0;
+  // Frames whose |e| is within 1 and 2 of the compass's heading standard deviations
+  // (CompassEstimate::heading_sigma_rad): ~68 % and ~95 % when the uncertainty means something.
+  int within_1_sigma = 0;
+  int within_2_sigma = 0;
 };
 
 // Throws UsageError when the sizes differ or there are no frames.

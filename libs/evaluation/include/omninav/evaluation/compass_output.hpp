@@ -23,7 +23,8 @@ struct CompassFrame {
 };
 
 // One row per frame: frame, source, time_s, heading_deg, heading_unwrapped_deg, rotation_deg,
-// amplitude_norm, reference_frame, confidence, shift_px, evaluations, pitch_deg, roll_deg; with
+// amplitude_norm, reference_frame, confidence, shift_px, evaluations, pitch_deg, roll_deg,
+// heading_sigma_deg (the heading's standard deviation, compass.yaml's uncertainty); with
 // `with_truth` also truth_heading_deg, error_deg and distance_m (travelled over the frames with
 // truth), empty for a frame without truth.
 void write_compass_csv(std::ostream& out, const std::vector<CompassFrame>& frames, bool with_truth);
