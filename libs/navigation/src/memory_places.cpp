@@ -88,9 +88,30 @@ double match_limit(const memory::VisualMemory& memory, const RouteParams& params
   return params.match_dissimilarity_ratio * *link;
 }
 
+std::vector<double> neighbour_dissimilarities(const memory::VisualMemory& memory) {
+  std::vector<double> nearest(memory.place_count(), std::numeric_limits<double>::infinity());
+  if (memory.place_count() < 2) return nearest;
+  const std::vector<std::vector<lattice::SimilarPlace>> ranking =
+      lattice::PlaceDissimilarities(memory).most_similar(1);
+  for (std::size_t i = 0; i < ranking.size(); ++i) {
+    if (ranking[i].empty()) continue;
+    nearest[i] =
+        ranking[i].front().dissimilarity / static_cast<double>(memory.place(i).signature.size());
+  }
+  return nearest;
+}
+
 double recognition_limit(const memory::VisualMemory& memory, const NavigatorParams& params) {
   const std::optional<double> link = median_link_dissimilarity(memory);
   return link ? params.recognition_link_ratio * *link : std::numeric_limits<double>::infinity();
+}
+
+std::vector<double> place_recognition_limits(const memory::VisualMemory& memory,
+                                             const NavigatorParams& params) {
+  if (params.recognition_neighbour_ratio <= 0.0) return {};
+  std::vector<double> limits = neighbour_dissimilarities(memory);
+  for (double& limit : limits) limit *= params.recognition_neighbour_ratio;
+  return limits;
 }
 
 HomingScale homing_scale(const memory::VisualMemory& memory, const std::vector<PlaceNode>& places) {
@@ -265,6 +286,13 @@ GoalNavigationSetup goal_navigation_setup(const memory::VisualMemory& memory,
   }
   setup.navigator = navigator;
   setup.recognition_limit = recognition_limit(memory, navigator);
+  setup.place_recognition_limits = place_recognition_limits(memory, navigator);
+  if (!setup.place_recognition_limits.empty()) {
+    log_info("a view is recognised within " + fixed(median(setup.place_recognition_limits), 2) +
+             " grey levels per value of its best place, the median over the places "
+             "(navigation.yaml navigator.recognition_neighbour_ratio times the place's "
+             "dissimilarity to its most similar place)");
+  }
   return setup;
 }
 

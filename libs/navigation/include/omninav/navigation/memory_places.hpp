@@ -41,6 +41,17 @@ double match_limit(const memory::VisualMemory& memory, const RouteParams& params
 // itself lost by recognition).
 double recognition_limit(const memory::VisualMemory& memory, const NavigatorParams& params);
 
+// Each place's mean dissimilarity per value (Eq. 2/6 with the map's components and weights, as
+// the localiser's best match) to its most similar other place: how unlike its nearest place the
+// place looks (infinite for a map of one place).
+std::vector<double> neighbour_dissimilarities(const memory::VisualMemory& memory);
+
+// Each place's own recognition limit, params.recognition_neighbour_ratio ×
+// neighbour_dissimilarities (which replaces recognition_limit for views whose best place it is);
+// empty when the ratio is 0.
+std::vector<double> place_recognition_limits(const memory::VisualMemory& memory,
+                                             const NavigatorParams& params);
+
 // What homing on a goal image needs from `memory` (homing.hpp): its signature parameters and
 // weights, and the lattice spacing of `places` over the median dissimilarity per value of the
 // map's links, which join places about one spacing apart. Without links, metres_per_dissimilarity

@@ -89,6 +89,13 @@ struct NavigatorParams {
   // goes on. Lost more than `recoveries` times, it goes back there and stops: the run fails
   // where the map is known instead of driving away.
   double recognition_link_ratio = 1.0;
+  // With recognition_neighbour_ratio > 0, each place has its own limit instead: that many times
+  // its dissimilarity to its most similar other place (memory_places.hpp,
+  // place_recognition_limits), about one spacing away. Where views change slowly with distance
+  // (plain walls far off) the links' median recognised views metres off the map; where they
+  // change fast (near walls, doors) it left views on the map unrecognised. 1.2 chosen on the
+  // house and the plain room (docs/navigation.md), checked on the office and the field.
+  double recognition_neighbour_ratio = 1.2;
   int lost_views = 3;
   int lost_jumps = 0;
   int lost_jump_window = 8;
@@ -173,5 +180,13 @@ NavigationResult navigate(NavigationWorld& world, const std::vector<PlaceNode>& 
                           const RoutePlan& plan, const PanoramaLocaliser& localise,
                           const NavigatorParams& params, const GoalHoming& homing = {},
                           double recognition_limit = std::numeric_limits<double>::infinity());
+
+// The same, each view judged against the limit of its best place, place_recognition_limits[place]
+// (memory_places.hpp; empty: recognition_limit for every place).
+NavigationResult navigate(NavigationWorld& world, const std::vector<PlaceNode>& places,
+                          const RoutePlan& plan, const PanoramaLocaliser& localise,
+                          const NavigatorParams& params, const GoalHoming& homing,
+                          double recognition_limit,
+                          const std::vector<double>& place_recognition_limits);
 
 }  // namespace omninav::navigation
