@@ -132,7 +132,7 @@ void load_navigator_params(const ConfigReader& section, NavigatorParams& params)
   section.read("homing_stop_m", params.homing_stop_m, 0.0, 5.0);
   section.read("homing_max_steps", params.homing_max_steps, 0, 100000);
   section.read("recognition_link_ratio", params.recognition_link_ratio, 0.1, 100.0);
-  section.read("recognition_neighbour_ratio", params.recognition_neighbour_ratio, 0.0, 100.0);
+  section.read("recognition_place_link_ratio", params.recognition_place_link_ratio, 0.0, 100.0);
   section.read("lost_views", params.lost_views, 0, 100000);
   section.read("lost_jumps", params.lost_jumps, 0, 100000);
   section.read("lost_jump_window", params.lost_jump_window, 1, 100000);

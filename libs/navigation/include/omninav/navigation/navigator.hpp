@@ -89,13 +89,12 @@ struct NavigatorParams {
   // goes on. Lost more than `recoveries` times, it goes back there and stops: the run fails
   // where the map is known instead of driving away.
   double recognition_link_ratio = 1.0;
-  // With recognition_neighbour_ratio > 0, each place has its own limit instead: that many times
-  // its dissimilarity to its most similar other place (memory_places.hpp,
-  // place_recognition_limits), about one spacing away. Where views change slowly with distance
-  // (plain walls far off) the links' median recognised views metres off the map; where they
-  // change fast (near walls, doors) it left views on the map unrecognised. 1.2 chosen on the
-  // house and the plain room (docs/navigation.md), checked on the office and the field.
-  double recognition_neighbour_ratio = 1.2;
+  // With recognition_place_link_ratio > 0, each place has its own limit instead: that many
+  // times the median dissimilarity of the place's own links (memory_places.hpp,
+  // place_recognition_limits), to places about a spacing away. Off (0): on the plain room, the
+  // house and the office no ratio both recognises the views on the map and not those off it
+  // (docs/navigation.md, "Recognised where the place is").
+  double recognition_place_link_ratio = 0.0;
   int lost_views = 3;
   int lost_jumps = 0;
   int lost_jump_window = 8;
