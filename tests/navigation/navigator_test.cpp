@@ -544,6 +544,40 @@ TEST(Navigator, NeverRecognisingAPlaceItStopsWhereItStarted) {
   EXPECT_LT(static_cast<int>(result.steps.size()), 40);
 }
 
+// A robot that recognises nothing drives out, finds itself lost and turns back, but there the
+// floor holds it (past 0.2 m from its start every move is blocked: a dead end its dead
+// reckoning does not know of). Its returns, blocked every way round, end; after the recoveries
+// it gives up where it stands, long before its budget, instead of turning on the spot until the
+// budget runs out.
+TEST(Navigator, AReturnBlockedEveryWayEndsInsteadOfSpendingTheBudget) {
+  const std::vector<PlaceNode> places{{Eigen::Vector2d(0, 0), 0.0}, {Eigen::Vector2d(1, 0), 0.0}};
+  const RoutePlan plan = plan_to_goal(places, lattice_neighbours(places, 1.5), 1);
+  class Stuck : public NavigationWorld {
+   public:
+    cv::Mat view(int step) override { return inner.view(step); }
+    double move(double turn_rad, double distance_m) override {
+      if (inner.truth().floor_position().norm() > 0.2) {
+        inner.move(turn_rad, 0.0);
+        return 0.0;
+      }
+      return inner.move(turn_rad, distance_m);
+    }
+    CameraPose truth() const override { return inner.truth(); }
+    PointWorld inner;
+  } world;
+  const PanoramaLocaliser far_away = [&world](const cv::Mat&) {
+    memory::Localisation localisation = recognised(0, world.truth().heading_rad);
+    localisation.best.front().dissimilarity_per_value = 100.0;
+    return localisation;
+  };
+  NavigatorParams params;
+  const NavigationResult result = navigate(world, places, plan, far_away, params, {}, 1.0);
+  EXPECT_FALSE(result.reached);
+  EXPECT_TRUE(result.gave_up);
+  EXPECT_EQ(result.lost_events, params.recoveries + 1);
+  EXPECT_LT(static_cast<int>(result.steps.size()), params.max_steps / 2);
+}
+
 TEST(Navigator, ReadsItsParametersAndRejectsSidestepsPastHalfATurn) {
   NavigatorParams params;
   load_navigator_params(ConfigReader::from_string("navigator:\n  look_ahead_links: 3\n"

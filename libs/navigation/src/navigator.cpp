@@ -176,7 +176,8 @@ namespace {
 // when no route is left round it, escaping: a few steps at an angle from the planned direction.
 // Blocked again while escaping, the robot tries the next escape turn: the other side, then
 // wider (a robot in a corner between two boxes is blocked both ways at unstick_turn_deg),
-// round to the first after 180°. Returning, a blocked move sidesteps the same way.
+// round to the first after 180°. Returning, a blocked move sidesteps wider each time, round
+// to straight back; blocked every way, the return ends there.
 class NavigationRun {
  public:
   NavigationRun(NavigationWorld& world, const std::vector<PlaceNode>& places, const RoutePlan& plan,
