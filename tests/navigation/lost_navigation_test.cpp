@@ -130,7 +130,10 @@ TEST_P(LostNavigation, ARobotOffTheMapFindsItselfLostAndNeverDrivesAway) {
   const CameraPose far = start_at(5.0);
   const memory::Localisation at_start = map.setup.localise(map.renderer->render(far));
   ASSERT_FALSE(at_start.best.empty());
-  ASSERT_GT(at_start.best.front().dissimilarity_per_value, map.setup.recognition_limit);
+  const memory::PlaceMatch& best = at_start.best.front();
+  ASSERT_GT(best.dissimilarity_per_value, map.setup.place_recognition_limits.empty()
+                                              ? map.setup.recognition_limit
+                                              : map.setup.place_recognition_limits[best.place]);
   const Outcome from_far = navigate_from(map, far);
   // ... finds itself lost, and then comes onto the map and reaches the goal, or goes back and
   // stops, long before its step budget is spent.

@@ -516,23 +516,31 @@ TEST(Navigator, LostOffTheMapGoesBackAndStopsInsteadOfDrivingAway) {
   EXPECT_LT(farthest_from_row_m(in_box, boxed_world), 1.0 + boxed.step_m + 0.01);
 }
 
-// A robot that recognises nothing (started off the map): lost after lost_views views, back to
-// its start by dead reckoning, out again turned 90° one way, then the other, and after the
-// recoveries back at its start, stopped.
-TEST(Navigator, NeverRecognisingAPlaceItStopsWhereItStarted) {
+// Two places 1 m apart, the goal the second; the robot recognises nothing (every view 100 per
+// value from its best place, the limit 1). It never reaches the goal, and gives up after
+// finding itself lost once more than the recoveries allow.
+NavigationResult navigate_never_recognising(NavigationWorld& world, const NavigatorParams& params) {
   const std::vector<PlaceNode> places{{Eigen::Vector2d(0, 0), 0.0}, {Eigen::Vector2d(1, 0), 0.0}};
   const RoutePlan plan = plan_to_goal(places, lattice_neighbours(places, 1.5), 1);
-  PointWorld world;
   const PanoramaLocaliser far_away = [&world](const cv::Mat&) {
     memory::Localisation localisation = recognised(0, world.truth().heading_rad);
     localisation.best.front().dissimilarity_per_value = 100.0;
     return localisation;
   };
-  NavigatorParams params;
-  const NavigationResult result = navigate(world, places, plan, far_away, params, {}, 1.0);
+  NavigationResult result = navigate(world, places, plan, far_away, params, {}, 1.0);
   EXPECT_FALSE(result.reached);
   EXPECT_TRUE(result.gave_up);
   EXPECT_EQ(result.lost_events, params.recoveries + 1);
+  return result;
+}
+
+// A robot that recognises nothing (started off the map): lost after lost_views views, back to
+// its start by dead reckoning, out again turned 90° one way, then the other, and after the
+// recoveries back at its start, stopped.
+TEST(Navigator, NeverRecognisingAPlaceItStopsWhereItStarted) {
+  PointWorld world;
+  const NavigatorParams params;
+  const NavigationResult result = navigate_never_recognising(world, params);
   EXPECT_EQ(result.recoveries, 0);
   EXPECT_LT(std::hypot(world.truth().x_m, world.truth().y_m), 0.05);
   double farthest = 0.0;
@@ -542,6 +550,30 @@ TEST(Navigator, NeverRecognisingAPlaceItStopsWhereItStarted) {
   // Lost at the fourth view (the first not recognised, three more no nearer to the map).
   EXPECT_LT(farthest, params.lost_views * params.step_m + 0.05);
   EXPECT_LT(static_cast<int>(result.steps.size()), 40);
+}
+
+// A robot that recognises nothing drives out, finds itself lost and turns back, but there the
+// floor holds it (past 0.2 m from its start every move is blocked: a dead end its dead
+// reckoning does not know of). Its returns, blocked every way round, end; after the recoveries
+// it gives up where it stands, long before its budget, instead of turning on the spot until the
+// budget runs out.
+TEST(Navigator, AReturnBlockedEveryWayEndsInsteadOfSpendingTheBudget) {
+  class Stuck : public NavigationWorld {
+   public:
+    cv::Mat view(int step) override { return inner.view(step); }
+    double move(double turn_rad, double distance_m) override {
+      if (inner.truth().floor_position().norm() > 0.2) {
+        inner.move(turn_rad, 0.0);
+        return 0.0;
+      }
+      return inner.move(turn_rad, distance_m);
+    }
+    CameraPose truth() const override { return inner.truth(); }
+    PointWorld inner;
+  } world;
+  const NavigatorParams params;
+  const NavigationResult result = navigate_never_recognising(world, params);
+  EXPECT_LT(static_cast<int>(result.steps.size()), params.max_steps / 2);
 }
 
 TEST(Navigator, ReadsItsParametersAndRejectsSidestepsPastHalfATurn) {

@@ -64,6 +64,10 @@ std::optional<std::string> no_match_reason(const memory::Localisation& localisat
 
 namespace {
 
+// A link more than this many times the map's median link joins places more than a spacing or
+// two apart (link_dissimilarities).
+constexpr double kFarLinkRatio = 2.0;
+
 // The median over the map's links of their dissimilarity per value; none without links.
 std::optional<double> median_link_dissimilarity(const memory::VisualMemory& memory) {
   std::vector<double> links;
@@ -88,9 +92,37 @@ double match_limit(const memory::VisualMemory& memory, const RouteParams& params
   return params.match_dissimilarity_ratio * *link;
 }
 
+std::vector<double> link_dissimilarities(const memory::VisualMemory& memory) {
+  const double typical =
+      median_link_dissimilarity(memory).value_or(std::numeric_limits<double>::infinity());
+  std::vector<std::vector<double>> per_place(memory.place_count());
+  for (const memory::VisualMemory::EdgeRef& edge : memory.edges()) {
+    const double d =
+        edge.edge->dissimilarity / static_cast<double>(memory.place(edge.from).signature.size());
+    // A grid database's order jumps from the end of a row to the start of the next: such a
+    // link joins places far apart, and looks it.
+    if (d > kFarLinkRatio * typical) continue;
+    per_place[edge.from].push_back(d);
+    per_place[edge.to].push_back(d);
+  }
+  std::vector<double> links;
+  for (std::vector<double>& own : per_place) {
+    links.push_back(own.empty() ? typical : median(std::move(own)));
+  }
+  return links;
+}
+
 double recognition_limit(const memory::VisualMemory& memory, const NavigatorParams& params) {
   const std::optional<double> link = median_link_dissimilarity(memory);
   return link ? params.recognition_link_ratio * *link : std::numeric_limits<double>::infinity();
+}
+
+std::vector<double> place_recognition_limits(const memory::VisualMemory& memory,
+                                             const NavigatorParams& params) {
+  if (params.recognition_place_link_ratio <= 0.0) return {};
+  std::vector<double> limits = link_dissimilarities(memory);
+  for (double& limit : limits) limit *= params.recognition_place_link_ratio;
+  return limits;
 }
 
 HomingScale homing_scale(const memory::VisualMemory& memory, const std::vector<PlaceNode>& places) {
@@ -273,6 +305,13 @@ GoalNavigationSetup goal_navigation_setup(const memory::VisualMemory& memory,
   }
   setup.navigator = navigator;
   setup.recognition_limit = recognition_limit(memory, navigator);
+  setup.place_recognition_limits = place_recognition_limits(memory, navigator);
+  if (!setup.place_recognition_limits.empty()) {
+    log_info("a view is recognised within " + fixed(median(setup.place_recognition_limits), 2) +
+             " grey levels per value of its best place, the median over the places "
+             "(navigation.yaml navigator.recognition_place_link_ratio times the median "
+             "dissimilarity of the place's links)");
+  }
   return setup;
 }
 

@@ -132,6 +132,7 @@ void load_navigator_params(const ConfigReader& section, NavigatorParams& params)
   section.read("homing_stop_m", params.homing_stop_m, 0.0, 5.0);
   section.read("homing_max_steps", params.homing_max_steps, 0, 100000);
   section.read("recognition_link_ratio", params.recognition_link_ratio, 0.1, 100.0);
+  section.read("recognition_place_link_ratio", params.recognition_place_link_ratio, 0.0, 100.0);
   section.read("lost_views", params.lost_views, 0, 100000);
   section.read("lost_jumps", params.lost_jumps, 0, 100000);
   section.read("lost_jump_window", params.lost_jump_window, 1, 100000);
@@ -175,18 +176,21 @@ namespace {
 // when no route is left round it, escaping: a few steps at an angle from the planned direction.
 // Blocked again while escaping, the robot tries the next escape turn: the other side, then
 // wider (a robot in a corner between two boxes is blocked both ways at unstick_turn_deg),
-// round to the first after 180°. Returning, a blocked move sidesteps the same way.
+// round to the first after 180°. Returning, a blocked move sidesteps wider each time, round
+// to straight back; blocked every way, the return ends there.
 class NavigationRun {
  public:
   NavigationRun(NavigationWorld& world, const std::vector<PlaceNode>& places, const RoutePlan& plan,
                 const PanoramaLocaliser& localise, const NavigatorParams& params,
-                const GoalHoming& homing, double recognition_limit)
+                const GoalHoming& homing, double recognition_limit,
+                const std::vector<double>& place_recognition_limits)
       : world_(world),
         places_(places),
         localise_(localise),
         params_(params),
         homing_(homing),
         recognition_limit_(recognition_limit),
+        place_recognition_limits_(place_recognition_limits),
         plan_(plan),
         look_ahead_tolerance_m_(params.look_ahead_links > 1
                                     ? params.look_ahead_tolerance_spacings * lattice_spacing(places)
@@ -228,7 +232,10 @@ class NavigationRun {
     const cv::Mat view = world_.view(index);
     const memory::Localisation localisation = localise_(view);
     if (!localisation.best.empty()) step.match = localisation.best.front();
-    step.recognised = step.match && step.match->dissimilarity_per_value <= recognition_limit_;
+    step.recognised = step.match && step.match->dissimilarity_per_value <=
+                                        (place_recognition_limits_.empty()
+                                             ? recognition_limit_
+                                             : place_recognition_limits_[step.match->place]);
     const int place = place_of(step);
     if (place >= 0) {
       step.heading_estimate_rad =
@@ -471,9 +478,22 @@ class NavigationRun {
     ++return_steps_;
     if (driven >= 0.5 * distance_m) {
       sidestep_ = 0;
-    } else {
-      sidestep_ = sidestep_ < params_.sidesteps ? sidestep_ + 1 : 1;
+    } else if (std::abs(sidestep_turn(sidestep_ + 1, params_.sidestep_deg)) <= 180.0 + 1e-9) {
+      // Blocked: the way back lies beyond furniture (or the dead reckoning says it lies through
+      // a wall). Unlike on the route there is no link to drop: turn wider each time, round to
+      // straight back.
+      ++sidestep_;
       ++result_.sidesteps;
+    } else {
+      // Blocked every way round: this is as far back as the robot gets.
+      result_.steps.push_back(step);
+      sidestep_ = 0;
+      if (giving_up_) {
+        state_ = State::kGaveUp;
+      } else {
+        resume();
+      }
+      return;
     }
     result_.steps.push_back(step);
   }
@@ -624,6 +644,7 @@ class NavigationRun {
   const NavigatorParams& params_;
   const GoalHoming& homing_;
   const double recognition_limit_;
+  const std::vector<double>& place_recognition_limits_;  // per place; empty: recognition_limit_
 
   State state_ = State::kFollowingRoute;
   NavigationResult result_;
@@ -668,7 +689,21 @@ NavigationResult navigate(NavigationWorld& world, const std::vector<PlaceNode>& 
                           const RoutePlan& plan, const PanoramaLocaliser& localise,
                           const NavigatorParams& params, const GoalHoming& homing,
                           double recognition_limit) {
-  return NavigationRun(world, places, plan, localise, params, homing, recognition_limit).run();
+  return navigate(world, places, plan, localise, params, homing, recognition_limit, {});
+}
+
+NavigationResult navigate(NavigationWorld& world, const std::vector<PlaceNode>& places,
+                          const RoutePlan& plan, const PanoramaLocaliser& localise,
+                          const NavigatorParams& params, const GoalHoming& homing,
+                          double recognition_limit,
+                          const std::vector<double>& place_recognition_limits) {
+  if (!place_recognition_limits.empty() && place_recognition_limits.size() != places.size()) {
+    throw UsageError("navigate: " + std::to_string(place_recognition_limits.size()) +
+                     " recognition limits for " + std::to_string(places.size()) + " places");
+  }
+  return NavigationRun(world, places, plan, localise, params, homing, recognition_limit,
+                       place_recognition_limits)
+      .run();
 }
 
 }  // namespace omninav::navigation

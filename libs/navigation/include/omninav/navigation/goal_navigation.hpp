@@ -30,6 +30,8 @@ struct GoalNavigationSetup {
   // The links plans run over (motion_links) when they do not rest on the lattice; empty: the
   // lattice neighbours (RouteParams::links).
   std::vector<MeasuredLink> links;
+  // Each place's own limit instead (place_recognition_limits); empty: recognition_limit.
+  std::vector<double> place_recognition_limits;
 };
 
 // One navigation: the goal image's place, the plan to it and the run.

@@ -41,6 +41,18 @@ double match_limit(const memory::VisualMemory& memory, const RouteParams& params
 // itself lost by recognition).
 double recognition_limit(const memory::VisualMemory& memory, const NavigatorParams& params);
 
+// Each place's median over its links (the exploration's: consecutive places of a stream or a
+// grid, truly about a spacing apart whatever look-alikes the map holds) of their mean
+// dissimilarity per value, leaving out links more than twice the map's median (a grid's jump
+// from the end of one row to the start of the next); the map's median link for a place without
+// links (infinite without any).
+std::vector<double> link_dissimilarities(const memory::VisualMemory& memory);
+
+// Each place's own recognition limit, params.recognition_place_link_ratio × link_dissimilarities
+// (which replaces recognition_limit for views whose best place it is); empty when the ratio is 0.
+std::vector<double> place_recognition_limits(const memory::VisualMemory& memory,
+                                             const NavigatorParams& params);
+
 // What homing on a goal image needs from `memory` (homing.hpp): its signature parameters and
 // weights, and the lattice spacing of `places` over the median dissimilarity per value of the
 // map's links, which join places about one spacing apart. Without links, metres_per_dissimilarity

@@ -89,6 +89,12 @@ struct NavigatorParams {
   // goes on. Lost more than `recoveries` times, it goes back there and stops: the run fails
   // where the map is known instead of driving away.
   double recognition_link_ratio = 1.0;
+  // With recognition_place_link_ratio > 0, each place has its own limit instead: that many
+  // times the median dissimilarity of the place's own links (memory_places.hpp,
+  // place_recognition_limits), to places about a spacing away. Off (0): on the plain room, the
+  // house and the office no ratio both recognises the views on the map and not those off it
+  // (docs/navigation.md, "Recognised where the place is").
+  double recognition_place_link_ratio = 0.0;
   int lost_views = 3;
   int lost_jumps = 0;
   int lost_jump_window = 8;
@@ -173,5 +179,13 @@ NavigationResult navigate(NavigationWorld& world, const std::vector<PlaceNode>& 
                           const RoutePlan& plan, const PanoramaLocaliser& localise,
                           const NavigatorParams& params, const GoalHoming& homing = {},
                           double recognition_limit = std::numeric_limits<double>::infinity());
+
+// The same, each view judged against the limit of its best place, place_recognition_limits[place]
+// (memory_places.hpp; empty: recognition_limit for every place).
+NavigationResult navigate(NavigationWorld& world, const std::vector<PlaceNode>& places,
+                          const RoutePlan& plan, const PanoramaLocaliser& localise,
+                          const NavigatorParams& params, const GoalHoming& homing,
+                          double recognition_limit,
+                          const std::vector<double>& place_recognition_limits);
 
 }  // namespace omninav::navigation
