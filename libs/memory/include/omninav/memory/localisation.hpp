@@ -26,9 +26,10 @@ struct LocalisationParams {
   // re-ranked by their rotational dissimilarity to the query (signature/dissimilarity.hpp:
   // magnitudes and phases, at the turn the phases give) beside their magnitude dissimilarity,
   // each relative to the least among them; 0 = off, the finest level's order stands. On the
-  // zoo it loses in no row of the full suite and gains most in the field seen from 10 cm
-  // (docs/memory.md).
-  int fine_candidates = 10;
+  // zoo it loses in no localisation row of the full suite and gains most in the field seen from
+  // 10 cm, but the navigator, which localises every step, then lost a trial in the quick
+  // suite's room and went farther off the field's map (docs/memory.md): off by default.
+  int fine_candidates = 0;
   // The rotational term's weight in the fine level's score, beside the magnitudes' 1 (each over
   // the least among the candidates). Chosen across the zoo (docs/memory.md): 1 gains more in
   // the field but loses look-alike desks in the office; 0.5 loses nowhere.
