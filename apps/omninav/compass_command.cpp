@@ -2,9 +2,7 @@
 // evaluation of Tables 3-4 of the visual compass paper (Labrosse 2006) when the input has ground
 // truth.
 #include <algorithm>
-#include <cerrno>
 #include <chrono>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -234,15 +232,7 @@ void run_compass(const GlobalOptions& global, const CompassOptions& options) {
     std::ostringstream csv;
     evaluation::write_compass_csv(csv, run.rows, has_truth);
     if (options.out == "-") {
-      // Checked at once: a text longer than the buffer of standard output is written (and
-      // fails) here, and its reason (errno) would be gone when the command ends.
-      errno = 0;
-      std::cout << csv.str();
-      if (!std::cout) {
-        const int reason = errno;
-        throw InputError(std::string("standard output: cannot write (") +
-                         (reason != 0 ? std::strerror(reason) : "write failed") + ")");
-      }
+      write_standard_output(csv.str());
     } else {
       write_output_file(options.out, csv.str());
     }

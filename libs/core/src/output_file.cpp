@@ -190,8 +190,11 @@ void check_output_path(const fs::path& path) {
   }
 }
 
-void flush_standard_output() {
-  errno = 0;
+namespace {
+
+// Flushes standard output; throws with the errno of the first failure since the caller cleared
+// it.
+void check_standard_output() {
   std::cout.flush();
   const bool lost = !std::cout || std::fflush(stdout) != 0 || std::ferror(stdout);
   const int reason = errno;
@@ -199,6 +202,19 @@ void flush_standard_output() {
   std::cout.clear();
   std::clearerr(stdout);
   throw InputError("standard output: cannot write (" + system_reason(reason) + ")");
+}
+
+}  // namespace
+
+void write_standard_output(std::string_view text) {
+  errno = 0;
+  std::cout << text;
+  check_standard_output();
+}
+
+void flush_standard_output() {
+  errno = 0;
+  check_standard_output();
 }
 
 }  // namespace omninav

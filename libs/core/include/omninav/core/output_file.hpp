@@ -65,4 +65,9 @@ void check_output_path(const std::filesystem::path& path);
 // lost (a full disk, a closed pipe). Each command's last step.
 void flush_standard_output();
 
+// Writes `text` to standard output and flushes it at once, so that a failure keeps its reason
+// (errno is gone by the command's last flush): InputError "standard output: ..." as above. For
+// text longer than standard output's buffer.
+void write_standard_output(std::string_view text);
+
 }  // namespace omninav
