@@ -158,6 +158,9 @@ struct CompassEstimate {
   double heading_sigma_rad = 0.0;
   // The other reading of r_rc replaced the one given for the previous frame (FastTurns).
   bool alternative_taken = false;
+  // The heading was set from outside after the match (VisualCompass::realign: a recognised
+  // place of a map).
+  bool realigned = false;
 };
 
 class VisualCompass {
@@ -171,6 +174,14 @@ class VisualCompass {
   // Feeds the next frame and returns its estimate. Throws InputError naming the frame when it
   // differs in shape from the first one.
   CompassEstimate push(const CompassFrame& frame);
+
+  // Re-aligns the last frame pushed on a heading measured otherwise (a place of a map recognised
+  // in it, 000_9e80abd5855643af.txt's abstract: "only requiring infrequent re-alignment, for
+  // example when re-localising in a topological map"), with that measure's standard deviation.
+  // ω_r moves so that ω_c = heading_rad (unwrapped next to ω_c); the chain's variance restarts
+  // from sigma_rad, so later frames grow from it. `estimate`, the last push's, is updated: its
+  // heading, rotation and sigma, and `realigned`. Throws UsageError before the first frame.
+  void realign(double heading_rad, double sigma_rad, CompassEstimate& estimate);
 
   // Frames pushed so far, and how many of them served as a reference (the "Nb" of Tables 3-4).
   int frame_count() const { return frame_count_; }
@@ -208,6 +219,7 @@ class VisualCompass {
   double shift_ref_current_px_ = 0.0;      // α_m of the match that gave r_rc
   double current_heading_rad_ = 0.0;       // ω_c
   double last_rotation_rad_ = 0.0;         // ω_c − ω_p of the last frame (FastTurns)
+  double previous_heading_rad_ = 0.0;      // ω_p, the frame before the last (realign)
   // The other reading of r_rc, unwrapped like r_rc, while the reference has not changed since.
   std::optional<double> alternative_ref_current_rad_;
   double reference_variance_rad2_ = 0.0;  // var(ω_r): the r_rp of every reference change
