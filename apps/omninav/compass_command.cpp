@@ -3,7 +3,6 @@
 // truth.
 #include <algorithm>
 #include <chrono>
-#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -179,12 +178,12 @@ CompassRows run_over_input(const GlobalOptions& global, const CompassOptions& op
                              frame->source, frame->time_s, frame->truth, std::nullopt});
       if (map) {
         evaluation::CompassFrame& row = result.rows.back();
-        // A re-alignment when the map's reading is surer than the compass: its spread below the
-        // compass's sigma (or the compass, started without a true heading, not yet in the map's
-        // frame).
+        // A re-alignment when the map's reading is surer than the compass and agrees with it
+        // (navigation::realigns), or puts a compass started without a true heading in the map's
+        // frame.
         const std::optional<navigation::MapHeading> heading = map->headings->measure(panorama);
-        if (heading && std::isfinite(heading->spread_rad) &&
-            (heading->spread_rad < row.estimate.heading_sigma_rad || !in_map_frame)) {
+        if (heading && navigation::realigns(*heading, row.estimate.heading_rad,
+                                            row.estimate.heading_sigma_rad, in_map_frame)) {
           in_map_frame = true;
           compass.realign(heading->heading_rad, heading->spread_rad, row.estimate);
           row.realigned_place = static_cast<int>(heading->place);

@@ -376,7 +376,7 @@ TEST(VisualCompass, FixedSkipUsesEveryNPlusOneThFrameAsReference) {
     EXPECT_EQ(compass.reference_count(), 28 / (skip + 1) + 1) << skip;
   }
   EXPECT_EQ(describe(fixed_skip(3).sampling), "Fx 3");
-  EXPECT_EQ(describe(alg1().sampling), "Atm 0.6055 cap 6°");
+  EXPECT_EQ(describe(alg1().sampling), "Atm 0.6055 cap 4°");
   EXPECT_EQ(describe(paper_alg1().sampling), "Atm 0.6055");
 }
 

@@ -36,4 +36,13 @@ std::optional<MapHeading> MapHeadings::measure(const cv::Mat& panorama) {
   return heading;
 }
 
+bool realigns(const MapHeading& reading, double heading_rad, double sigma_rad, bool in_map_frame,
+              const RealignmentParams& params) {
+  if (!std::isfinite(reading.spread_rad)) return false;
+  if (!in_map_frame) return true;
+  const double innovation_rad = std::abs(signed_difference(reading.heading_rad, heading_rad));
+  return reading.spread_rad < sigma_rad &&
+         innovation_rad <= params.gate_sigmas * std::hypot(sigma_rad, reading.spread_rad);
+}
+
 }  // namespace omninav::navigation

@@ -30,6 +30,25 @@ struct MapHeading {
   double dissimilarity_per_value = 0.0;  // the best place's (memory::PlaceMatch)
 };
 
+// When a compass re-aligns on a map's reading (`omninav compass --map`; docs/compass.md
+// "Re-alignment on a map").
+struct RealignmentParams {
+  // The innovation gate: a reading more than this many combined standard deviations
+  // (hypot(compass sigma, reading spread)) from the compass's heading is a look-alike's and is
+  // left out. Chosen across the zoo (docs/compass.md): of 2, 3, 5 and no gate on the circle,
+  // wander and bumpy routes of 11 full-suite rows, 5 has the lowest mean max |e| over the
+  // families (24.3° against 29.2° without the map); no gate loses the Ofstad arena (53.5 ->
+  // 122°), whose symmetric views put several places' readings 150-175° off.
+  double gate_sigmas = 5.0;
+};
+
+// Whether a compass whose heading is heading_rad ± sigma_rad (its heading_sigma) re-aligns on
+// `reading`: the reading's spread is finite and below the compass's sigma (the map is surer than
+// the compass), and within the gate of its heading; or the compass is not in the map's frame yet
+// (`in_map_frame` false: started without a true heading), when a finite spread is enough.
+bool realigns(const MapHeading& reading, double heading_rad, double sigma_rad, bool in_map_frame,
+              const RealignmentParams& params = {});
+
 // The headings of views measured against `memory` (which must outlive it): each view localised
 // by memory::Localiser, its best place recognised when its dissimilarity per value is within
 // the navigator's limit (recognition_limit, or place_recognition_limits when
