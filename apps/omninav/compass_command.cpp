@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <memory>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -23,6 +24,8 @@
 #include "omninav/eval/png.hpp"
 #include "omninav/evaluation/compass_output.hpp"
 #include "omninav/io/panorama_input.hpp"
+#include "omninav/memory/map_store.hpp"
+#include "omninav/navigation/map_heading.hpp"
 #include "omninav/report/compass_figures.hpp"
 
 namespace omninav::cli {
@@ -43,6 +46,7 @@ struct CompassOptions {
   fs::path stats;
   std::string label;
   io::BagOptions bag;
+  fs::path map;  // --map: re-align on the places recognised in it
 };
 
 // --method: the sampling policy, and for exhaustive|fft|phase the minimiser too.
@@ -118,9 +122,30 @@ struct CompassRows {
   int input_width = 0;  // the first panorama's columns
 };
 
-// The compass over every frame of --input, raw images unwrapped first when asked or marked.
+// --map: the map and what measures headings against it (navigation::MapHeadings).
+struct MapRealignment {
+  std::unique_ptr<memory::VisualMemory> memory;  // held where the headings refer to it
+  std::unique_ptr<navigation::MapHeadings> headings;
+};
+
+std::optional<MapRealignment> load_map_realignment(const GlobalOptions& global,
+                                                   const fs::path& map) {
+  if (map.empty()) return std::nullopt;
+  MapRealignment result;
+  result.memory = std::make_unique<memory::VisualMemory>(memory::load_map(map));
+  result.headings = std::make_unique<navigation::MapHeadings>(
+      *result.memory, load_memory_config(global.config_dir).localisation,
+      load_navigation_config(global.config_dir).navigator);
+  return result;
+}
+
+// The compass over every frame of --input, raw images unwrapped first when asked or marked;
+// with --map, each frame whose place the map recognises re-aligns the compass on that place's
+// heading (navigation::MapHeadings).
 CompassRows run_over_input(const GlobalOptions& global, const CompassOptions& options,
                            const CompassSetup& setup) {
+  std::optional<MapRealignment> map = load_map_realignment(global, options.map);
+  bool in_map_frame = false;
   // Sources as the input names them: the CSV's source column.
   io::PanoramaInput reader = open_panoramas(options.input, global.config_dir,
                                             {.force_unwrap = options.unwrap,
@@ -146,8 +171,24 @@ CompassRows run_over_input(const GlobalOptions& global, const CompassOptions& op
       }
       const std::optional<double> truth_heading =
           frame->truth ? std::optional<double>(frame->truth->heading_rad) : std::nullopt;
+      // Started at a true heading, the compass is in the world's frame, which a map's headings
+      // share (they are the exploration's truth or compass, started the same way).
+      if (!compass.started()) in_map_frame = truth_heading.has_value();
       result.rows.push_back({compass.push(panorama, frame->index, frame->source, truth_heading),
-                             frame->source, frame->time_s, frame->truth});
+                             frame->source, frame->time_s, frame->truth, std::nullopt});
+      if (map) {
+        evaluation::CompassFrame& row = result.rows.back();
+        // A re-alignment when the map's reading is surer than the compass and agrees with it
+        // (navigation::realigns), or puts a compass started without a true heading in the map's
+        // frame.
+        const std::optional<navigation::MapHeading> heading = map->headings->measure(panorama);
+        if (heading && navigation::realigns(*heading, row.estimate.heading_rad,
+                                            row.estimate.heading_sigma_rad, in_map_frame)) {
+          in_map_frame = true;
+          compass.realign(heading->heading_rad, heading->spread_rad, row.estimate);
+          row.realigned_place = static_cast<int>(heading->place);
+        }
+      }
       progress.advance();
     }
   }
@@ -218,6 +259,9 @@ void write_plot(const fs::path& path, const CompassRows& run, const TruthRows& w
 void run_compass(const GlobalOptions& global, const CompassOptions& options) {
   // The outputs before the work, not after it.
   if (!options.stats.empty() && !options.truth) throw UsageError("--stats needs --truth");
+  if (!options.map.empty() && !fs::exists(options.map)) {
+    throw InputError(options.map.string() + ": no such map");
+  }
   for (const fs::path& output :
        {fs::path(options.out == "-" ? "" : options.out), options.plot, options.stats}) {
     if (!output.empty()) check_output_path(output);
@@ -230,7 +274,7 @@ void run_compass(const GlobalOptions& global, const CompassOptions& options) {
                   [](const evaluation::CompassFrame& r) { return r.truth.has_value(); });
   if (!options.out.empty()) {
     std::ostringstream csv;
-    evaluation::write_compass_csv(csv, run.rows, has_truth);
+    evaluation::write_compass_csv(csv, run.rows, has_truth, !options.map.empty());
     if (options.out == "-") {
       write_standard_output(csv.str());
     } else {
@@ -320,6 +364,13 @@ void add_compass_command(CLI::App& app, const GlobalOptions& global) {
                     "The input is raw omnidirectional images: unwrap them with camera.yaml "
                     "(automatic for BoB databases marked needsUnwrapping)");
   add_bag_options(command, options->bag);
+  command
+      ->add_option("--map", options->map,
+                   "A map (omninav explore): each frame whose place it recognises (the "
+                   "navigator's rule, navigation.yaml recognition_link_ratio) re-aligns the "
+                   "compass on that place's heading plus the turn the phases measure between "
+                   "the place and the frame; the CSV's realigned_place names it")
+      ->type_name("MAP");
   command
       ->add_option(
           "-o,--out", options->out,

@@ -185,6 +185,7 @@ class CompassEstimate:
     evaluations: int
     heading_sigma_rad: float  # the heading's standard deviation
     alternative_taken: bool  # the previous frame's other reading replaced it
+    realigned: bool  # the heading was re-aligned from outside (a recognised place of a map)
     confidence: str  # "ok" or flags joined by '+'
     featureless: bool
     competing_minima: bool

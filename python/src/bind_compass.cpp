@@ -70,6 +70,7 @@ void bind_compass(py::module_& m) {
       .def_readonly("evaluations", &CompassEstimate::evaluations)
       .def_readonly("heading_sigma_rad", &CompassEstimate::heading_sigma_rad)
       .def_readonly("alternative_taken", &CompassEstimate::alternative_taken)
+      .def_readonly("realigned", &CompassEstimate::realigned)
       .def("__repr__", [](const CompassEstimate& e) {
         return py::str(
                    "CompassEstimate(frame_index={}, heading_rad={}, amplitude_norm={}, "

@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <opencv2/core.hpp>
+
 #include "omninav/core/angles.hpp"
 
 namespace omninav::report {
@@ -30,6 +32,19 @@ TEST(CompassFigures, ErrorPanelOnlyWithATruthPerFrame) {
   EXPECT_EQ(plot_compass_run(estimates, {}, "test").size(), cv::Size(900, 420));
   truth.pop_back();
   EXPECT_EQ(plot_compass_run(estimates, truth, "test").size(), cv::Size(900, 420));
+}
+
+// Frames re-aligned on a map are drawn on the heading panel; without any, nothing is added.
+TEST(CompassFigures, ReAlignedFramesAreMarked) {
+  std::vector<compass::CompassEstimate> estimates = turning_estimates(40);
+  const cv::Mat plain = plot_compass_run(estimates, {}, "test");
+  estimates[10].realigned = true;
+  estimates[30].realigned = true;
+  const cv::Mat marked = plot_compass_run(estimates, {}, "test");
+  ASSERT_EQ(marked.size(), plain.size());
+  cv::Mat difference;
+  cv::absdiff(marked, plain, difference);
+  EXPECT_GT(cv::countNonZero(difference.reshape(1)), 0);
 }
 
 }  // namespace

@@ -27,4 +27,9 @@ CompassEstimate CompassRun::push(const cv::Mat& panorama, int frame_index,
   return compass_->push(CompassFrame(resampled, frame_index, source));
 }
 
+void CompassRun::realign(double heading_rad, double sigma_rad, CompassEstimate& estimate) {
+  if (!compass_) throw UsageError("the compass can only re-align a frame it has seen");
+  compass_->realign(heading_rad, sigma_rad, estimate);
+}
+
 }  // namespace omninav::compass

@@ -160,6 +160,7 @@ CompassEstimate VisualCompass::push(const CompassFrame& frame) {
     reference_count_ = 1;
     reference_heading_rad_ = initial_heading_rad_;
     current_heading_rad_ = initial_heading_rad_;
+    previous_heading_rad_ = initial_heading_rad_;
     alternative_ref_current_rad_.reset();
     reference_variance_rad2_ = 0.0;
     current_variance_rad2_ = 0.0;
@@ -266,6 +267,7 @@ CompassEstimate VisualCompass::push(const CompassFrame& frame) {
       params_.uncertainty.scale * std::sqrt(reference_variance_rad2_ + current_variance_rad2_);
 
   estimate.heading_rad = current_heading_rad_;
+  previous_heading_rad_ = previous_heading_rad;
   estimate.rotation_rad = current_heading_rad_ - previous_heading_rad;
   last_rotation_rad_ = estimate.rotation_rad;
   estimate.amplitude_norm = match.amplitude_norm;
@@ -273,6 +275,25 @@ CompassEstimate VisualCompass::push(const CompassFrame& frame) {
   estimate.shift_px = match.subpixel_shift_px;
   estimate.flags = match.flags;
   return estimate;
+}
+
+void VisualCompass::realign(double heading_rad, double sigma_rad, CompassEstimate& estimate) {
+  if (!current_) throw UsageError("the compass can only re-align a frame it has seen");
+  if (!(sigma_rad >= 0.0)) throw UsageError("a re-alignment needs a standard deviation >= 0");
+  // Unwrapped next to ω_c, so that whole turns stay accumulated.
+  current_heading_rad_ += signed_difference(heading_rad, current_heading_rad_);
+  reference_heading_rad_ = current_heading_rad_ - rotation_ref_current_rad_;
+  // var(ω_c) = var(ω_r) + var(r_rc) before the scale: the re-alignment's variance is all ω_c's.
+  const double scale = params_.uncertainty.scale;
+  const double variance_rad2 = scale > 0.0 ? (sigma_rad / scale) * (sigma_rad / scale) : 0.0;
+  reference_variance_rad2_ = variance_rad2;
+  current_variance_rad2_ = 0.0;
+  alternative_ref_current_rad_.reset();
+  estimate.heading_rad = current_heading_rad_;
+  // The jump is the output's rotation; the fast-turn prediction keeps the compass's own turn.
+  estimate.rotation_rad = current_heading_rad_ - previous_heading_rad_;
+  estimate.heading_sigma_rad = sigma_rad;
+  estimate.realigned = true;
 }
 
 }  // namespace omninav::compass

@@ -8,8 +8,8 @@
 
 namespace omninav::evaluation {
 
-void write_compass_csv(std::ostream& out, const std::vector<CompassFrame>& frames,
-                       bool with_truth) {
+void write_compass_csv(std::ostream& out, const std::vector<CompassFrame>& frames, bool with_truth,
+                       bool with_map) {
   std::vector<std::string> columns{"frame",
                                    "source",
                                    "time_s",
@@ -25,6 +25,7 @@ void write_compass_csv(std::ostream& out, const std::vector<CompassFrame>& frame
                                    "roll_deg",
                                    "heading_sigma_deg"};
   if (with_truth) columns.insert(columns.end(), {"truth_heading_deg", "error_deg", "distance_m"});
+  if (with_map) columns.push_back("realigned_place");
   write_csv_line(out, columns);
   double travelled = 0.0;
   std::optional<CameraPose> last_truth;
@@ -54,6 +55,9 @@ void write_compass_csv(std::ostream& out, const std::vector<CompassFrame>& frame
       } else {
         fields.resize(fields.size() + 3);
       }
+    }
+    if (with_map) {
+      fields.push_back(row.realigned_place ? std::to_string(*row.realigned_place) : "");
     }
     write_csv_line(out, fields);
   }

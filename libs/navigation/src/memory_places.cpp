@@ -117,6 +117,12 @@ double recognition_limit(const memory::VisualMemory& memory, const NavigatorPara
   return link ? params.recognition_link_ratio * *link : std::numeric_limits<double>::infinity();
 }
 
+bool is_recognised(const memory::PlaceMatch& match, double limit,
+                   const std::vector<double>& place_limits) {
+  return match.dissimilarity_per_value <=
+         (place_limits.empty() ? limit : place_limits[match.place]);
+}
+
 std::vector<double> place_recognition_limits(const memory::VisualMemory& memory,
                                              const NavigatorParams& params) {
   if (params.recognition_place_link_ratio <= 0.0) return {};

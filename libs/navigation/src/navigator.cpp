@@ -13,6 +13,7 @@
 #include "omninav/core/config.hpp"
 #include "omninav/core/errors.hpp"
 #include "omninav/core/format.hpp"
+#include "omninav/navigation/memory_places.hpp"
 
 namespace omninav::navigation {
 namespace {
@@ -232,10 +233,8 @@ class NavigationRun {
     const cv::Mat view = world_.view(index);
     const memory::Localisation localisation = localise_(view);
     if (!localisation.best.empty()) step.match = localisation.best.front();
-    step.recognised = step.match && step.match->dissimilarity_per_value <=
-                                        (place_recognition_limits_.empty()
-                                             ? recognition_limit_
-                                             : place_recognition_limits_[step.match->place]);
+    step.recognised =
+        step.match && is_recognised(*step.match, recognition_limit_, place_recognition_limits_);
     const int place = place_of(step);
     if (place >= 0) {
       step.heading_estimate_rad =

@@ -46,6 +46,17 @@ cv::Mat plot_compass_run(const std::vector<compass::CompassEstimate>& estimates,
     for (double& value : truth_deg) value += 360.0 * turns;
     headings.add_series("ground truth", frames, truth_deg);
   }
+  // The frames re-aligned on a map's place (`omninav compass --map`), as points on the estimate.
+  std::vector<double> realigned_frames, realigned_deg;
+  for (std::size_t i = 0; i < estimates.size(); ++i) {
+    if (!estimates[i].realigned) continue;
+    realigned_frames.push_back(frames[i]);
+    realigned_deg.push_back(estimate_deg[i]);
+  }
+  if (!realigned_frames.empty()) {
+    headings.add_series("re-aligned on the map", std::move(realigned_frames),
+                        std::move(realigned_deg), eval::SeriesStyle::kPoints);
+  }
   cv::Mat picture = headings.render();
   if (with_truth) {
     std::vector<double> errors;

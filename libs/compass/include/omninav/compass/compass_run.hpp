@@ -21,6 +21,9 @@ class CompassRun {
   CompassEstimate push(const cv::Mat& panorama, int frame_index, const std::string& source,
                        std::optional<double> truth_heading_rad);
 
+  // VisualCompass::realign on the last frame pushed (its estimate, `estimate`, is updated).
+  void realign(double heading_rad, double sigma_rad, CompassEstimate& estimate);
+
   bool started() const { return compass_ != nullptr; }
   int reference_count() const { return compass_ ? compass_->reference_count() : 0; }
   const CompassParams& params() const { return params_; }

@@ -63,9 +63,10 @@ struct SamplingParams {
   // n of "Fx n": frames skipped between references.
   int fixed_skip_frames = 3;
   // Ours (the rotation cap above): also replace the reference when the rotation from it exceeds
-  // this, radians, once the pair shows parallax; 0: off (the paper's Algorithm 1). 6° keeps the
-  // bands within 3° of the direction of travel (docs/compass.md: 5-6° work on rendered CIRCLE).
-  double max_reference_rotation_rad = 6.0 * 3.14159265358979323846 / 180.0;
+  // this, radians, once the pair shows parallax; 0: off (the paper's Algorithm 1). 4° keeps the
+  // bands within 2° of the direction of travel; chosen across the zoo leaving one family out
+  // (docs/compass.md "Thresholds"; it was 6°, chosen in the built-in room).
+  double max_reference_rotation_rad = 4.0 * 3.14159265358979323846 / 180.0;
   // Parallax shown: the pair's minimum d_m above this multiple of d(I_r, I_r, 1 column)
   // (PairMatch::self_step), the most a pure rotation leaves (above). 1: the bound itself, not a
   // value fitted to a scene.
@@ -158,6 +159,9 @@ struct CompassEstimate {
   double heading_sigma_rad = 0.0;
   // The other reading of r_rc replaced the one given for the previous frame (FastTurns).
   bool alternative_taken = false;
+  // The heading was set from outside after the match (VisualCompass::realign: a recognised
+  // place of a map).
+  bool realigned = false;
 };
 
 class VisualCompass {
@@ -171,6 +175,14 @@ class VisualCompass {
   // Feeds the next frame and returns its estimate. Throws InputError naming the frame when it
   // differs in shape from the first one.
   CompassEstimate push(const CompassFrame& frame);
+
+  // Re-aligns the last frame pushed on a heading measured otherwise (a place of a map recognised
+  // in it, 000_9e80abd5855643af.txt's abstract: "only requiring infrequent re-alignment, for
+  // example when re-localising in a topological map"), with that measure's standard deviation.
+  // ω_r moves so that ω_c = heading_rad (unwrapped next to ω_c); the chain's variance restarts
+  // from sigma_rad, so later frames grow from it. `estimate`, the last push's, is updated: its
+  // heading, rotation and sigma, and `realigned`. Throws UsageError before the first frame.
+  void realign(double heading_rad, double sigma_rad, CompassEstimate& estimate);
 
   // Frames pushed so far, and how many of them served as a reference (the "Nb" of Tables 3-4).
   int frame_count() const { return frame_count_; }
@@ -208,6 +220,7 @@ class VisualCompass {
   double shift_ref_current_px_ = 0.0;      // α_m of the match that gave r_rc
   double current_heading_rad_ = 0.0;       // ω_c
   double last_rotation_rad_ = 0.0;         // ω_c − ω_p of the last frame (FastTurns)
+  double previous_heading_rad_ = 0.0;      // ω_p, the frame before the last (realign)
   // The other reading of r_rc, unwrapped like r_rc, while the reference has not changed since.
   std::optional<double> alternative_ref_current_rad_;
   double reference_variance_rad2_ = 0.0;  // var(ω_r): the r_rp of every reference change
@@ -218,7 +231,7 @@ class VisualCompass {
 double match_variance_rad2(const PairMatch& match, int width_px);
 
 // How Tables 3-4 name the method: "Atm 0.6055", "Fx 3"; Algorithm 1 with the rotation cap on
-// says so: "Atm 0.6055 cap 6°".
+// says so: "Atm 0.6055 cap 4°".
 std::string describe(const SamplingParams& sampling);
 
 }  // namespace omninav::compass

@@ -20,14 +20,19 @@ struct CompassFrame {
   std::string source;
   std::optional<double> time_s;
   std::optional<CameraPose> truth;
+  // With a map (`omninav compass --map`): the recognised place whose heading re-aligned the
+  // compass at this frame (compass::CompassEstimate::realigned), none when it did not.
+  std::optional<int> realigned_place;
 };
 
 // One row per frame: frame, source, time_s, heading_deg, heading_unwrapped_deg, rotation_deg,
 // amplitude_norm, reference_frame, confidence, shift_px, evaluations, pitch_deg, roll_deg,
 // heading_sigma_deg (the heading's standard deviation, compass.yaml's uncertainty); with
 // `with_truth` also truth_heading_deg, error_deg and distance_m (travelled over the frames with
-// truth), empty for a frame without truth.
-void write_compass_csv(std::ostream& out, const std::vector<CompassFrame>& frames, bool with_truth);
+// truth), empty for a frame without truth; with `with_map` last realigned_place
+// (CompassFrame::realigned_place, empty when none).
+void write_compass_csv(std::ostream& out, const std::vector<CompassFrame>& frames, bool with_truth,
+                       bool with_map = false);
 
 // The statistics of Tables 3-4 as a header and one row.
 struct CompassStatsRow {

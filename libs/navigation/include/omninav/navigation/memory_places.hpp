@@ -41,6 +41,12 @@ double match_limit(const memory::VisualMemory& memory, const RouteParams& params
 // itself lost by recognition).
 double recognition_limit(const memory::VisualMemory& memory, const NavigatorParams& params);
 
+// Whether the navigator recognises `match` as the view's place: its dissimilarity per value is
+// at most the place's own limit when `place_limits` has them (place_recognition_limits), else
+// `limit` (recognition_limit).
+bool is_recognised(const memory::PlaceMatch& match, double limit,
+                   const std::vector<double>& place_limits);
+
 // Each place's median over its links (the exploration's: consecutive places of a stream or a
 // grid, truly about a spacing apart whatever look-alikes the map holds) of their mean
 // dissimilarity per value, leaving out links more than twice the map's median (a grid's jump
