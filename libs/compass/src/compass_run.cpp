@@ -23,8 +23,21 @@ CompassEstimate CompassRun::push(const cv::Mat& panorama, int frame_index,
       width_px_ && *width_px_ != panorama.cols ? resample_columns(panorama, *width_px_) : panorama;
   if (!compass_) {
     compass_ = std::make_unique<VisualCompass>(params_, truth_heading_rad.value_or(0.0));
+    if (params_.window.enabled) window_ = std::make_unique<HeadingWindow>(params_);
   }
-  return compass_->push(CompassFrame(resampled, frame_index, source));
+  const CompassFrame frame(resampled, frame_index, source);
+  const CompassEstimate chain = compass_->push(frame);
+  return window_ ? window_->push(frame, chain) : chain;
+}
+
+void CompassRun::revise(CompassEstimate& estimate, int position) const {
+  if (!window_) return;
+  const std::vector<double>& headings = window_->headings_rad();
+  if (position < 0 || position >= static_cast<int>(headings.size())) {
+    throw UsageError("no frame at position " + std::to_string(position) + " to revise");
+  }
+  estimate.heading_rad = headings[position];
+  estimate.rotation_rad = position == 0 ? 0.0 : headings[position] - headings[position - 1];
 }
 
 }  // namespace omninav::compass

@@ -129,6 +129,20 @@ struct UncertaintyParams {
   double scale = 0.472;  // compass.yaml's uncertainty.scale
 };
 
+// The multi-baseline window (ours; heading_window.hpp, docs/compass.md "Many baselines"). Each
+// new frame is matched against its reference (Algorithm 1's match) and against up to
+// `keyframes` earlier keyframes (frames that served as a reference) while their normalised
+// amplitude still passes Table 2's t; every match is a relative heading with the uncertainty
+// model's variance, and the headings of the last `length_frames` frames are solved together as a
+// robust least-squares problem (Ceres, Cauchy loss of scale `loss_scale` match standard
+// deviations); older headings are fixed.
+struct WindowParams {
+  bool enabled = false;     // compass.yaml's window.enabled (measured: docs/compass.md)
+  int keyframes = 3;        // K, earlier keyframes matched besides the reference
+  int length_frames = 10;   // N, the headings solved together
+  double loss_scale = 1.0;  // the Cauchy loss's scale, in match standard deviations
+};
+
 struct CompassParams {
   PairMatcherParams matcher;
   SamplingParams sampling;
@@ -136,6 +150,7 @@ struct CompassParams {
   TravelFitting travel;
   FastTurns fast_turns;
   UncertaintyParams uncertainty;
+  WindowParams window;
 };
 
 // What the compass says about one frame.
@@ -158,6 +173,11 @@ struct CompassEstimate {
   double heading_sigma_rad = 0.0;
   // The other reading of r_rc replaced the one given for the previous frame (FastTurns).
   bool alternative_taken = false;
+  // The measurement behind the heading, for the multi-baseline window (heading_window.hpp): r_rc,
+  // the rotation from the reference frame (reference_index) to this one, unwrapped, and the
+  // variance of the match that gave it (match_variance_rad2, before the scale).
+  double reference_rotation_rad = 0.0;
+  double match_variance_rad2 = 0.0;
 };
 
 class VisualCompass {
