@@ -56,6 +56,7 @@ class WindowParams:
     keyframes: int
     length_frames: int
     loss_scale: float
+    gate_long_baselines: bool
 
 class CompassConfig:
     def __init__(self) -> None: ...

@@ -66,7 +66,11 @@ void bind_compass_config(py::module_& m) {
       .def_readwrite("length_frames", &WindowParams::length_frames,
                      "N, the headings solved together.")
       .def_readwrite("loss_scale", &WindowParams::loss_scale,
-                     "The Cauchy loss's scale, in match standard deviations.");
+                     "The Cauchy loss's scale, in match standard deviations.")
+      .def_readwrite("gate_long_baselines", &WindowParams::gate_long_baselines,
+                     "Keyframe matches beyond the rotation cap with parallax count only where "
+                     "the baselines disagree with Algorithm 1's reading by two readings' "
+                     "separation.");
 
   py::class_<compass::CompassConfig>(
       m, "CompassConfig",

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include "omninav/core/angles.hpp"
 #include "omninav/core/errors.hpp"
@@ -81,8 +82,15 @@ std::optional<HeadingWindow::Measurement> HeadingWindow::measure(
     match = global_->match(keyframe.frame, frame, start_shift);
   }
   if (!usable(match, params_.sampling)) return std::nullopt;
+  // Beyond the rotation cap with parallax (visual_compass.hpp): a baseline Algorithm 1 would
+  // have cut, biased by the parallax of the turn.
+  const SamplingParams& sampling = params_.sampling;
+  const bool long_baseline = sampling.max_reference_rotation_rad > 0.0 &&
+                             std::abs(match.rotation_rad) > sampling.max_reference_rotation_rad &&
+                             match.distance_min > sampling.parallax_step_ratio * match.self_step;
   return Measurement{keyframe.position, position, match.rotation_rad,
-                     sigma_rad(match_variance_rad2(match, frame.width()), frame.width())};
+                     sigma_rad(match_variance_rad2(match, frame.width()), frame.width()),
+                     long_baseline};
 }
 
 double HeadingWindow::starting_heading(const std::vector<Measurement>& incoming) const {
@@ -161,7 +169,15 @@ CompassEstimate HeadingWindow::push(const CompassFrame& frame, const CompassEsti
       keyframes_.erase(keyframes_.begin() + k);
     }
   }
-  headings_rad_.push_back(incoming.size() == 1 ? predicted_rad : starting_heading(incoming));
+  double start_rad = incoming.size() == 1 ? predicted_rad : starting_heading(incoming);
+  if (params_.window.gate_long_baselines &&
+      std::abs(signed_difference(start_rad, predicted_rad)) <
+          params_.matcher.confidence.competing_separation_rad) {
+    // The baselines agree with the chain's reading: the long ones, biased by parallax, stay out.
+    std::erase_if(incoming, [](const Measurement& m) { return m.long_baseline; });
+    start_rad = incoming.size() == 1 ? predicted_rad : starting_heading(incoming);
+  }
+  headings_rad_.push_back(start_rad);
   measurements_.insert(measurements_.end(), incoming.begin(), incoming.end());
   if (incoming.size() > 1) solve();
   estimate.heading_rad = headings_rad_[position];

@@ -16,6 +16,11 @@
 // (match_variance_rad2) and, under it, the sub-pixel fit's own: a uniform error of one column,
 // 1/12 column² (so that a perfect match does not weigh infinitely).
 //
+// Long baselines (WindowParams::gate_long_baselines, off by default): a keyframe's match beyond
+// the rotation cap with parallax is a hop the cap would have cut, biased by the turn's parallax;
+// with the gate it counts only where the baselines together put the frame two readings' separation
+// (confidence.competing_separation) or more from Algorithm 1's reading.
+//
 // Solution. The new frame's heading starts at the prediction of one of its measurements, the one
 // the others agree with best (the least total robust loss): a chain that took a wrong minimum is
 // not where the solver starts when the other baselines disagree with it. Then the headings of
@@ -63,6 +68,7 @@ class HeadingWindow {
     int to = 0;
     double rotation_rad = 0.0;
     double sigma_rad = 0.0;
+    bool long_baseline = false;  // beyond the rotation cap, with parallax
   };
 
   // The frame against a keyframe, when the amplitude allows it.

@@ -138,9 +138,13 @@ struct UncertaintyParams {
 // deviations); older headings are fixed.
 struct WindowParams {
   bool enabled = false;     // compass.yaml's window.enabled (measured: docs/compass.md)
-  int keyframes = 3;        // K, earlier keyframes matched besides the reference
+  int keyframes = 1;        // K, earlier keyframes matched besides the reference
   int length_frames = 10;   // N, the headings solved together
   double loss_scale = 1.0;  // the Cauchy loss's scale, in match standard deviations
+  // Keyframe matches beyond the rotation cap with parallax (long baselines, biased by the
+  // parallax of the turn as the cap's hops are not) count only where the baselines together
+  // disagree with Algorithm 1's reading by confidence.competing_separation (two readings) or more.
+  bool gate_long_baselines = false;
 };
 
 struct CompassParams {
