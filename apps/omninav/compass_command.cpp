@@ -62,6 +62,7 @@ void apply_method(const std::string& method, compass::CompassParams& params) {
     params.fast_turns.global_fallback = false;
     params.levelling.enabled = false;
     params.travel.enabled = false;
+    params.window.enabled = false;
   } else if (method.rfind("fx:", 0) == 0) {
     sampling.policy = compass::SamplingPolicy::kFixedSkip;
     const int skip = parse_int_argument(method.substr(3), "--method " + method);
@@ -199,6 +200,11 @@ CompassRows run_over_input(const GlobalOptions& global, const CompassOptions& op
            " s (" + fixed(result.rows.size() / std::max(seconds, 1e-9), 1) +
            " frames/s, reading and decoding included)");
   result.reference_count = compass.reference_count();
+  // The multi-baseline window's final headings (compass.yaml's window; its first estimates
+  // otherwise, what a stream sees).
+  for (std::size_t i = 0; i < result.rows.size(); ++i) {
+    compass.revise(result.rows[i].estimate, static_cast<int>(i));
+  }
   return result;
 }
 
@@ -229,7 +235,11 @@ std::string dataset_label(const CompassOptions& options) {
 // The method as Tables 3-4 name it ("Atm 0.6055", "Fx 3"), and the minimiser when not the
 // paper's.
 std::string method_label(const compass::CompassParams& params) {
+  const compass::WindowParams& window = params.window;
   return describe(params.sampling) +
+         (window.enabled ? " window " + std::to_string(window.keyframes) + " keyframes " +
+                               std::to_string(window.length_frames) + " frames"
+                         : std::string()) +
          (params.matcher.minimiser.kind == compass::MinimiserKind::kLocalScan
               ? std::string()
               : " (" + to_string(params.matcher.minimiser.kind) + ")");
@@ -335,8 +345,8 @@ void add_compass_command(CLI::App& app, const GlobalOptions& global) {
                    "      parallax, the rotation from the reference exceeds\n"
                    "      sampling.max_reference_rotation_deg (ours; 0 = the paper's alone);\n"
                    "alg1-paper: Algorithm 1 exactly as the 2006 paper writes it (no rotation\n"
-                   "      cap, no global fallback, no levelling, no travel fit), whatever\n"
-                   "      compass.yaml says;\n"
+                   "      cap, no global fallback, no levelling, no travel fit, no window),\n"
+                   "      whatever compass.yaml says;\n"
                    "fx:N: a new reference every N+1 frames (\"Fx N\"; fx:0 = successive frames);\n"
                    "exhaustive | fft | phase: Algorithm 1 with that minimiser instead of\n"
                    "      compass.yaml's (exhaustive search, FFT correlation, Fourier phase)")

@@ -55,6 +55,7 @@ from ._omninav import (  # noqa: F401 (re-exported)
     SignatureParams,
     Unwrapper,
     UsageError,
+    WindowParams,
     World,
     azimuth_of_column,
     column_of_azimuth,

@@ -51,6 +51,13 @@ class SamplingParams:
 class MinimiserParams:
     kind: str  # "local_scan" | "exhaustive" | "fft" | "phase"
 
+class WindowParams:
+    enabled: bool
+    keyframes: int
+    length_frames: int
+    loss_scale: float
+    gate_long_baselines: bool
+
 class CompassConfig:
     def __init__(self) -> None: ...
     @staticmethod
@@ -59,6 +66,8 @@ class CompassConfig:
     def sampling(self) -> SamplingParams: ...
     @property
     def minimiser(self) -> MinimiserParams: ...
+    @property
+    def window(self) -> WindowParams: ...
     global_fallback: bool
     width_px: Optional[int]
 

@@ -26,6 +26,7 @@
 #include <tuple>
 #include <vector>
 
+#include "omninav/compass/heading_window.hpp"
 #include "omninav/compass/pair_matcher.hpp"
 #include "omninav/compass/tilt.hpp"
 #include "omninav/compass/visual_compass.hpp"
@@ -106,6 +107,7 @@ struct Alg1Options {
   bool travel = false;      // travel_fit.enabled
   bool fallback = true;     // minimiser.global_fallback
   bool fast = false;        // the fast-turning circle of frames()
+  bool window = false;      // window.enabled (heading_window.hpp)
 };
 
 // Algorithm 1 (Table 2's parameters) over the sequence, frames made as a camera would hand
@@ -128,11 +130,16 @@ void algorithm1(benchmark::State& state, MinimiserKind kind, int width, int heig
     warm_up.push(CompassFrame(images[0], 0));
     warm_up.push(CompassFrame(images[1], 1));
   }
+  params.window.enabled = options.window;
   std::int64_t frames_done = 0;
   for (auto _ : state) {
     omninav::compass::VisualCompass compass(params, 0.0);
+    std::unique_ptr<omninav::compass::HeadingWindow> window;
+    if (options.window) window = std::make_unique<omninav::compass::HeadingWindow>(params);
     for (int i = 0; i < kFrames; ++i) {
-      benchmark::DoNotOptimize(compass.push(CompassFrame(images[static_cast<std::size_t>(i)], i)));
+      const CompassFrame frame(images[static_cast<std::size_t>(i)], i);
+      const omninav::compass::CompassEstimate estimate = compass.push(frame);
+      benchmark::DoNotOptimize(window ? window->push(frame, estimate) : estimate);
     }
     frames_done += kFrames;
   }
@@ -207,6 +214,9 @@ void register_all() {
     add_alg1("algorithm1_level", {.level = true});
     // Algorithm 1 with compass.yaml's travel_fit.enabled on: the fit runs at each new reference.
     add_alg1("algorithm1_travel", {.travel = true});
+    // Algorithm 1 with compass.yaml's window on: keyframe matches and the window's solve.
+    add_alg1("algorithm1_window", {.window = true});
+    add_alg1("algorithm1_fast_window", {.fast = true, .window = true});
     for (const auto& [name, estimate, level] :
          {std::make_tuple("estimate", true, false), std::make_tuple("level", false, true),
           std::make_tuple("step", true, true)}) {
@@ -264,6 +274,18 @@ class RatioReporter : public benchmark::ConsoleReporter {
         if (fast > 0 && fast_no_fallback > 0) {
           std::printf(", fast circle %8.0f frames/s (%.2fx)", kFrames / fast,
                       fast_no_fallback / fast);
+        }
+        std::printf("\n");
+      }
+      const double alg1_window = get(std::string("algorithm1_window/local_scan/") + size);
+      const double fast_window = get(std::string("algorithm1_fast_window/local_scan/") + size);
+      if (alg1_local > 0 && alg1_window > 0) {
+        std::printf(
+            "  %-15s Algorithm 1 with the window: circle %8.0f frames/s (%.2fx the default)", size,
+            kFrames / alg1_window, alg1_local / alg1_window);
+        if (fast > 0 && fast_window > 0) {
+          std::printf(", fast circle %8.0f frames/s (%.2fx)", kFrames / fast_window,
+                      fast / fast_window);
         }
         std::printf("\n");
       }

@@ -96,6 +96,33 @@ TEST(CompassConfig, ReadsEveryKey) {
   EXPECT_EQ(read.width_px, 1080);
 }
 
+// The multi-baseline window's section (heading_window.hpp): shipped off, every key read, ranges
+// enforced.
+TEST(CompassConfig, ReadsTheWindowSection) {
+  const CompassConfig shipped =
+      load(ConfigReader::from_file(omninav::testing::config_dir() / "compass.yaml"));
+  const CompassConfig defaults;
+  EXPECT_EQ(shipped.compass.window.enabled, defaults.compass.window.enabled);
+  EXPECT_EQ(shipped.compass.window.keyframes, defaults.compass.window.keyframes);
+  EXPECT_EQ(shipped.compass.window.length_frames, defaults.compass.window.length_frames);
+  EXPECT_EQ(shipped.compass.window.loss_scale, defaults.compass.window.loss_scale);
+  EXPECT_EQ(shipped.compass.window.gate_long_baselines,
+            defaults.compass.window.gate_long_baselines);
+  const CompassConfig read = load(ConfigReader::from_string(
+      "window: {enabled: true, keyframes: 5, length_frames: 20, loss_scale: 2.5, "
+      "gate_long_baselines: true}\n",
+      "compass.yaml"));
+  EXPECT_TRUE(read.compass.window.enabled);
+  EXPECT_EQ(read.compass.window.keyframes, 5);
+  EXPECT_EQ(read.compass.window.length_frames, 20);
+  EXPECT_EQ(read.compass.window.loss_scale, 2.5);
+  EXPECT_TRUE(read.compass.window.gate_long_baselines);
+  EXPECT_THROW(load(ConfigReader::from_string("window: {length_frames: 1}\n", "compass.yaml")),
+               ConfigError);
+  EXPECT_THROW(load(ConfigReader::from_string("window: {loss_scale: 0}\n", "compass.yaml")),
+               ConfigError);
+}
+
 TEST(CompassConfig, RejectsUnknownKeysBadValuesAndImpossibleCombinations) {
   const auto message_of = [](const std::string& yaml) -> std::string {
     try {

@@ -71,3 +71,14 @@ def test_the_threshold_is_read_from_the_config_and_can_be_changed():
     assert config.global_fallback  # compass.yaml: the global search on fast turns
     config.global_fallback = False
     assert not config.global_fallback
+
+
+def test_the_heading_window_is_read_from_the_config_and_can_be_turned_on():
+    config = omninav.CompassConfig.load()
+    assert not config.window.enabled  # compass.yaml: measured on the zoo, off
+    assert config.window.keyframes == 1 and config.window.length_frames == 10
+    config.window.enabled = True
+    config.window.keyframes = 3
+    config.window.gate_long_baselines = True
+    assert config.window.enabled and config.window.keyframes == 3
+    assert config.window.gate_long_baselines

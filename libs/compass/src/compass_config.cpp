@@ -85,6 +85,14 @@ void load_compass_config(const ConfigReader& config, CompassConfig& out) {
   const ConfigReader uncertainty = config.section("uncertainty");
   uncertainty.read("scale", out.compass.uncertainty.scale, 0.0, 1000.0);
 
+  const ConfigReader window = config.section("window");
+  WindowParams& window_params = out.compass.window;
+  window.read("enabled", window_params.enabled);
+  window.read("keyframes", window_params.keyframes, 0, 64);
+  window.read("length_frames", window_params.length_frames, 2, 1000);
+  window.read("loss_scale", window_params.loss_scale, 0.01, 1000.0);
+  window.read("gate_long_baselines", window_params.gate_long_baselines);
+
   const ConfigReader input = config.section("input");
   std::optional<double> width = out.width_px ? std::optional<double>(*out.width_px) : std::nullopt;
   input.read("width_px", width, 8, 16384);

@@ -266,6 +266,8 @@ CompassEstimate VisualCompass::push(const CompassFrame& frame) {
   estimate.heading_sigma_rad =
       params_.uncertainty.scale * std::sqrt(reference_variance_rad2_ + current_variance_rad2_);
 
+  estimate.reference_rotation_rad = rotation_ref_current_rad_;
+  estimate.match_variance_rad2 = current_variance_rad2_;
   estimate.heading_rad = current_heading_rad_;
   previous_heading_rad_ = previous_heading_rad;
   estimate.rotation_rad = current_heading_rad_ - previous_heading_rad;

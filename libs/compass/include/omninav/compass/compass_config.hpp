@@ -21,9 +21,9 @@ struct CompassConfig {
 };
 
 // Reads the sections distance, minimiser, phase, subpixel, sampling, confidence, tilt,
-// travel_fit and input (the tilt's elevations come from camera.yaml, set by the caller).
-// Throws ConfigError naming the key, the file and the valid range or choices, and UsageError
-// for a combination that cannot work (the fft minimiser with the l1 metric).
+// travel_fit, uncertainty, window and input (the tilt's elevations come from camera.yaml, set by
+// the caller). Throws ConfigError naming the key, the file and the valid range or choices, and
+// UsageError for a combination that cannot work (the fft minimiser with the l1 metric).
 void load_compass_config(const ConfigReader& config, CompassConfig& out);
 
 }  // namespace omninav::compass

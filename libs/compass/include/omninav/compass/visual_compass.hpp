@@ -130,6 +130,24 @@ struct UncertaintyParams {
   double scale = 0.472;  // compass.yaml's uncertainty.scale
 };
 
+// The multi-baseline window (ours; heading_window.hpp, docs/compass.md "Many baselines"). Each
+// new frame is matched against its reference (Algorithm 1's match) and against up to
+// `keyframes` earlier keyframes (frames that served as a reference) while their normalised
+// amplitude still passes Table 2's t; every match is a relative heading with the uncertainty
+// model's variance, and the headings of the last `length_frames` frames are solved together as a
+// robust least-squares problem (Ceres, Cauchy loss of scale `loss_scale` match standard
+// deviations); older headings are fixed.
+struct WindowParams {
+  bool enabled = false;     // compass.yaml's window.enabled (measured: docs/compass.md)
+  int keyframes = 1;        // K, earlier keyframes matched besides the reference
+  int length_frames = 10;   // N, the headings solved together
+  double loss_scale = 1.0;  // the Cauchy loss's scale, in match standard deviations
+  // Keyframe matches beyond the rotation cap with parallax (long baselines, biased by the
+  // parallax of the turn as the cap's hops are not) count only where the baselines together
+  // disagree with Algorithm 1's reading by confidence.competing_separation (two readings) or more.
+  bool gate_long_baselines = false;
+};
+
 struct CompassParams {
   PairMatcherParams matcher;
   SamplingParams sampling;
@@ -137,6 +155,7 @@ struct CompassParams {
   TravelFitting travel;
   FastTurns fast_turns;
   UncertaintyParams uncertainty;
+  WindowParams window;
 };
 
 // What the compass says about one frame.
@@ -162,6 +181,11 @@ struct CompassEstimate {
   // The heading was set from outside after the match (VisualCompass::realign: a recognised
   // place of a map).
   bool realigned = false;
+  // The measurement behind the heading, for the multi-baseline window (heading_window.hpp): r_rc,
+  // the rotation from the reference frame (reference_index) to this one, unwrapped, and the
+  // variance of the match that gave it (match_variance_rad2, before the scale).
+  double reference_rotation_rad = 0.0;
+  double match_variance_rad2 = 0.0;
 };
 
 class VisualCompass {
