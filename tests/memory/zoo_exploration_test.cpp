@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -56,7 +57,7 @@ Spacing spacing_in(const std::string& spec, const std::string& zigzag) {
   const auto explore = [&](bool automatic) {
     VisualMemory memory{MapParameters{}};
     ExplorationParams params;
-    if (!automatic) params.new_place_dissimilarity = 1.5;
+    params.new_place_dissimilarity = automatic ? std::nullopt : std::optional<double>(1.5);
     params.heading_source = HeadingPolicy::kNone;
     params.thumbnail_width_px = 8;
     Explorer explorer(memory, params, spec, "zoo_exploration_test.cpp");
