@@ -88,7 +88,7 @@ struct ExplorationParams {
   // family, but localises the queries of the room, the office, the house and the Ofstad arena
   // worse on its sparser maps (docs/memory.md, "The new-place threshold").
   std::optional<double> new_place_dissimilarity = 1.5;
-  double new_place_plateau_share = 0.5;
+  double new_place_plateau_share = 0.55;
   int every_n_frames = 0;        // a place at least every n frames; 0: off
   double every_m = 0.0;          // a place every d metres travelled (poses needed); 0: off
   int thumbnail_width_px = 180;  // thumbnails keep the panorama's aspect ratio
