@@ -5,6 +5,7 @@
 #include "cli.hpp"
 #include "omninav/core/errors.hpp"
 #include "omninav/core/log.hpp"
+#include "omninav/core/parse.hpp"
 #include "omninav/memory/exploration.hpp"
 #include "omninav/memory/map_store.hpp"
 
@@ -14,7 +15,7 @@ namespace {
 struct ExploreOptions {
   std::filesystem::path input;
   std::filesystem::path out;
-  double dissimilarity = -1.0;  // < 0: from memory.yaml
+  std::string dissimilarity;  // empty: from memory.yaml
   int every_n_frames = -1;
   double every_m = -1.0;
   std::string heading_source;
@@ -30,7 +31,13 @@ struct ExploreOptions {
 void run_explore(const GlobalOptions& global, const ExploreOptions& options) {
   memory::MemoryConfig config = load_memory_config(global.config_dir);
   memory::ExplorationParams& params = config.exploration;
-  if (options.dissimilarity >= 0.0) params.new_place_dissimilarity = options.dissimilarity;
+  if (options.dissimilarity == "auto") {
+    params.new_place_dissimilarity.reset();
+  } else if (!options.dissimilarity.empty()) {
+    // Checked by the option's validator: a finite number in [0, 1000].
+    params.new_place_dissimilarity =
+        parse_double_argument(options.dissimilarity, "--dissimilarity");
+  }
   if (options.every_n_frames >= 0) params.every_n_frames = options.every_n_frames;
   if (options.every_m >= 0.0) params.every_m = options.every_m;
   if (!options.heading_source.empty()) {
@@ -120,8 +127,16 @@ void add_explore_command(CLI::App& app, const GlobalOptions& global) {
   command
       ->add_option("--dissimilarity", options->dissimilarity,
                    "New place when the mean magnitude difference per value to the last place "
-                   "reaches this, grey levels; 0 = off (default: memory.yaml)")
-      ->check(NumberRange(0.0, 1000.0));
+                   "reaches this, grey levels, or auto: memory.yaml's new_place_plateau_share of "
+                   "the plateau the stream's dissimilarity saturates at; 0 = off (default: "
+                   "memory.yaml)")
+      ->check(CLI::Validator(
+          [range = NumberRange(0.0, 1000.0)](std::string& text) mutable {
+            if (text == "auto") return std::string();
+            const std::string error = range(text);
+            return error.empty() ? error : error + ", nor auto";
+          },
+          "auto or NUMBER in [0, 1000]", "auto or a number"));
   command
       ->add_option("--every-n-frames", options->every_n_frames,
                    "Also a place every n frames; 0 = off (default: memory.yaml)")

@@ -78,7 +78,8 @@ class SignatureParams:
     def __init__(self) -> None: ...
 
 class ExplorationParams:
-    new_place_dissimilarity: float
+    new_place_dissimilarity: Optional[float]  # None: "auto", a share of the stream's plateau
+    new_place_plateau_share: float
     every_n_frames: int
     every_m: float
     thumbnail_width_px: int

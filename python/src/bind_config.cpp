@@ -121,6 +121,7 @@ void bind_memory_config(py::module_& m) {
   using memory::ExplorationParams;
   py::class_<ExplorationParams>(m, "ExplorationParams", "memory.yaml's exploration section.")
       .def_readwrite("new_place_dissimilarity", &ExplorationParams::new_place_dissimilarity)
+      .def_readwrite("new_place_plateau_share", &ExplorationParams::new_place_plateau_share)
       .def_readwrite("every_n_frames", &ExplorationParams::every_n_frames)
       .def_readwrite("every_m", &ExplorationParams::every_m)
       .def_readwrite("thumbnail_width_px", &ExplorationParams::thumbnail_width_px)

@@ -23,4 +23,25 @@ double median_of_middles(std::vector<double> values) {
   return 0.5 * (lower + upper);
 }
 
+double pair_quantile(std::size_t count, double share, std::size_t max_pairs,
+                     const std::function<double(std::size_t, std::size_t)>& value) {
+  const std::size_t pairs = count * (count - 1) / 2;
+  std::vector<double> values;
+  if (pairs <= max_pairs) {
+    values.reserve(pairs);
+    for (std::size_t a = 0; a < count; ++a) {
+      for (std::size_t b = a + 1; b < count; ++b) values.push_back(value(a, b));
+    }
+  } else {
+    const std::size_t half = count / 2;
+    const std::size_t offsets = std::clamp<std::size_t>(max_pairs / count, 1, half);
+    values.reserve(offsets * count);
+    for (std::size_t a = 0; a < count; ++a) {
+      for (std::size_t j = 0; j < offsets; ++j)
+        values.push_back(value(a, (a + 1 + j * half / offsets) % count));
+    }
+  }
+  return quantile(std::move(values), share);
+}
+
 }  // namespace omninav

@@ -13,6 +13,7 @@
 #include "omninav/core/log.hpp"
 #include "omninav/core/statistics.hpp"
 #include "omninav/lattice/similar_places.hpp"
+#include "omninav/signature/plateau.hpp"
 
 namespace omninav::lattice {
 namespace {
@@ -143,7 +144,8 @@ void calibrate(const memory::VisualMemory& memory, const PlaceDissimilarities& d
     calibration.local_step_dissimilarity.push_back(similar.front().dissimilarity);
   }
   calibration.step_dissimilarity = median(calibration.local_step_dissimilarity);
-  calibration.plateau_dissimilarity = dissimilarity.pair_quantile(0.9, kPlateauPairs);
+  calibration.plateau_dissimilarity =
+      dissimilarity.pair_quantile(signature::kPlateauQuantile, kPlateauPairs);
   const double smallest = *std::min_element(calibration.local_step_dissimilarity.begin(),
                                             calibration.local_step_dissimilarity.end());
   if (!(smallest > 0.0) || calibration.plateau_dissimilarity <= calibration.step_dissimilarity) {

@@ -84,29 +84,10 @@ std::vector<std::vector<SimilarPlace>> PlaceDissimilarities::most_similar(int co
 }
 
 double PlaceDissimilarities::pair_quantile(double share, std::size_t max_pairs) const {
-  const auto places = static_cast<std::size_t>(magnitudes_.rows());
-  const std::size_t pairs = places * (places - 1) / 2;
-  std::vector<double> values;
-  if (pairs <= max_pairs) {
-    values.reserve(pairs);
-    for (std::size_t a = 0; a < places; ++a) {
-      for (std::size_t b = a + 1; b < places; ++b) {
-        values.push_back((*this)(static_cast<int>(a), static_cast<int>(b)));
-      }
-    }
-  } else {
-    // Offsets spread evenly over 1..places/2: pairs near and far in the exploration alike.
-    const std::size_t half = places / 2;
-    const std::size_t offsets = std::clamp<std::size_t>(max_pairs / places, 1, half);
-    values.reserve(offsets * places);
-    for (std::size_t a = 0; a < places; ++a) {
-      for (std::size_t j = 0; j < offsets; ++j) {
-        const std::size_t b = (a + 1 + j * half / offsets) % places;
-        values.push_back((*this)(static_cast<int>(a), static_cast<int>(b)));
-      }
-    }
-  }
-  return quantile(std::move(values), share);
+  return omninav::pair_quantile(static_cast<std::size_t>(magnitudes_.rows()), share, max_pairs,
+                                [this](std::size_t a, std::size_t b) {
+                                  return (*this)(static_cast<int>(a), static_cast<int>(b));
+                                });
 }
 
 }  // namespace omninav::lattice

@@ -11,6 +11,8 @@
 #include "omninav/core/angles.hpp"
 #include "omninav/core/config.hpp"
 #include "omninav/core/errors.hpp"
+#include "omninav/core/format.hpp"
+#include "omninav/core/log.hpp"
 #include "omninav/core/panorama.hpp"
 #include "omninav/core/progress.hpp"
 #include "omninav/signature/dissimilarity.hpp"
@@ -42,7 +44,22 @@ HeadingPolicy heading_policy_from_string(const std::string& text) {
 }
 
 void load_exploration_params(const ConfigReader& section, ExplorationParams& params) {
-  section.read("new_place_dissimilarity", params.new_place_dissimilarity, 0.0, 1000.0);
+  // auto or a number of grey levels.
+  std::string threshold;
+  section.read("new_place_dissimilarity", threshold, {});
+  if (threshold == "auto") {
+    params.new_place_dissimilarity.reset();
+  } else if (!threshold.empty()) {
+    double value = 0.0;
+    try {
+      section.read("new_place_dissimilarity", value, 0.0, 1000.0);
+      params.new_place_dissimilarity = value;
+    } catch (const ConfigError&) {
+      section.fail("new_place_dissimilarity",
+                   "= '" + threshold + "' is neither auto nor a number in [0, 1000]");
+    }
+  }
+  section.read("new_place_plateau_share", params.new_place_plateau_share, 0.01, 1.0);
   section.read("every_n_frames", params.every_n_frames, 0, 1000000);
   section.read("every_m", params.every_m, 0.0, 1000.0);
   section.read("thumbnail_width_px", params.thumbnail_width_px, 8, 4096);
@@ -104,6 +121,27 @@ Explorer::Explorer(VisualMemory& memory, ExplorationParams params, std::string i
   run.heading_source = heading_source_.value_or(HeadingSource::kCompass);
   places_before_run_ = memory_.place_count();
   run_index_ = memory_.add_run(std::move(run));
+  if (!params_.new_place_dissimilarity) {
+    plateau_ = std::make_unique<signature::PlateauEstimate>(memory_.parameters().weights);
+    for (PlaceIndex i = 0; i < places_before_run_; ++i) plateau_->add(memory_.place(i).signature);
+    plateau_from_map_ = places_before_run_ >= kAutoWarmupFrames;
+  }
+}
+
+std::optional<double> Explorer::plateau_per_value() const {
+  return plateau_ ? plateau_->per_value() : std::nullopt;
+}
+
+std::optional<double> Explorer::new_place_threshold() const {
+  if (params_.new_place_dissimilarity) {
+    if (*params_.new_place_dissimilarity > 0.0) return params_.new_place_dissimilarity;
+    return std::nullopt;
+  }
+  const std::optional<double> plateau = plateau_->per_value();
+  if (!plateau || (!plateau_from_map_ && plateau_->signatures_seen() < kAutoWarmupFrames)) {
+    return std::nullopt;
+  }
+  return params_.new_place_plateau_share * *plateau;
 }
 
 const Run& Explorer::run() const {
@@ -113,6 +151,7 @@ const Run& Explorer::run() const {
 std::optional<PlaceIndex> Explorer::add(const io::Frame& frame) {
   const signature::Signature signature = extractor_.compute(frame.image, frame.source);
   track_heading(frame, signature);
+  if (plateau_) plateau_->add(signature);
   ++frames_;
   memory_.record_run_progress(run_index_, frames_, places_);
   ++frames_since_place_;
@@ -133,12 +172,13 @@ std::optional<PlaceIndex> Explorer::add(const io::Frame& frame) {
     // The map's scale, for the lattice (lattice/organise.hpp): consecutive places every_m apart.
     memory_.set_exploration_spacing_m(params_.every_m);
   }
-  if (!new_place && params_.new_place_dissimilarity > 0.0) {
+  const std::optional<double> threshold = new_place ? std::nullopt : new_place_threshold();
+  if (threshold) {
     const signature::Signature& last = memory_.place(*last_place_).signature;
     const double per_value =
         signature::dissimilarity(last, signature, -1, memory_.parameters().weights) /
         static_cast<double>(signature.size());
-    new_place = per_value >= params_.new_place_dissimilarity;
+    new_place = per_value >= *threshold;
   }
   if (!new_place) return std::nullopt;
   return make_place(frame, signature);
@@ -295,8 +335,13 @@ Run explore_frames(VisualMemory& memory, const ExplorationParams& params,
   if (every_frame) {
     description << "every frame a place";
   } else {
-    description << "new_place_dissimilarity " << params.new_place_dissimilarity
-                << ", every_n_frames " << params.every_n_frames << ", every_m " << params.every_m;
+    description << "new_place_dissimilarity ";
+    if (params.new_place_dissimilarity) {
+      description << *params.new_place_dissimilarity;
+    } else {
+      description << "auto (" << params.new_place_plateau_share << " of the plateau)";
+    }
+    description << ", every_n_frames " << params.every_n_frames << ", every_m " << params.every_m;
   }
   description << ", heading_source " << to_string(params.heading_source);
   Explorer explorer(memory, params, input.name, description.str(),
@@ -319,6 +364,14 @@ Run explore_frames(VisualMemory& memory, const ExplorationParams& params,
     progress.advance();
   }
   if (explorer.frames_seen() == 0) throw InputError(input.name + ": no frames");
+  if (!every_frame && explorer.plateau_per_value()) {
+    std::ostringstream note;
+    note << "plateau " << fixed(*explorer.plateau_per_value(), 3) << " per value, threshold "
+         << fixed(params.new_place_plateau_share * *explorer.plateau_per_value(), 3)
+         << " at the end";
+    memory.add_run_note(memory.runs().size() - 1, note.str());
+    log_info("explore: " + note.str());
+  }
   if (input.is_grid && input.grid_spacing_m) memory.set_grid_spacing_m(*input.grid_spacing_m);
   return explorer.run();
 }

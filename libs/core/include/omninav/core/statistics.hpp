@@ -4,6 +4,8 @@
 // named for how they treat an even count: median() takes the upper middle value (a value of
 // the sample), median_of_middles() the mean of the two middle values (the textbook median).
 
+#include <cstddef>
+#include <functional>
 #include <utility>
 #include <vector>
 
@@ -21,5 +23,13 @@ inline double median(std::vector<double> values) {
 // The median with an even count's two middle values averaged (Theil-Sen's estimator, as
 // published). `values` must not be empty.
 double median_of_middles(std::vector<double> values);
+
+// The `share` quantile (as quantile()) of value(a, b) over the pairs a < b of `count` items (at
+// least two): over all pairs when there are at most `max_pairs`, else over about `max_pairs`,
+// every item paired with the items at evenly spaced index offsets over 1..count/2 (pairs near
+// and far in the listing alike): the same for the same items. The plateau of the dissimilarity
+// (signature/plateau.hpp) over a map's places or a stream's frames.
+double pair_quantile(std::size_t count, double share, std::size_t max_pairs,
+                     const std::function<double(std::size_t, std::size_t)>& value);
 
 }  // namespace omninav

@@ -3,13 +3,27 @@
 // visual memory. A frame becomes a new place when
 //   - it is the first of the run, or
 //   - its dissimilarity to the last place, per compared value, reaches
-//     new_place_dissimilarity (the view has changed enough), or
+//     new_place_dissimilarity (the view has changed enough; "auto": a share of the plateau,
+//     below), or
 //   - every_n_frames frames have passed since the last place, or
 //   - every_m metres were travelled since the last place (only when the input has poses; the
 //     map then records it, VisualMemory::exploration_spacing_m, the lattice's default scale);
 // (each rule off when its value is 0). Each new place gets an edge from the previous place of
 // the run with their relative heading (phases, Eq. 1) and direction of motion (§3.4): of kind
 // sequence along a stream, listed for an unordered input (visual_memory.hpp).
+//
+// The new-place threshold "auto" (new_place_dissimilarity none; not the default, see below). A
+// fixed number of grey levels spaces places differently in every world: what a 30 cm step costs
+// ranges from 1 (a field seen from 1 m) to 4.6 (the Ofstad arena) per value (docs/memory.md). So
+// the threshold is derived from the stream itself, as a share (new_place_plateau_share) of the
+// plateau of Fig. 7, the level the dissimilarity saturates at between views far apart: places come
+// a fixed share of the way to the plateau apart, wherever that lies in metres. The plateau is the
+// lattice's (signature/plateau.hpp: the 90th percentile of pairs), estimated while exploring from
+// frames sampled evenly over the stream so far (PlateauEstimate), so that it works on a stream
+// seen once (a camera): the estimate grows as the robot covers ground, so places come somewhat
+// closer early in a run. No place is made by dissimilarity before the estimate holds
+// kAutoWarmupFrames frames (the run's first frame is a place as always). Exploring into a map,
+// the estimate starts from the map's places.
 //
 // Headings. heading_source "auto" (the default) is "compass" for a stream and, for an unordered
 // input (a grid database) that records its images' headings, "truth": the database's own
@@ -48,6 +62,7 @@
 #include "omninav/compass/visual_compass.hpp"
 #include "omninav/io/frame.hpp"
 #include "omninav/memory/visual_memory.hpp"
+#include "omninav/signature/plateau.hpp"
 #include "omninav/signature/signature.hpp"
 
 namespace omninav {
@@ -68,7 +83,12 @@ struct ExplorationParams {
   // levels, that makes a new place; 0: off. On the rendered 30 cm grid of the built-in room,
   // neighbours 30 cm apart differ by 1.85 (median; 10th percentile 1.42, luminance, m = 15;
   // docs/memory.md, Fig. 7): 1.5 makes places about 30 cm apart or closer.
-  double new_place_dissimilarity = 1.5;
+  // None ("auto" in memory.yaml): new_place_plateau_share × the stream's plateau (above); 0:
+  // off. The default stays the room's 1.5: on the zoo auto spaces places nearer 30 cm in every
+  // family, but localises the queries of the room, the office, the house and the Ofstad arena
+  // worse on its sparser maps (docs/memory.md, "The new-place threshold").
+  std::optional<double> new_place_dissimilarity = 1.5;
+  double new_place_plateau_share = 0.55;
   int every_n_frames = 0;        // a place at least every n frames; 0: off
   double every_m = 0.0;          // a place every d metres travelled (poses needed); 0: off
   int thumbnail_width_px = 180;  // thumbnails keep the panorama's aspect ratio
@@ -95,6 +115,12 @@ enum class FrameOrder {
 
 class Explorer {
  public:
+  // With the threshold auto, frames the plateau estimate must hold before it makes places: with
+  // fewer, the few pairs' noise sets it. After that, places come at about frames 8, 16, 32, ...
+  // while the robot covers ground faster than views saturate (the estimate then grows as the
+  // span of the stream does), then at the share of the plateau.
+  static constexpr std::size_t kAutoWarmupFrames = 8;
+
   // Starts a new run in `memory` (which may already hold places: exploring extends it). The
   // memory must outlive the explorer.
   Explorer(VisualMemory& memory, ExplorationParams params, std::string input,
@@ -111,6 +137,12 @@ class Explorer {
 
   const Run& run() const;
   int frames_seen() const { return frames_; }
+  // The dissimilarity per value that makes a new place now: new_place_dissimilarity, or with
+  // new_place_auto the share of the plateau estimated so far (none during the warm-up); none
+  // when the rule is off.
+  std::optional<double> new_place_threshold() const;
+  // With new_place_auto, the plateau estimated so far (per value).
+  std::optional<double> plateau_per_value() const;
 
  private:
   // Feeds the frame to the visual compass (heading_source "compass"; otherwise does nothing):
@@ -142,6 +174,8 @@ class Explorer {
   std::unique_ptr<compass::PairMatcher> place_matcher_;  // unordered inputs
   std::vector<cv::Mat> run_place_panoramas_;  // unordered: this run's places, at compass width
   double compass_heading_rad_ = 0.0;  // the compass's heading of the latest frame (unwrapped)
+  std::unique_ptr<signature::PlateauEstimate> plateau_;  // new_place_auto
+  bool plateau_from_map_ = false;  // the estimate started from the places of the map extended
 };
 
 // The frames `omninav explore` takes into a run.
