@@ -128,6 +128,8 @@ class NavigatorParams:
     home_on_goal_image: bool
     homing_step_m: float
     homing_stop_m: float
+    homing_step_spacings: float
+    homing_stop_spacings: float
     homing_max_steps: int
 
 class NavigationConfig:

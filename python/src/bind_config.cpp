@@ -218,6 +218,8 @@ void bind_navigation_config(py::module_& m) {
       .def_readwrite("home_on_goal_image", &NavigatorParams::home_on_goal_image)
       .def_readwrite("homing_step_m", &NavigatorParams::homing_step_m)
       .def_readwrite("homing_stop_m", &NavigatorParams::homing_stop_m)
+      .def_readwrite("homing_step_spacings", &NavigatorParams::homing_step_spacings)
+      .def_readwrite("homing_stop_spacings", &NavigatorParams::homing_stop_spacings)
       .def_readwrite("homing_max_steps", &NavigatorParams::homing_max_steps);
 
   using evaluation::NavigationConfig;

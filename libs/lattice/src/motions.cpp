@@ -63,14 +63,16 @@ Eigen::Vector2d displacement(const MotionMeasurement& motion) {
 
 // Along a stream, the steps between two places that are few steps apart tell where one lies
 // from the other (dead reckoning, errors growing with the square root of the steps); a
-// neighbour motion between such places that disagrees with them by more than 3 standard
-// deviations is a look-alike's. Places not joined by unbroken steps, or too many steps apart,
-// are not judged.
+// neighbour motion between such places that disagrees with them by more than step_check_sigmas
+// standard deviations is a look-alike's. Places not joined by unbroken steps, or too many steps
+// apart, are not judged.
 class StepCheck {
  public:
+  // step_limit_m: how far a motion may be from the steps' dead reckoning over one step (so many
+  // standard deviations of one step's displacement); over n steps, sqrt(n) times that.
   StepCheck(const std::vector<Candidate>& candidates, int place_count, int max_steps,
-            double step_stddev_m)
-      : step_after_(place_count), max_steps_(max_steps), step_stddev_m_(step_stddev_m) {
+            double step_limit_m)
+      : step_after_(place_count), max_steps_(max_steps), step_limit_m_(step_limit_m) {
     for (const Candidate& candidate : candidates) {
       const MotionMeasurement& motion = candidate.motion;
       if (!motion.step) continue;
@@ -90,13 +92,13 @@ class StepCheck {
     const Eigen::Vector2d measured =
         motion.from == first ? displacement(motion) : Eigen::Vector2d(-displacement(motion));
     return (measured - along_steps).norm() >
-           3.0 * step_stddev_m_ * std::sqrt(static_cast<double>(last - first));
+           step_limit_m_ * std::sqrt(static_cast<double>(last - first));
   }
 
  private:
   std::vector<std::optional<Eigen::Vector2d>> step_after_;  // from place i to place i + 1
   int max_steps_;
-  double step_stddev_m_;  // of one step's displacement
+  double step_limit_m_;  // over one step
 };
 
 // The headings the motions are measured with: the map's (lattice_headings), those of the visual
@@ -228,9 +230,9 @@ class MotionMeasurer {
     std::vector<double> residuals;
     for (const Candidate& candidate : candidates) residuals.push_back(candidate.residual);
     const double limit = params_.look_alike_residual * median(std::move(residuals));
-    const StepCheck steps(
-        candidates, static_cast<int>(ranking_.size()), params_.step_check_steps,
-        calibration_.step_m * std::hypot(direction_stddev_, params_.motion_length_stddev));
+    const StepCheck steps(candidates, static_cast<int>(ranking_.size()), params_.step_check_steps,
+                          params_.step_check_sigmas * calibration_.step_m *
+                              std::hypot(direction_stddev_, params_.motion_length_stddev));
     std::vector<Candidate> dropped;
     for (const Candidate& candidate : candidates) {
       if (!candidate.motion.step &&

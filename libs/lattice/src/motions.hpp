@@ -18,8 +18,10 @@
 //     maps: residuals of truly near pairs median 0.38-0.70 of the signal, look-alikes above
 //     1.0), so a neighbour motion whose fit leaves more than look_alike_residual times the map's
 //     median residual is dropped; and so is one between places of a stream at most
-//     step_check_steps apart that disagrees with the steps between them by more than 3
-//     standard deviations (dead reckoning over a few steps is better than any look-alike).
+//     step_check_steps apart that disagrees with the steps between them by more than
+//     step_check_sigmas standard deviations (dead reckoning over a few steps is better than any
+//     look-alike). The three numbers are chosen across the zoo (docs/lattice.md, Thresholds
+//     across the zoo).
 // Last, places that these motions leave apart are joined by the most similar pairs across, even
 // look-alikes (a lattice in pieces held by springs alone falls apart: a piece whose motions were
 // all dropped drifts away, pushed by its one-sided springs).

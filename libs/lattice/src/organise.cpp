@@ -78,6 +78,7 @@ void load_organise_params(const ConfigReader& section, OrganiseParams& params) {
   section.read("step_likeness", params.step_likeness, 1.0, 10.0);
   section.read("look_alike_residual", params.look_alike_residual, 1.0, 100.0);
   section.read("step_check_steps", params.step_check_steps, 0, 1000);
+  section.read("step_check_sigmas", params.step_check_sigmas, 0.1, 100.0);
   section.read("motion_direction_stddev_deg", params.motion_direction_stddev_deg, 0.1, 90.0);
   section.read("motion_length_stddev", params.motion_length_stddev, 0.01, 10.0);
   section.read("neighbour_motion_length_stddev", params.neighbour_motion_length_stddev, 0.01, 10.0);

@@ -310,6 +310,14 @@ GoalNavigationSetup goal_navigation_setup(const memory::VisualMemory& memory,
              to_string(route.links) + ")");
   }
   setup.navigator = navigator;
+  // Homing's distances from the map's spacing: the metres a spacing of this map stands for.
+  const double spacing_m = map_spacing(memory, setup.places);
+  if (navigator.homing_step_spacings > 0.0 && spacing_m > 0.0) {
+    setup.navigator.homing_step_m = navigator.homing_step_spacings * spacing_m;
+  }
+  if (navigator.homing_stop_spacings > 0.0 && spacing_m > 0.0) {
+    setup.navigator.homing_stop_m = navigator.homing_stop_spacings * spacing_m;
+  }
   setup.recognition_limit = recognition_limit(memory, navigator);
   setup.place_recognition_limits = place_recognition_limits(memory, navigator);
   if (!setup.place_recognition_limits.empty()) {

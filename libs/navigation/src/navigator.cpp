@@ -131,6 +131,8 @@ void load_navigator_params(const ConfigReader& section, NavigatorParams& params)
   section.read("home_on_goal_image", params.home_on_goal_image);
   section.read("homing_step_m", params.homing_step_m, 0.01, 5.0);
   section.read("homing_stop_m", params.homing_stop_m, 0.0, 5.0);
+  section.read("homing_step_spacings", params.homing_step_spacings, 0.0, 10.0);
+  section.read("homing_stop_spacings", params.homing_stop_spacings, 0.0, 10.0);
   section.read("homing_max_steps", params.homing_max_steps, 0, 100000);
   section.read("recognition_link_ratio", params.recognition_link_ratio, 0.1, 100.0);
   section.read("recognition_place_link_ratio", params.recognition_place_link_ratio, 0.0, 100.0);

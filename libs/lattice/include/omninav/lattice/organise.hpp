@@ -48,8 +48,10 @@ struct OrganiseParams {
   // is a look-alike's and is dropped (motions.hpp).
   double look_alike_residual = 1.5;
   // A neighbour motion between places of a stream at most this many steps apart that disagrees
-  // with the steps between them by more than 3 standard deviations is dropped too (0: never).
+  // with the steps between them by more than step_check_sigmas standard deviations (of the
+  // steps' dead reckoning over that many steps) is dropped too (0: never).
   int step_check_steps = 10;
+  double step_check_sigmas = 3.0;
   double motion_direction_stddev_deg = 11.5;  // of a motion's measured direction
   double motion_length_stddev = 0.3;          // of a motion's length, as a share of it
   // The same for motions to most similar places, whose length is the calibrated distance: it

@@ -72,7 +72,13 @@ struct NavigatorParams {
   bool home_on_goal_image = true;
   double homing_step_m = 0.1;   // longest homing step (a step goes as far as the goal seems)
   double homing_stop_m = 0.15;  // the goal seeming this near ends homing
-  int homing_max_steps = 8;     // homing steps at most (they count against max_steps too)
+  // The same two in spacings of the map (> 0: goal_navigation_setup sets the metres above from
+  // the map's own spacing, memory_places.hpp map_spacing, when navigation starts; 0: the metres
+  // as given). A distance in metres is a claim about one world's scale; the zoo's grids are
+  // 0.3 m apart, where these are the metres above.
+  double homing_step_spacings = 0.333;
+  double homing_stop_spacings = 0.5;
+  int homing_max_steps = 8;  // homing steps at most (they count against max_steps too)
   // Beyond §3.5: knowing when it is lost (docs/navigation.md). A view is recognised when its
   // best place differs from it by at most recognition_link_ratio × the median dissimilarity
   // per value of the map's links (places about one spacing apart; memory_places.hpp,
