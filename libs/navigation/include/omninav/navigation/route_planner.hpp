@@ -44,7 +44,7 @@ struct RouteParams {
   enum class Links { kLattice, kMotions, kAuto };
   Links links = Links::kAuto;
   int motion_neighbours = 4;
-  double motion_residual_ratio = 2.0;  // chosen across the zoo (navigation.yaml)
+  double motion_residual_ratio = 1.5;  // navigation.yaml says how it was chosen
   double motion_parallax_ratio = 0.0;  // 0: the parallax is not checked
   double motion_disagreement_deg = 20.0;
 };
