@@ -10,28 +10,10 @@
 #include "omninav/core/angles.hpp"
 #include "omninav/core/errors.hpp"
 #include "omninav/core/panorama.hpp"
+#include "omninav/core/turn_residual.hpp"
 
 namespace omninav::compass {
 namespace {
-
-// A measured rotation between two headings: wrap(θ_to − θ_from − ρ) in standard deviations.
-class RotationResidual {
- public:
-  RotationResidual(double rotation_rad, double sigma_rad)
-      : rotation_rad_(rotation_rad), weight_(1.0 / sigma_rad) {}
-
-  template <typename T>
-  bool operator()(const T* const from, const T* const to, T* residual) const {
-    const T difference = to[0] - from[0] - T(rotation_rad_);
-    const T two_pi(kTwoPi);
-    residual[0] = T(weight_) * (difference - two_pi * ceres::floor((difference + T(kPi)) / two_pi));
-    return true;
-  }
-
- private:
-  const double rotation_rad_;
-  const double weight_;
-};
 
 // The Cauchy loss of a residual r in standard deviations: a² log(1 + (r/a)²), as ceres::CauchyLoss.
 double cauchy(double residual, double scale) {
@@ -122,8 +104,8 @@ void HeadingWindow::solve() {
   options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   ceres::Problem problem(options);
   for (const Measurement& m : measurements_) {
-    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<RotationResidual, 1, 1, 1>(
-                                 new RotationResidual(m.rotation_rad, m.sigma_rad)),
+    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<TurnResidual, 1, 1, 1>(
+                                 new TurnResidual(m.rotation_rad, m.sigma_rad)),
                              &loss, &headings_rad_[m.from], &headings_rad_[m.to]);
     if (m.from < first) problem.SetParameterBlockConstant(&headings_rad_[m.from]);
   }

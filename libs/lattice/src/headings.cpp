@@ -10,36 +10,17 @@
 
 #include "omninav/core/angles.hpp"
 #include "omninav/core/statistics.hpp"
+#include "omninav/core/turn_residual.hpp"
 #include "omninav/signature/phase_heading.hpp"
 
 namespace omninav::lattice::detail {
 namespace {
 
-// A measured turn between two unknown angles: (θ_to − θ_from − turn), wrapped, in standard
-// deviations.
-class TurnResidual {
- public:
-  TurnResidual(double turn_rad, double stddev_rad)
-      : turn_rad_(turn_rad), weight_(1.0 / stddev_rad) {}
-
-  template <typename T>
-  bool operator()(const T* const from, const T* const to, T* residual) const {
-    const T difference = to[0] - from[0] - T(turn_rad_);
-    // Wrapped to [−π, π): as Ceres' examples/slam/pose_graph_2d NormalizeAngle.
-    const T two_pi(2.0 * kPi);
-    residual[0] = T(weight_) * (difference - two_pi * ceres::floor((difference + T(kPi)) / two_pi));
-    return true;
-  }
-
-  static ceres::CostFunction* Create(double turn_rad, double stddev_rad) {
-    return new ceres::AutoDiffCostFunction<TurnResidual, 1, 1, 1>(
-        new TurnResidual(turn_rad, stddev_rad));
-  }
-
- private:
-  const double turn_rad_;
-  const double weight_;
-};
+// A measured turn as a Ceres cost (core/turn_residual.hpp).
+ceres::CostFunction* turn_cost(double turn_rad, double stddev_rad) {
+  return new ceres::AutoDiffCostFunction<TurnResidual, 1, 1, 1>(
+      new TurnResidual(turn_rad, stddev_rad));
+}
 
 // The compass's turn across a bend (where it may have jumped): kept unless the phases say
 // otherwise.
@@ -109,7 +90,7 @@ std::vector<std::optional<double>> synchronise_headings(
     if (stretch[a] == stretch[b]) return;
     // θ = compass + correction: the measured turn less the compass's is the corrections'.
     const double corrections_turn = signed_difference(turn_rad, *headings[b] - *headings[a]);
-    problem.AddResidualBlock(TurnResidual::Create(corrections_turn, stddev_rad), &loss,
+    problem.AddResidualBlock(turn_cost(corrections_turn, stddev_rad), &loss,
                              &correction[stretch[a]], &correction[stretch[b]]);
   };
   // one_turn_per_stretch_pair: the phases' turns between two stretches, as the corrections' turn
@@ -146,8 +127,8 @@ std::vector<std::optional<double>> synchronise_headings(
     }
   }
   for (const auto& [stretches, turns] : stretch_pair_turns) {
-    problem.AddResidualBlock(TurnResidual::Create(circular_median(turns), kPhaseTurnStddevRad),
-                             &loss, &correction[stretches.first], &correction[stretches.second]);
+    problem.AddResidualBlock(turn_cost(circular_median(turns), kPhaseTurnStddevRad), &loss,
+                             &correction[stretches.first], &correction[stretches.second]);
   }
   if (!problem.HasParameterBlock(&correction[stretch[0]])) return headings;
   problem.SetParameterBlockConstant(&correction[stretch[0]]);
