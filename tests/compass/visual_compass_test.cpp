@@ -281,6 +281,43 @@ TEST(VisualCompass, GlobalFallbackFollowsSharpTurnsOfWanders) {
   }
 }
 
+// A turn of 105° in one frame next to a wall (frame 243 of the full suite's house-s1 wander,
+// rendered: frames 236-252): the pair's global minimum is 103.7° with 𝒜_n 0.27, below t, and far
+// from the last frame's turn, so the fallback's first two tests keep the local scan's -1.4° and
+// the route stays 105° off to its end (132.9° max over the whole route; alg1-paper, lost
+// elsewhere, 74.6°). Its distance is 0.25 of the local minimum's, with no competing minimum: a
+// much deeper minimum elsewhere (FastTurns::deeper_ratio) is taken. Measured on the slice, max
+// |e|: 29.8° with the rule (frame 242's 33° turn, read 27° short from a competing minimum,
+// stays), 134.8° without it, 103.0° for alg1-paper.
+TEST(VisualCompass, GlobalFallbackTakesAMuchDeeperMinimumOnATurnInOneFrame) {
+  const sim::World world =
+      sim::load_world("house:rooms=3,room_min_m=2.5,room_max_m=3.5,seed=1", sim::WorldsConfig{});
+  const sim::Trajectory trajectory = sim::make_trajectory(
+      "wander:x=2.1,y=2.4,length_m=5.1,speed_m_s=0.2,clearance_m=0.15,seed=1,fps=10,z_m=1", world);
+  ASSERT_GT(trajectory.poses.size(), 252u);
+  sim::Trajectory slice;
+  slice.poses.assign(trajectory.poses.begin() + 236, trajectory.poses.begin() + 253);
+  const sim::Renderer renderer(world, testing::render_params(360, 45));
+  const RenderedSequence sequence = render_trajectory(slice, renderer);
+  // The truth turns by more than 90° between two successive frames of the slice.
+  double sharpest_deg = 0.0;
+  for (std::size_t i = 1; i < sequence.truth.size(); ++i) {
+    sharpest_deg = std::max(
+        sharpest_deg, std::abs(rad_to_deg(signed_difference(sequence.truth[i].heading_rad,
+                                                            sequence.truth[i - 1].heading_rad))));
+  }
+  EXPECT_GT(sharpest_deg, 90.0);
+  CompassParams without = alg1();
+  without.fast_turns.deeper_ratio = 0.0;
+  const RenderedRun with_rule = run_on(sequence, alg1());
+  const RenderedRun without_rule = run_on(sequence, without);
+  const RenderedRun paper = run_on(sequence, paper_alg1());
+  // Less than half the turn is lost with the rule, more than the turn without it.
+  EXPECT_LE(with_rule.evaluation.error_deg.max_abs, 45.0);
+  EXPECT_GT(without_rule.evaluation.error_deg.max_abs, 90.0);
+  EXPECT_LE(with_rule.evaluation.error_deg.max_abs, paper.evaluation.error_deg.max_abs);
+}
+
 // The heading's standard deviation against ground truth: on the first 4 m of the full suite's
 // wanders in three families (room, office, house), the share of frames whose error is within 1
 // and 2 sigma (compass.yaml's scale, chosen on the zoo: docs/compass.md "Uncertainty"). And the
