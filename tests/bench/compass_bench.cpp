@@ -108,6 +108,7 @@ struct Alg1Options {
   bool fallback = true;     // minimiser.global_fallback
   bool fast = false;        // the fast-turning circle of frames()
   bool window = false;      // window.enabled (heading_window.hpp)
+  bool deeper = true;       // minimiser.global_deeper_ratio at compass.yaml's value, else 0
 };
 
 // Algorithm 1 (Table 2's parameters) over the sequence, frames made as a camera would hand
@@ -120,6 +121,7 @@ void algorithm1(benchmark::State& state, MinimiserKind kind, int width, int heig
   params.levelling.enabled = options.level;
   params.travel.enabled = options.travel;
   params.fast_turns.global_fallback = options.fallback;
+  if (!options.deeper) params.fast_turns.deeper_ratio = 0.0;
   const bool fixed_skip = options.fixed_skip;
   if (fixed_skip) {
     params.sampling.policy = omninav::compass::SamplingPolicy::kFixedSkip;
@@ -206,6 +208,9 @@ void register_all() {
     add_alg1("algorithm1_no_fallback", {.fallback = false});
     add_alg1("algorithm1_fast", {.fast = true});
     add_alg1("algorithm1_fast_no_fallback", {.fallback = false, .fast = true});
+    // The global fallback without its much-deeper-minimum test (global_deeper_ratio 0).
+    add_alg1("algorithm1_no_deeper", {.deeper = false});
+    add_alg1("algorithm1_fast_no_deeper", {.fast = true, .deeper = false});
     benchmark::RegisterBenchmark(("fx0/fft/" + size).c_str(), algorithm1, MinimiserKind::kFft,
                                  width, height, Alg1Options{.fixed_skip = true})
         ->Unit(benchmark::kMicrosecond);

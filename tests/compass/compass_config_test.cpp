@@ -47,6 +47,7 @@ TEST(CompassConfig, ShippedFileHoldsTheTable2Defaults) {
   EXPECT_EQ(shipped.compass.travel.enabled, defaults.compass.travel.enabled);
   EXPECT_EQ(shipped.compass.fast_turns.global_fallback,
             defaults.compass.fast_turns.global_fallback);
+  EXPECT_EQ(shipped.compass.fast_turns.deeper_ratio, defaults.compass.fast_turns.deeper_ratio);
   EXPECT_EQ(shipped.compass.travel.fit.iterations, defaults.compass.travel.fit.iterations);
   EXPECT_EQ(shipped.compass.travel.fit.rows_used, defaults.compass.travel.fit.rows_used);
   EXPECT_EQ(shipped.compass.travel.fit.whole, defaults.compass.travel.fit.whole);
@@ -68,7 +69,7 @@ TEST(CompassConfig, ReadsEveryKey) {
   const CompassConfig read = load(ConfigReader::from_string(
       "distance: {metric: l2, field_of_view: whole, band_width_deg: 90}\n"
       "minimiser: {kind: fft, scan_values: 6, scan_span_deg: 30, seed_with_phase: true, "
-      "fft_planning: measure, global_fallback: false}\n"
+      "fft_planning: measure, global_fallback: false, global_deeper_ratio: 0.3}\n"
       "phase: {components: 4}\n"
       "subpixel: {mode: parabolic, parabolic_up_to_norm_amp: 0.4, linear_from_norm_amp: 0.9}\n"
       "sampling: {policy: fixed_skip, threshold_norm_amp: 0.7, fixed_skip_frames: 5, "
@@ -87,6 +88,7 @@ TEST(CompassConfig, ReadsEveryKey) {
   EXPECT_EQ(read.compass.matcher.minimiser.kind, MinimiserKind::kFft);
   EXPECT_EQ(read.compass.matcher.minimiser.fft_planning, FftPlanning::kMeasure);
   EXPECT_FALSE(read.compass.fast_turns.global_fallback);
+  EXPECT_EQ(read.compass.fast_turns.deeper_ratio, 0.3);
   EXPECT_EQ(read.compass.matcher.minimiser.phase.components, 4);
   EXPECT_EQ(read.compass.matcher.subpixel.mode, SubpixelMode::kParabolic);
   EXPECT_EQ(read.compass.sampling.policy, SamplingPolicy::kFixedSkip);

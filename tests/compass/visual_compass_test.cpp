@@ -1,9 +1,11 @@
 // Algorithm 1 of 000_9e80abd5855643af.txt (§3.5) and "Fx n", against rendered ground truth.
 #include "omninav/compass/visual_compass.hpp"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <limits>
 #include <map>
 
@@ -278,6 +280,101 @@ TEST(VisualCompass, GlobalFallbackFollowsSharpTurnsOfWanders) {
     const RenderedRun without = run_on(sequence, local_only);
     EXPECT_LE(with_fallback.evaluation.error_deg.max_abs, bound_deg) << world_spec;
     EXPECT_GT(without.evaluation.error_deg.max_abs, 20.0) << world_spec;
+  }
+}
+
+// A turn of 105° in one frame next to a wall (frame 243 of the full suite's house-s1 wander,
+// rendered: frames 236-252): the pair's global minimum is 103.7° with 𝒜_n 0.27, below t, and far
+// from the last frame's turn, so the fallback's first two tests keep the local scan's -1.4° and
+// the route stays 105° off to its end (132.9° max over the whole route; alg1-paper, lost
+// elsewhere, 74.6°). Its distance is 0.25 of the local minimum's, with no competing minimum: a
+// much deeper minimum elsewhere (FastTurns::deeper_ratio) is taken. Measured on the slice, max
+// |e|: 29.8° with the rule (frame 242's 33° turn, read 27° short from a competing minimum,
+// stays), 134.8° without it, 103.0° for alg1-paper.
+TEST(VisualCompass, GlobalFallbackTakesAMuchDeeperMinimumOnATurnInOneFrame) {
+  const sim::World world =
+      sim::load_world("house:rooms=3,room_min_m=2.5,room_max_m=3.5,seed=1", sim::WorldsConfig{});
+  const sim::Trajectory trajectory = sim::make_trajectory(
+      "wander:x=2.1,y=2.4,length_m=5.1,speed_m_s=0.2,clearance_m=0.15,seed=1,fps=10,z_m=1", world);
+  ASSERT_GT(trajectory.poses.size(), 252u);
+  sim::Trajectory slice;
+  slice.poses.assign(trajectory.poses.begin() + 236, trajectory.poses.begin() + 253);
+  const sim::Renderer renderer(world, testing::render_params(360, 45));
+  const RenderedSequence sequence = render_trajectory(slice, renderer);
+  // The truth turns by more than 90° between two successive frames of the slice.
+  double sharpest_deg = 0.0;
+  for (std::size_t i = 1; i < sequence.truth.size(); ++i) {
+    sharpest_deg = std::max(
+        sharpest_deg, std::abs(rad_to_deg(signed_difference(sequence.truth[i].heading_rad,
+                                                            sequence.truth[i - 1].heading_rad))));
+  }
+  EXPECT_GT(sharpest_deg, 90.0);
+  CompassParams without = alg1();
+  without.fast_turns.deeper_ratio = 0.0;
+  const RenderedRun with_rule = run_on(sequence, alg1());
+  const RenderedRun without_rule = run_on(sequence, without);
+  const RenderedRun paper = run_on(sequence, paper_alg1());
+  // Less than half the turn is lost with the rule, more than the turn without it.
+  EXPECT_LE(with_rule.evaluation.error_deg.max_abs, 45.0);
+  EXPECT_GT(without_rule.evaluation.error_deg.max_abs, 90.0);
+  EXPECT_LE(with_rule.evaluation.error_deg.max_abs, paper.evaluation.error_deg.max_abs);
+}
+
+// The quick suite's compass routes (config/suites/quick.yaml: 180x24 at 10 frames/s; rotation on
+// the spot, the circle, the wander and the bumpy wander of each family), rendered, against the
+// renderer's headings: the default is no worse than the paper's Algorithm 1 on any family, the
+// family's score being its worst route (max |e|). Measured (default / alg1-paper, degrees): room
+// 9.9 / 27.2, house 18.1 / 107.6, field 79.2 / 171.2, office 9.2 / 28.2, ofstad 13.3 / 177.0. Route
+// by route it is no worse except the field's circle (27.9 against 26.6°: docs/compass.md "A turn
+// in one frame", the rotation cap's hops at 2° a column).
+TEST(VisualCompass, DefaultIsNoWorseThanThePapersAlgorithm1OnAnyQuickFamily) {
+  struct Family {
+    std::string name, world;
+    double x_m, y_m, radius_m, z_m;  // the layout's free centre, the circle, the camera height
+  };
+  const std::string ofstad_obj = "worlds/ofstad/ofstad.obj";
+  const std::vector<Family> families{
+      {"room", "room", 4.35, 4.2, 0.65, 1.0},
+      {"house", "house:rooms=2,room_min_m=2.5,room_max_m=3", 1.5, 3.6, 0.55, 1.0},
+      {"field", "field", 11.25, 10.05, 1.0, 0.1},
+      {"office", "office", 7.5, 7.05, 0.8, 1.0},
+      {"ofstad", (omninav::testing::shared_data_dir() / ofstad_obj).string(), -0.06, -0.06, 1.0,
+       1.0}};
+  for (const Family& family : families) {
+    if (family.name == "ofstad" &&
+        !std::filesystem::exists(omninav::testing::shared_data_dir() / ofstad_obj)) {
+      std::printf("skipping ofstad: %s not found\n", ofstad_obj.c_str());
+      continue;
+    }
+    sim::WorldsConfig worlds;
+    worlds.obj.scale_to_m = 20.0;  // the quick suite's obj_scale_to_m
+    const sim::World world = sim::load_world(family.world, worlds);
+    const sim::Renderer renderer(world, testing::render_params(180, 24));
+    const std::string tail = fmt::format(",fps=10,z_m={}", family.z_m);
+    const std::string wander =
+        fmt::format("wander:x={},y={},length_m=4,speed_m_s=0.2,clearance_m=0.15,seed=1", family.x_m,
+                    family.y_m) +
+        tail;
+    const std::vector<std::string> routes{
+        fmt::format("rotate:x={},y={},turns=3,rate_deg_s=51.7", family.x_m, family.y_m) + tail,
+        fmt::format("circle:cx={},cy={},radius_m={},speed_m_s=0.2", family.x_m, family.y_m,
+                    family.radius_m) +
+            tail,
+        wander, wander + ",pitch_noise_deg=2,roll_noise_deg=2,noise_seed=1"};
+    double ours_deg = 0.0, paper_deg = 0.0;
+    std::string figures;
+    const std::vector<std::string> names{"rotate", "circle", "wander", "bumpy"};
+    for (std::size_t r = 0; r < routes.size(); ++r) {
+      const std::string& route = routes[r];
+      const RenderedSequence sequence =
+          render_trajectory(sim::make_trajectory(route, world), renderer);
+      const double ours = run_on(sequence, alg1()).evaluation.error_deg.max_abs;
+      const double paper = run_on(sequence, paper_alg1()).evaluation.error_deg.max_abs;
+      ours_deg = std::max(ours_deg, ours);
+      paper_deg = std::max(paper_deg, paper);
+      figures += fmt::format(" {}: {:.2f} / {:.2f};", names[r], ours, paper);
+    }
+    EXPECT_LE(ours_deg, paper_deg) << family.name << " (default / alg1-paper)" << figures;
   }
 }
 

@@ -36,6 +36,7 @@ void load_compass_config(const ConfigReader& config, CompassConfig& out) {
 
   minimiser.read("global_fallback", out.compass.fast_turns.global_fallback);
   minimiser.read("keep_alternative", out.compass.fast_turns.keep_alternative);
+  minimiser.read("global_deeper_ratio", out.compass.fast_turns.deeper_ratio, 0.0, 1.0);
 
   const ConfigReader phase = config.section("phase");
   phase.read("components", matcher.minimiser.phase.components, 1, 4096);

@@ -92,12 +92,15 @@ PairMatch VisualCompass::match_pair(const CompassFrame& first, const CompassFram
   PairMatch global = global_matcher_->match(first, second, start_shift);
   const int evaluations = local.evaluations + global.evaluations;
   // The global minimum replaces the local one when it is lower and either a clear match
-  // (Algorithm 1's own test 𝒜_n >= t, and no competing minimum) or nearer the prediction.
+  // (Algorithm 1's own test 𝒜_n >= t, and no competing minimum), nearer the prediction, or a
+  // much deeper minimum without a competing one (FastTurns::deeper_ratio).
   const bool nearer = std::abs(signed_difference(global.rotation_rad, predicted_rotation_rad)) <
                       std::abs(signed_difference(local.rotation_rad, predicted_rotation_rad));
   const bool good = global.amplitude_norm >= params_.sampling.threshold_norm_amp &&
                     !global.flags.competing_minima;
-  const bool take_global = global.distance_min < local.distance_min && (nearer || good);
+  const bool deeper = global.distance_min < params_.fast_turns.deeper_ratio * local.distance_min &&
+                      !global.flags.competing_minima;
+  const bool take_global = global.distance_min < local.distance_min && (nearer || good || deeper);
   PairMatch& best = take_global ? global : local;
   const PairMatch& other = take_global ? local : global;
   best.evaluations = evaluations;
