@@ -144,6 +144,8 @@ void load_navigator_params(const ConfigReader& section, NavigatorParams& params)
   section.read("stay_within_map_extent", params.stay_within_map_extent);
   section.read("stay_within_lattice_box", params.stay_within_lattice_box);
   section.read("lattice_box_margin_spacings", params.lattice_box_margin_spacings, 0.0, 100.0);
+  section.read("stall_spacings", params.stall_spacings, 0.0, 1000.0);
+  section.read("stall_other_links", params.stall_other_links);
   // The last sidestep turns farthest: past 180° it would repeat an earlier direction.
   const double widest_deg = std::abs(sidestep_turn(params.sidesteps, params.sidestep_deg));
   if (widest_deg > 180.0) {
@@ -184,8 +186,8 @@ namespace {
 class NavigationRun {
  public:
   NavigationRun(NavigationWorld& world, const std::vector<PlaceNode>& places, const RoutePlan& plan,
-                const PanoramaLocaliser& localise, const NavigatorParams& params,
-                const GoalHoming& homing, double recognition_limit,
+                const RoutePlan& fallback, const PanoramaLocaliser& localise,
+                const NavigatorParams& params, const GoalHoming& homing, double recognition_limit,
                 const std::vector<double>& place_recognition_limits)
       : world_(world),
         places_(places),
@@ -195,13 +197,18 @@ class NavigationRun {
         recognition_limit_(recognition_limit),
         place_recognition_limits_(place_recognition_limits),
         plan_(plan),
+        fallback_(fallback),
         look_ahead_tolerance_m_(params.look_ahead_links > 1
                                     ? params.look_ahead_tolerance_spacings * lattice_spacing(places)
                                     : 0.0),
         entries_(places.size(), 0),
-        link_neighbours_(neighbours_over(plan.measured, places.size())),
+        link_neighbours_(neighbours_over(plan.measured.empty() ? fallback.measured : plan.measured,
+                                         places.size())),
         extent_m_(params.stay_within_map_extent ? map_extent_m(places, plan)
-                                                : std::numeric_limits<double>::infinity()) {
+                                                : std::numeric_limits<double>::infinity()),
+        stall_m_(params.stall_spacings <= 0.0 ? 0.0
+                 : params.stall_m > 0.0       ? params.stall_m
+                                              : params.stall_spacings * lattice_spacing(places)) {
     if (!places.empty()) {
       box_low_ = box_high_ = places.front().position_m;
       for (const PlaceNode& node : places) {
@@ -279,8 +286,46 @@ class NavigationRun {
       step.phase = NavigationPhase::kHoming;
       home(step, view);
     } else {
+      check_progress(step, place);
       follow_route(step, place, localisation);
     }
+  }
+
+  // Following the route: a recognised view (without a jump) of a place nearer the goal by the
+  // plan (as it is now) than every place before is progress; stall_m driven without progress is a
+  // stall.
+  void check_progress(NavigationStep& step, int place) {
+    if (stall_m_ <= 0.0) return;
+    // Against the nearest place's cost in the plan as it is now: replans round blocked links
+    // lengthen routes.
+    if (step.recognised && !step.jump && plan_.reaches_goal(place) &&
+        (nearest_place_ < 0 || plan_.cost_m[place] < plan_.cost_m[nearest_place_])) {
+      nearest_place_ = place;
+      since_progress_m_ = 0.0;
+      return;
+    }
+    if (nearest_place_ < 0) return;
+    since_progress_m_ += params_.step_m;
+    if (since_progress_m_ > stall_m_) stall(step);
+  }
+
+  // Stalled: distrust the link from the nearest place reached to its next (the robot kept
+  // missing where it leads), plan again without it, and (stall_other_links) go on over the
+  // plan of the other link set.
+  void stall(NavigationStep& step) {
+    step.stalled = true;
+    ++result_.stalls;
+    if (replan_without_link(places_, nearest_place_, plan_)) ++result_.replans;
+    if (params_.stall_other_links && fallback_.goal >= 0) {
+      std::swap(plan_, fallback_);
+      ++result_.link_switches;
+    }
+    forget_progress();
+  }
+
+  void forget_progress() {
+    nearest_place_ = -1;
+    since_progress_m_ = 0.0;
   }
 
   // Turns by `turn_rad` and drives up to `distance_m`; keeps the dead reckoning (the robot's
@@ -505,6 +550,7 @@ class NavigationRun {
     state_ = State::kFollowingRoute;
     sidestep_ = 0;
     forget_unrecognised();
+    forget_progress();
     probe_turn_rad_ =
         anchor_place_ < 0 ? sidestep_turn(probe_turns_, deg_to_rad(kProbeTurnDeg)) : 0.0;
   }
@@ -650,6 +696,7 @@ class NavigationRun {
   State state_ = State::kFollowingRoute;
   NavigationResult result_;
   RoutePlan plan_;             // made again without the links found blocked
+  RoutePlan fallback_;         // over the other link set (goal -1: none); swapped in on a stall
   int expected_ = -1;          // the place the plan said the robot would reach next
   int goal_matches_ = 0;       // consecutive views of the goal's place
   int sidestep_ = 0;           // sidesteps tried since the last move that was not blocked
@@ -660,8 +707,13 @@ class NavigationRun {
   std::vector<int> entries_;  // times each place was entered (loops)
   // Each place's neighbours over the plan's measured links, as planned (none over the lattice).
   const std::vector<std::vector<int>> link_neighbours_;
-  const double extent_m_;         // the diagonal of the lattice's bounding box (or ∞)
-  GoalCue homing_from_ = kNoCue;  // homing: the cue of the last view that moved
+  const double extent_m_;  // the diagonal of the lattice's bounding box (or ∞)
+  const double stall_m_;   // driven without progress: stalled (0: never)
+  // Progress: the place nearest the goal by the plan recognised since the last stall or return
+  // (-1: none yet), and the distance driven since it was.
+  int nearest_place_ = -1;
+  double since_progress_m_ = 0.0;  // step_m a step, blocked or not
+  GoalCue homing_from_ = kNoCue;   // homing: the cue of the last view that moved
 
   // Dead reckoning, in the frame of the robot's start (the robot at the origin facing +x).
   Eigen::Vector2d position_ = Eigen::Vector2d::Zero();
@@ -698,11 +750,24 @@ NavigationResult navigate(NavigationWorld& world, const std::vector<PlaceNode>& 
                           const NavigatorParams& params, const GoalHoming& homing,
                           double recognition_limit,
                           const std::vector<double>& place_recognition_limits) {
+  return navigate(world, places, plan, RoutePlan{}, localise, params, homing, recognition_limit,
+                  place_recognition_limits);
+}
+
+NavigationResult navigate(NavigationWorld& world, const std::vector<PlaceNode>& places,
+                          const RoutePlan& plan, const RoutePlan& fallback,
+                          const PanoramaLocaliser& localise, const NavigatorParams& params,
+                          const GoalHoming& homing, double recognition_limit,
+                          const std::vector<double>& place_recognition_limits) {
   if (!place_recognition_limits.empty() && place_recognition_limits.size() != places.size()) {
     throw UsageError("navigate: " + std::to_string(place_recognition_limits.size()) +
                      " recognition limits for " + std::to_string(places.size()) + " places");
   }
-  return NavigationRun(world, places, plan, localise, params, homing, recognition_limit,
+  if (fallback.goal >= 0 && fallback.goal != plan.goal) {
+    throw UsageError("navigate: the fallback plan leads to place " + std::to_string(fallback.goal) +
+                     ", the plan to place " + std::to_string(plan.goal));
+  }
+  return NavigationRun(world, places, plan, fallback, localise, params, homing, recognition_limit,
                        place_recognition_limits)
       .run();
 }
