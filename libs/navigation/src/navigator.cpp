@@ -13,6 +13,7 @@
 #include "omninav/core/config.hpp"
 #include "omninav/core/errors.hpp"
 #include "omninav/core/format.hpp"
+#include "omninav/core/statistics.hpp"
 #include "omninav/navigation/memory_places.hpp"
 
 namespace omninav::navigation {
@@ -267,7 +268,10 @@ class NavigationRun {
         go_back(step, place, localisation);
         return;
       }
-      if (step.recognised && !step.jump) correct_heading(step, place);
+      if (step.recognised && !step.jump) {
+        correct_heading(step, place);
+        note_recognised(place);
+      }
       if (step.recognised && !step.jump && within_map(position_)) set_anchor(place);
       if (place < 0) {
         drive_blind(step);
@@ -292,14 +296,14 @@ class NavigationRun {
   }
 
   // Following the route: a recognised view (without a jump) of a place nearer the goal by the
-  // plan (as it is now) than every place before is progress; stall_m driven without progress is a
-  // stall.
+  // plan than every place before is progress; stall_m driven without progress is a stall.
   void check_progress(NavigationStep& step, int place) {
     if (stall_m_ <= 0.0) return;
-    // Against the nearest place's cost in the plan as it is now: replans round blocked links
-    // lengthen routes.
-    if (step.recognised && !step.jump && plan_.reaches_goal(place) &&
-        (nearest_place_ < 0 || plan_.cost_m[place] < plan_.cost_m[nearest_place_])) {
+    // Against the lowest cost when it was reached, not in the plan as it is now: a replan round
+    // a blocked link raises the cost of the places before it, and a robot blocked between two
+    // places would see each in turn come nearer by the other's replan.
+    if (step.recognised && !step.jump && plan_.cost_m[place] < nearest_cost_m_) {
+      nearest_cost_m_ = plan_.cost_m[place];
       nearest_place_ = place;
       since_progress_m_ = 0.0;
       return;
@@ -311,19 +315,59 @@ class NavigationRun {
 
   // Stalled: distrust the link from the nearest place reached to its next (the robot kept
   // missing where it leads), plan again without it, and (stall_other_links) go on over the
-  // plan of the other link set.
+  // plan of the other link set when the robot's own motion says that set is the better here:
+  // the lattice when it explains the robot's motion (lattice_follows_motion), the motions when
+  // it does not.
   void stall(NavigationStep& step) {
     step.stalled = true;
     ++result_.stalls;
     if (replan_without_link(places_, nearest_place_, plan_)) ++result_.replans;
     if (params_.stall_other_links && fallback_.goal >= 0) {
-      std::swap(plan_, fallback_);
-      ++result_.link_switches;
+      const std::optional<bool> lattice_fits = lattice_follows_motion();
+      const bool over_lattice = plan_.measured.empty();
+      if (lattice_fits && *lattice_fits != over_lattice) {
+        std::swap(plan_, fallback_);
+        ++result_.link_switches;
+      }
     }
     forget_progress();
   }
 
+  // A view recognised without a jump: its place and where the dead reckoning put the robot.
+  void note_recognised(int place) {
+    recognised_views_.push_back({place, position_});
+    if (recognised_views_.size() > kMotionMemory) recognised_views_.pop_front();
+  }
+
+  // Whether the lattice explains the robot's own motion where it drove: over the pairs of the
+  // recent recognised views at least two spacings apart by dead reckoning, the median
+  // difference between the distance of their places on the lattice (in lattice spacings) and
+  // the distance driven between them (in the map's spacings) is at most one spacing (each view
+  // lies within half a cell's diagonal of its place, so two views of a true lattice differ by
+  // less). None without such pairs.
+  std::optional<bool> lattice_follows_motion() const {
+    const double lattice_spacing_m = lattice_spacing(places_);
+    const double map_spacing_m = stall_m_ / params_.stall_spacings;
+    if (lattice_spacing_m <= 0.0 || map_spacing_m <= 0.0) return std::nullopt;
+    std::vector<double> differences;
+    for (std::size_t i = 0; i < recognised_views_.size(); ++i) {
+      for (std::size_t j = i + 1; j < recognised_views_.size(); ++j) {
+        const double driven =
+            (recognised_views_[i].at_m - recognised_views_[j].at_m).norm() / map_spacing_m;
+        if (driven < 2.0) continue;
+        const double on_lattice = (places_[recognised_views_[i].place].position_m -
+                                   places_[recognised_views_[j].place].position_m)
+                                      .norm() /
+                                  lattice_spacing_m;
+        differences.push_back(std::abs(on_lattice - driven));
+      }
+    }
+    if (differences.empty()) return std::nullopt;
+    return median(differences) <= 1.0;
+  }
+
   void forget_progress() {
+    nearest_cost_m_ = std::numeric_limits<double>::infinity();
     nearest_place_ = -1;
     since_progress_m_ = 0.0;
   }
@@ -709,9 +753,18 @@ class NavigationRun {
   const std::vector<std::vector<int>> link_neighbours_;
   const double extent_m_;  // the diagonal of the lattice's bounding box (or ∞)
   const double stall_m_;   // driven without progress: stalled (0: never)
+  // The recent views recognised without a jump (at most kMotionMemory), for
+  // lattice_follows_motion.
+  struct RecognisedView {
+    int place;
+    Eigen::Vector2d at_m;  // dead reckoning
+  };
+  static constexpr std::size_t kMotionMemory = 60;
+  std::deque<RecognisedView> recognised_views_;
   // Progress: the place nearest the goal by the plan recognised since the last stall or return
-  // (-1: none yet), and the distance driven since it was.
+  // (-1: none yet), its cost then, and the distance driven since.
   int nearest_place_ = -1;
+  double nearest_cost_m_ = std::numeric_limits<double>::infinity();
   double since_progress_m_ = 0.0;  // step_m a step, blocked or not
   GoalCue homing_from_ = kNoCue;   // homing: the cue of the last view that moved
 
