@@ -73,6 +73,17 @@ double map_extent_m(const std::vector<PlaceNode>& places, const RoutePlan& plan)
   return std::max(lattice_m, 2.0 * longest_m);
 }
 
+// The distance between neighbouring places as a plan tells it: the median length of its
+// measured links (the map's spacing, by the organiser's calibration of the dissimilarity), or
+// over the lattice the lattice spacing. A folded lattice's spacing is not the map's (places lie
+// on top of each other there).
+double spacing_of(const std::vector<PlaceNode>& places, const RoutePlan& plan) {
+  if (plan.measured.empty()) return lattice_spacing(places);
+  std::vector<double> lengths_m;
+  for (const MeasuredLink& link : plan.measured) lengths_m.push_back(link.length_m);
+  return median(lengths_m);
+}
+
 // Each place's neighbours over `links`.
 std::vector<std::vector<int>> neighbours_over(const std::vector<MeasuredLink>& links,
                                               std::size_t count) {
@@ -207,9 +218,10 @@ class NavigationRun {
                                          places.size())),
         extent_m_(params.stay_within_map_extent ? map_extent_m(places, plan)
                                                 : std::numeric_limits<double>::infinity()),
-        stall_m_(params.stall_spacings <= 0.0 ? 0.0
-                 : params.stall_m > 0.0       ? params.stall_m
-                                              : params.stall_spacings * lattice_spacing(places)) {
+        spacing_m_(params.stall_m > 0.0 && params.stall_spacings > 0.0
+                       ? params.stall_m / params.stall_spacings
+                       : spacing_of(places, plan.measured.empty() ? fallback : plan)),
+        stall_m_(params.stall_spacings * spacing_m_) {
     if (!places.empty()) {
       box_low_ = box_high_ = places.front().position_m;
       for (const PlaceNode& node : places) {
@@ -347,13 +359,12 @@ class NavigationRun {
   // less). None without such pairs.
   std::optional<bool> lattice_follows_motion() const {
     const double lattice_spacing_m = lattice_spacing(places_);
-    const double map_spacing_m = stall_m_ / params_.stall_spacings;
-    if (lattice_spacing_m <= 0.0 || map_spacing_m <= 0.0) return std::nullopt;
+    if (lattice_spacing_m <= 0.0 || spacing_m_ <= 0.0) return std::nullopt;
     std::vector<double> differences;
     for (std::size_t i = 0; i < recognised_views_.size(); ++i) {
       for (std::size_t j = i + 1; j < recognised_views_.size(); ++j) {
         const double driven =
-            (recognised_views_[i].at_m - recognised_views_[j].at_m).norm() / map_spacing_m;
+            (recognised_views_[i].at_m - recognised_views_[j].at_m).norm() / spacing_m_;
         if (driven < 2.0) continue;
         const double on_lattice = (places_[recognised_views_[i].place].position_m -
                                    places_[recognised_views_[j].place].position_m)
@@ -752,7 +763,9 @@ class NavigationRun {
   // Each place's neighbours over the plan's measured links, as planned (none over the lattice).
   const std::vector<std::vector<int>> link_neighbours_;
   const double extent_m_;  // the diagonal of the lattice's bounding box (or ∞)
-  const double stall_m_;   // driven without progress: stalled (0: never)
+  // The map's spacing: from stall_m when given, else as the plan tells it (spacing_of).
+  const double spacing_m_;
+  const double stall_m_;  // driven without progress: stalled (0: never)
   // The recent views recognised without a jump (at most kMotionMemory), for
   // lattice_follows_motion.
   struct RecognisedView {

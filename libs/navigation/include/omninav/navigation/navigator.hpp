@@ -122,16 +122,19 @@ struct NavigatorParams {
   // Beyond §3.5: not getting nearer the goal. Following the route, a robot that drives
   // stall_spacings spacings of the map (steps × step_m, blocked ones included) without
   // recognising a place nearer the goal by the plan than every place it recognised before
-  // (a place with a lower cost_m) is stalled: it goes back and forth over a link whose
-  // direction leads it astray (a motion measured between look-alikes, a folded lattice's
-  // neighbours), or round in circles wider than loop_entries sees. The link from the nearest
-  // place it reached to that place's next is dropped and the plan made again without it, and
-  // with stall_other_links the robot follows the plan over the other link set from there on
-  // (lattice ↔ motions, navigate's `fallback` plan, when it has one); a later stall drops a link
-  // of that plan and switches back. 0: off. stall_m is the distance in metres
-  // (goal_navigation_setup sets it from the map's own spacing, memory_places.hpp map_spacing;
-  // 0: stall_spacings × the lattice spacing of the places).
-  double stall_spacings = 0.0;
+  // (a place with a lower cost_m than the lowest when it was reached) is stalled: it goes back
+  // and forth over a link whose direction leads it astray (a motion measured between
+  // look-alikes, a folded lattice's neighbours), or round in circles wider than loop_entries
+  // sees. The link from the nearest place it reached to that place's next is dropped and the
+  // plan made again without it. With stall_other_links, and navigate's `fallback` plan over the
+  // other link set, the robot also switches plans when its own motion says the other set is the
+  // better here: to the lattice when the lattice explains the distances it drove between its
+  // recent recognised views (the median difference at most one spacing, over pairs at least two
+  // spacings apart), to the motions when it does not. 0: off; chosen across the zoo
+  // (navigation.yaml). stall_m is the distance in metres (goal_navigation_setup sets it from
+  // the map's own spacing, memory_places.hpp map_spacing; 0: stall_spacings × the lattice
+  // spacing of the places).
+  double stall_spacings = 8.0;
   bool stall_other_links = true;
   double stall_m = 0.0;
 };
