@@ -131,6 +131,8 @@ class NavigatorParams:
     homing_step_spacings: float
     homing_stop_spacings: float
     homing_max_steps: int
+    stall_spacings: float
+    stall_other_links: bool
 
 class NavigationConfig:
     def __init__(self) -> None: ...
@@ -368,6 +370,8 @@ class GoalRun:
     replans: int
     loops: int
     homing_steps: int
+    stalls: int
+    link_switches: int
 
 class Localiser:
     def __init__(self, map: Map, config: Optional[MemoryConfig] = None,

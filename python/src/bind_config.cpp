@@ -220,7 +220,9 @@ void bind_navigation_config(py::module_& m) {
       .def_readwrite("homing_stop_m", &NavigatorParams::homing_stop_m)
       .def_readwrite("homing_step_spacings", &NavigatorParams::homing_step_spacings)
       .def_readwrite("homing_stop_spacings", &NavigatorParams::homing_stop_spacings)
-      .def_readwrite("homing_max_steps", &NavigatorParams::homing_max_steps);
+      .def_readwrite("homing_max_steps", &NavigatorParams::homing_max_steps)
+      .def_readwrite("stall_spacings", &NavigatorParams::stall_spacings)
+      .def_readwrite("stall_other_links", &NavigatorParams::stall_other_links);
 
   using evaluation::NavigationConfig;
   py::class_<NavigationConfig>(

@@ -60,7 +60,7 @@ void bind_navigation(py::module_& m, py::class_<Map>& map) {
   py::class_<GoalRun>(m, "GoalRun",
                       "A navigation to a goal image: the goal's place, the route plan, and the "
                       "run (reached, steps, path_length_m, jumps, sidesteps, replans, loops, "
-                      "homing_steps).")
+                      "homing_steps, stalls, link_switches).")
       .def_readonly("goal", &GoalRun::goal)
       .def_readonly("plan", &GoalRun::plan)
       .def_property_readonly("reached", [](const GoalRun& r) { return r.result.reached; })
@@ -71,8 +71,10 @@ void bind_navigation(py::module_& m, py::class_<Map>& map) {
       .def_property_readonly("sidesteps", [](const GoalRun& r) { return r.result.sidesteps; })
       .def_property_readonly("replans", [](const GoalRun& r) { return r.result.replans; })
       .def_property_readonly("loops", [](const GoalRun& r) { return r.result.loops; })
-      .def_property_readonly("homing_steps",
-                             [](const GoalRun& r) { return r.result.homing_steps; });
+      .def_property_readonly("homing_steps", [](const GoalRun& r) { return r.result.homing_steps; })
+      .def_property_readonly("stalls", [](const GoalRun& r) { return r.result.stalls; })
+      .def_property_readonly("link_switches",
+                             [](const GoalRun& r) { return r.result.link_switches; });
 
   map.def(
       "navigate_to_image",

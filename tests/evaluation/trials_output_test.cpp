@@ -30,6 +30,8 @@ std::vector<TrialOutcome> two_trials() {
   first.result.lost_events = 2;  // lost twice, found again once, then gave up
   first.result.recoveries = 1;
   first.result.gave_up = true;
+  first.result.stalls = 3;  // stalled three times, two of which switched the link set
+  first.result.link_switches = 2;
   first.outside_m = 0.5;
   first.end_outside_m = 0.25;
   first.step_outside_m = {0.5, 0.0};
@@ -55,14 +57,15 @@ TEST(TrialsOutput, OneRowPerTrial) {
   write_trials_csv(csv, two_trials());
   const auto rows = csv_text_rows(csv.str());
   ASSERT_EQ(rows.size(), 3u);
-  ASSERT_EQ(rows[0].size(), 25u);
+  ASSERT_EQ(rows[0].size(), 27u);
   EXPECT_EQ(rows[0][13], "path_ratio");
   EXPECT_EQ(std::vector<std::string>(rows[0].begin() + 20, rows[0].end()),
             (std::vector<std::string>{"lost_events", "recoveries", "gave_up", "outside_m",
-                                      "end_outside_m"}));
-  EXPECT_EQ(rows[1], (std::vector<std::string>{
-                         "0",   "1", "2", "90", "3", "2", "-90", "6", "1", "1", "0.125", "3",   "2",
-                         "1.5", "2", "1", "0",  "0", "0", "2",   "2", "1", "1", "0.5",   "0.25"}));
+                                      "end_outside_m", "stalls", "link_switches"}));
+  EXPECT_EQ(rows[1],
+            (std::vector<std::string>{"0", "1",     "2", "90", "3",   "2",   "-90",  "6", "1",
+                                      "1", "0.125", "3", "2",  "1.5", "2",   "1",    "0", "0",
+                                      "0", "2",     "2", "1",  "1",   "0.5", "0.25", "3", "2"}));
   EXPECT_EQ(rows[2][7], "-1");
   EXPECT_EQ(rows[2][9], "0");
   EXPECT_EQ(rows[2][14], "0");
@@ -73,13 +76,14 @@ TEST(TrialsOutput, StepsCarryTheTrialAndTheWorldHeadingError) {
   write_trial_steps_csv(csv, two_trials(), 30.0 * M_PI / 180.0);
   const auto rows = csv_text_rows(csv.str());
   ASSERT_EQ(rows.size(), 3u);  // the second trial has no steps
-  EXPECT_EQ(rows[0], (std::vector<std::string>{
-                         "trial", "step", "x_m", "y_m", "heading_deg", "place", "similarity",
-                         "dissimilarity_per_value", "heading_estimate_deg", "heading_error_deg",
-                         "turn_deg", "jump", "recognised", "phase", "lost", "outside_m"}));
+  EXPECT_EQ(rows[0],
+            (std::vector<std::string>{
+                "trial", "step", "x_m", "y_m", "heading_deg", "place", "similarity",
+                "dissimilarity_per_value", "heading_estimate_deg", "heading_error_deg", "turn_deg",
+                "jump", "recognised", "phase", "lost", "stalled", "outside_m"}));
   // 45° + 30° against a true 90°: -15°; half a metre outside the mapped area.
   EXPECT_EQ(rows[1], (std::vector<std::string>{"0", "0", "1", "2", "90", "-1", "0", "0", "45",
-                                               "-15", "-90", "0", "0", "route", "0", "0.5"}));
+                                               "-15", "-90", "0", "0", "route", "0", "0", "0.5"}));
   EXPECT_EQ(rows[2][5], "6");
   EXPECT_EQ(rows[2][6], "900");
   EXPECT_EQ(rows[2][7], "1.5");

@@ -232,6 +232,7 @@ TEST(Navigator, LeavesALoopBetweenPlacesByPlanningWithoutTheLink) {
 
   NavigatorParams params;
   params.loop_entries = 0;
+  params.stall_spacings = 0.0;  // the loop check alone (a stall would drop the link too)
   PointWorld looping;
   const NavigationResult lost =
       navigate(looping, places, plan, point_oracle(looping, truth), params);
@@ -576,6 +577,119 @@ TEST(Navigator, AReturnBlockedEveryWayEndsInsteadOfSpendingTheBudget) {
   EXPECT_LT(static_cast<int>(result.steps.size()), params.max_steps / 2);
 }
 
+// Measured links (motions, §3.4) along rows of places 0.5 m apart, all facing +x: each link's
+// direction is the true one, but for the link from `bad` to `bad + 1`, whose measured
+// direction points back at both ends (a look-alike's fit): at `bad` the plan says west, at
+// `bad + 1` east. The truth is the lattice: a plan over it is right.
+struct BackPointingLink {
+  std::vector<PlaceNode> places;
+  std::vector<Eigen::Vector2d> truth;
+  std::vector<MeasuredLink> links;
+
+  // `rows` rows of 8 places, y = 0, 0.5, ...; rungs between rows at every place.
+  BackPointingLink(int rows, int bad) {
+    for (int y = 0; y < rows; ++y) {
+      for (int x = 0; x < 8; ++x) {
+        places.push_back({Eigen::Vector2d(0.5 * x, 0.5 * y), 0.0});
+        truth.push_back(places.back().position_m);
+        const int here = y * 8 + x;
+        if (x > 0) {
+          const bool back = here - 1 == bad;
+          links.push_back({{here - 1, here}, 0.5, back ? M_PI : 0.0, back ? 0.0 : M_PI});
+        }
+        if (y > 0) links.push_back({{here - 8, here}, 0.5, M_PI / 2, -M_PI / 2});
+      }
+    }
+  }
+};
+
+// Over the back-pointing link the robot swings between its two ends (loop detection off, to
+// isolate the stall) until the budget is spent; stalled, it drops the link and switches to the
+// plan over the lattice, or (stall_other_links off) plans round the link over the motions.
+TEST(Navigator, AStalledRobotDropsTheLinkItKeepsMissingAndSwitchesToTheOtherLinks) {
+  const BackPointingLink line(1, 4);
+  const RoutePlan plan = plan_to_goal(line.places, line.links, 7);
+  const RoutePlan lattice = plan_to_goal(line.places, lattice_neighbours(line.places, 0.6), 7);
+  ASSERT_EQ(plan.next[4], 5);
+  NavigatorParams params;
+  params.loop_entries = 0;
+  params.stall_spacings = 0.0;
+  PointWorld swinging;
+  const NavigationResult old =
+      navigate(swinging, line.places, plan, lattice, point_oracle(swinging, line.truth), params, {},
+               std::numeric_limits<double>::infinity(), {});
+  EXPECT_FALSE(old.reached);
+  EXPECT_LT(swinging.truth().x_m, 2.5);  // never past the link's far end
+  EXPECT_EQ(old.stalls, 0);
+
+  params.stall_spacings = 4.0;  // × the lattice spacing, 0.5 m: 2 m, 14 steps of 0.15 m
+  PointWorld world;
+  const NavigationResult result =
+      navigate(world, line.places, plan, lattice, point_oracle(world, line.truth), params, {},
+               std::numeric_limits<double>::infinity(), {});
+  ASSERT_TRUE(result.reached) << result.steps.size() << " steps";
+  EXPECT_EQ(result.stalls, 1);
+  EXPECT_EQ(result.link_switches, 1);
+  EXPECT_NEAR(world.truth().x_m, 3.5, 0.25);
+  // 3.5 m to the goal, the swing before the stall (at most 2 m past the nearest place) and
+  // back: well within 70 steps of 0.15 m.
+  EXPECT_LT(result.steps.size(), 70u);
+  const auto stalled = std::count_if(result.steps.begin(), result.steps.end(),
+                                     [](const NavigationStep& step) { return step.stalled; });
+  EXPECT_EQ(stalled, 1);
+
+  // Two rows: without the switch, the plan without the link goes round it by the second row.
+  const BackPointingLink rows(2, 4);
+  const RoutePlan two_rows = plan_to_goal(rows.places, rows.links, 7);
+  ASSERT_EQ(two_rows.next[4], 5);
+  params.stall_other_links = false;
+  PointWorld around;
+  const NavigationResult dropped =
+      navigate(around, rows.places, two_rows, point_oracle(around, rows.truth), params);
+  ASSERT_TRUE(dropped.reached) << dropped.steps.size() << " steps";
+  EXPECT_GE(dropped.stalls, 1);
+  EXPECT_EQ(dropped.link_switches, 0);
+  EXPECT_NEAR(around.truth().x_m, 3.5, 0.25);
+  params.stall_spacings = 0.0;
+  PointWorld stuck;
+  EXPECT_FALSE(
+      navigate(stuck, rows.places, two_rows, point_oracle(stuck, rows.truth), params).reached);
+}
+
+// The same two rows with a folded lattice as the fallback (every place right of x = 1.25 m
+// mirrored onto the left, as a spring lattice folds): the places the robot drove between lie
+// on top of each other there, the lattice does not explain its motion, and the stalled robot
+// stays on the motions, planning round the dropped link.
+TEST(Navigator, AStalledRobotKeepsToTheMotionsWhenTheLatticeDoesNotExplainItsMotion) {
+  const BackPointingLink rows(2, 4);
+  std::vector<PlaceNode> folded = rows.places;
+  for (PlaceNode& place : folded) {
+    if (place.position_m.x() > 1.25) place.position_m.x() = 2.5 - place.position_m.x();
+  }
+  const RoutePlan plan = plan_to_goal(folded, rows.links, 7);
+  const RoutePlan lattice = plan_to_goal(folded, lattice_neighbours(folded, 0.6), 7);
+  NavigatorParams params;
+  params.loop_entries = 0;
+  params.stall_spacings = 4.0;
+  PointWorld world;
+  const NavigationResult result =
+      navigate(world, folded, plan, lattice, point_oracle(world, rows.truth), params, {},
+               std::numeric_limits<double>::infinity(), {});
+  ASSERT_TRUE(result.reached) << result.steps.size() << " steps";
+  EXPECT_GE(result.stalls, 1);
+  EXPECT_EQ(result.link_switches, 0);
+  EXPECT_NEAR(world.truth().x_m, 3.5, 0.25);
+}
+
+TEST(Navigator, AFallbackPlanToAnotherGoalIsAUsageError) {
+  const BackPointingLink line(1, 4);
+  PointWorld world;
+  EXPECT_THROW(navigate(world, line.places, plan_to_goal(line.places, line.links, 7),
+                        plan_to_goal(line.places, line.links, 6), point_oracle(world, line.truth),
+                        NavigatorParams{}, {}, std::numeric_limits<double>::infinity(), {}),
+               UsageError);
+}
+
 TEST(Navigator, ReadsItsParametersAndRejectsSidestepsPastHalfATurn) {
   NavigatorParams params;
   load_navigator_params(ConfigReader::from_string("navigator:\n  look_ahead_links: 3\n"
@@ -599,6 +713,13 @@ TEST(Navigator, ReadsItsParametersAndRejectsSidestepsPastHalfATurn) {
   EXPECT_EQ(params.lost_jump_window, 4);
   EXPECT_EQ(params.recoveries, 1);
   EXPECT_EQ(params.return_max_steps, 9);
+  load_navigator_params(ConfigReader::from_string("navigator:\n  stall_spacings: 3\n"
+                                                  "  stall_other_links: false\n",
+                                                  "navigation.yaml")
+                            .section("navigator"),
+                        params);
+  EXPECT_DOUBLE_EQ(params.stall_spacings, 3.0);
+  EXPECT_FALSE(params.stall_other_links);
   const auto error_of = [](const std::string& yaml) -> std::string {
     NavigatorParams ignored;
     try {

@@ -102,7 +102,8 @@ class RoomNavigation : public ::testing::Test {
             navigation::NavigatorParams{},
             navigation::recognition_limit(map().memory, navigation::NavigatorParams{}),
             {},
-            navigation::place_recognition_limits(map().memory, navigation::NavigatorParams{})};
+            navigation::place_recognition_limits(map().memory, navigation::NavigatorParams{}),
+            {}};
   }
   // The place nearest to (x, y) by truth.
   static int nearest_place(double x_m, double y_m) {

@@ -11,7 +11,7 @@ void write_trials_csv(std::ostream& out, const std::vector<TrialOutcome>& outcom
   out << "trial,start_x_m,start_y_m,start_heading_deg,goal_x_m,goal_y_m,goal_heading_deg,"
          "goal_place,stopped_at_goal,reached,final_error_m,path_m,straight_m,path_ratio,steps,"
          "jumps,sidesteps,replans,loops,homing_steps,lost_events,recoveries,gave_up,outside_m,"
-         "end_outside_m\n";
+         "end_outside_m,stalls,link_switches\n";
   for (std::size_t i = 0; i < outcomes.size(); ++i) {
     const TrialOutcome& o = outcomes[i];
     const navigation::NavigationResult& r = o.result;
@@ -39,7 +39,9 @@ void write_trials_csv(std::ostream& out, const std::vector<TrialOutcome>& outcom
                          std::to_string(r.recoveries),
                          r.gave_up ? "1" : "0",
                          general(o.outside_m),
-                         general(o.end_outside_m)});
+                         general(o.end_outside_m),
+                         std::to_string(r.stalls),
+                         std::to_string(r.link_switches)});
   }
 }
 

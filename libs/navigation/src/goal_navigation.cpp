@@ -9,9 +9,10 @@ GoalRun navigate_to_image(NavigationWorld& world, const cv::Mat& goal_image,
   GoalRun run;
   run.goal = match_image(setup.localise, goal_image, setup.match_limit, what);
   run.plan = plan_route(setup, static_cast<int>(run.goal.place));
-  run.result = navigate(world, setup.places, run.plan, setup.localise, setup.navigator,
-                        goal_homing(goal_image, setup.homing), setup.recognition_limit,
-                        setup.place_recognition_limits);
+  run.result = navigate(world, setup.places, run.plan,
+                        plan_over_other_links(setup, static_cast<int>(run.goal.place)),
+                        setup.localise, setup.navigator, goal_homing(goal_image, setup.homing),
+                        setup.recognition_limit, setup.place_recognition_limits);
   return run;
 }
 

@@ -281,6 +281,13 @@ RoutePlan plan_route(const GoalNavigationSetup& setup, int goal) {
   return plan_over_lattice(setup.places, setup.route, goal);
 }
 
+RoutePlan plan_over_other_links(const GoalNavigationSetup& setup, int goal) {
+  if (setup.navigator.stall_spacings <= 0.0 || !setup.navigator.stall_other_links) return {};
+  if (!setup.links.empty()) return plan_over_lattice(setup.places, setup.route, goal);
+  if (!setup.other_links.empty()) return plan_to_goal(setup.places, setup.other_links, goal);
+  return {};
+}
+
 RoutePlan plan_route(const memory::VisualMemory& memory, const std::vector<PlaceNode>& places,
                      const RouteParams& params, int goal) {
   if (plans_over_motions(memory, params)) {
@@ -310,8 +317,14 @@ GoalNavigationSetup goal_navigation_setup(const memory::VisualMemory& memory,
              to_string(route.links) + ")");
   }
   setup.navigator = navigator;
-  // Homing's distances from the map's spacing: the metres a spacing of this map stands for.
+  // A stalled robot switches to the motions when its plan runs over the lattice.
+  if (setup.links.empty() && navigator.stall_spacings > 0.0 && navigator.stall_other_links) {
+    setup.other_links = motion_links(memory, setup.places, route);
+  }
+  // Homing's and the stall's distances from the map's spacing: the metres a spacing of this map
+  // stands for.
   const double spacing_m = map_spacing(memory, setup.places);
+  if (spacing_m > 0.0) setup.navigator.stall_m = navigator.stall_spacings * spacing_m;
   if (navigator.homing_step_spacings > 0.0 && spacing_m > 0.0) {
     setup.navigator.homing_step_m = navigator.homing_step_spacings * spacing_m;
   }

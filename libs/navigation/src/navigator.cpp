@@ -13,6 +13,7 @@
 #include "omninav/core/config.hpp"
 #include "omninav/core/errors.hpp"
 #include "omninav/core/format.hpp"
+#include "omninav/core/statistics.hpp"
 #include "omninav/navigation/memory_places.hpp"
 
 namespace omninav::navigation {
@@ -70,6 +71,17 @@ double map_extent_m(const std::vector<PlaceNode>& places, const RoutePlan& plan)
     if (std::isfinite(cost_m)) longest_m = std::max(longest_m, cost_m);
   }
   return std::max(lattice_m, 2.0 * longest_m);
+}
+
+// The distance between neighbouring places as a plan tells it: the median length of its
+// measured links (the map's spacing, by the organiser's calibration of the dissimilarity), or
+// over the lattice the lattice spacing. A folded lattice's spacing is not the map's (places lie
+// on top of each other there).
+double spacing_of(const std::vector<PlaceNode>& places, const RoutePlan& plan) {
+  if (plan.measured.empty()) return lattice_spacing(places);
+  std::vector<double> lengths_m;
+  for (const MeasuredLink& link : plan.measured) lengths_m.push_back(link.length_m);
+  return median(lengths_m);
 }
 
 // Each place's neighbours over `links`.
@@ -144,6 +156,8 @@ void load_navigator_params(const ConfigReader& section, NavigatorParams& params)
   section.read("stay_within_map_extent", params.stay_within_map_extent);
   section.read("stay_within_lattice_box", params.stay_within_lattice_box);
   section.read("lattice_box_margin_spacings", params.lattice_box_margin_spacings, 0.0, 100.0);
+  section.read("stall_spacings", params.stall_spacings, 0.0, 1000.0);
+  section.read("stall_other_links", params.stall_other_links);
   // The last sidestep turns farthest: past 180° it would repeat an earlier direction.
   const double widest_deg = std::abs(sidestep_turn(params.sidesteps, params.sidestep_deg));
   if (widest_deg > 180.0) {
@@ -184,8 +198,8 @@ namespace {
 class NavigationRun {
  public:
   NavigationRun(NavigationWorld& world, const std::vector<PlaceNode>& places, const RoutePlan& plan,
-                const PanoramaLocaliser& localise, const NavigatorParams& params,
-                const GoalHoming& homing, double recognition_limit,
+                const RoutePlan& fallback, const PanoramaLocaliser& localise,
+                const NavigatorParams& params, const GoalHoming& homing, double recognition_limit,
                 const std::vector<double>& place_recognition_limits)
       : world_(world),
         places_(places),
@@ -195,13 +209,19 @@ class NavigationRun {
         recognition_limit_(recognition_limit),
         place_recognition_limits_(place_recognition_limits),
         plan_(plan),
+        fallback_(fallback),
         look_ahead_tolerance_m_(params.look_ahead_links > 1
                                     ? params.look_ahead_tolerance_spacings * lattice_spacing(places)
                                     : 0.0),
         entries_(places.size(), 0),
-        link_neighbours_(neighbours_over(plan.measured, places.size())),
+        link_neighbours_(neighbours_over(plan.measured.empty() ? fallback.measured : plan.measured,
+                                         places.size())),
         extent_m_(params.stay_within_map_extent ? map_extent_m(places, plan)
-                                                : std::numeric_limits<double>::infinity()) {
+                                                : std::numeric_limits<double>::infinity()),
+        spacing_m_(params.stall_m > 0.0 && params.stall_spacings > 0.0
+                       ? params.stall_m / params.stall_spacings
+                       : spacing_of(places, plan.measured.empty() ? fallback : plan)),
+        stall_m_(params.stall_spacings * spacing_m_) {
     if (!places.empty()) {
       box_low_ = box_high_ = places.front().position_m;
       for (const PlaceNode& node : places) {
@@ -260,7 +280,10 @@ class NavigationRun {
         go_back(step, place, localisation);
         return;
       }
-      if (step.recognised && !step.jump) correct_heading(step, place);
+      if (step.recognised && !step.jump) {
+        correct_heading(step, place);
+        note_recognised(place);
+      }
       if (step.recognised && !step.jump && within_map(position_)) set_anchor(place);
       if (place < 0) {
         drive_blind(step);
@@ -279,8 +302,85 @@ class NavigationRun {
       step.phase = NavigationPhase::kHoming;
       home(step, view);
     } else {
+      check_progress(step, place);
       follow_route(step, place, localisation);
     }
+  }
+
+  // Following the route: a recognised view (without a jump) of a place nearer the goal by the
+  // plan than every place before is progress; stall_m driven without progress is a stall.
+  void check_progress(NavigationStep& step, int place) {
+    if (stall_m_ <= 0.0) return;
+    // Against the lowest cost when it was reached, not in the plan as it is now: a replan round
+    // a blocked link raises the cost of the places before it, and a robot blocked between two
+    // places would see each in turn come nearer by the other's replan.
+    if (step.recognised && !step.jump && plan_.cost_m[place] < nearest_cost_m_) {
+      nearest_cost_m_ = plan_.cost_m[place];
+      nearest_place_ = place;
+      since_progress_m_ = 0.0;
+      return;
+    }
+    if (nearest_place_ < 0) return;
+    since_progress_m_ += params_.step_m;
+    if (since_progress_m_ > stall_m_) stall(step);
+  }
+
+  // Stalled: distrust the link from the nearest place reached to its next (the robot kept
+  // missing where it leads), plan again without it, and (stall_other_links) go on over the
+  // plan of the other link set when the robot's own motion says that set is the better here:
+  // the lattice when it explains the robot's motion (lattice_follows_motion), the motions when
+  // it does not.
+  void stall(NavigationStep& step) {
+    step.stalled = true;
+    ++result_.stalls;
+    if (replan_without_link(places_, nearest_place_, plan_)) ++result_.replans;
+    if (params_.stall_other_links && fallback_.goal >= 0) {
+      const std::optional<bool> lattice_fits = lattice_follows_motion();
+      const bool over_lattice = plan_.measured.empty();
+      if (lattice_fits && *lattice_fits != over_lattice) {
+        std::swap(plan_, fallback_);
+        ++result_.link_switches;
+      }
+    }
+    forget_progress();
+  }
+
+  // A view recognised without a jump: its place and where the dead reckoning put the robot.
+  void note_recognised(int place) {
+    recognised_views_.push_back({place, position_});
+    if (recognised_views_.size() > kMotionMemory) recognised_views_.pop_front();
+  }
+
+  // Whether the lattice explains the robot's own motion where it drove: over the pairs of the
+  // recent recognised views at least two spacings apart by dead reckoning, the median
+  // difference between the distance of their places on the lattice (in lattice spacings) and
+  // the distance driven between them (in the map's spacings) is at most one spacing (each view
+  // lies within half a cell's diagonal of its place, so two views of a true lattice differ by
+  // less). None without such pairs.
+  std::optional<bool> lattice_follows_motion() const {
+    const double lattice_spacing_m = lattice_spacing(places_);
+    if (lattice_spacing_m <= 0.0 || spacing_m_ <= 0.0) return std::nullopt;
+    std::vector<double> differences;
+    for (std::size_t i = 0; i < recognised_views_.size(); ++i) {
+      for (std::size_t j = i + 1; j < recognised_views_.size(); ++j) {
+        const double driven =
+            (recognised_views_[i].at_m - recognised_views_[j].at_m).norm() / spacing_m_;
+        if (driven < 2.0) continue;
+        const double on_lattice = (places_[recognised_views_[i].place].position_m -
+                                   places_[recognised_views_[j].place].position_m)
+                                      .norm() /
+                                  lattice_spacing_m;
+        differences.push_back(std::abs(on_lattice - driven));
+      }
+    }
+    if (differences.empty()) return std::nullopt;
+    return median(differences) <= 1.0;
+  }
+
+  void forget_progress() {
+    nearest_cost_m_ = std::numeric_limits<double>::infinity();
+    nearest_place_ = -1;
+    since_progress_m_ = 0.0;
   }
 
   // Turns by `turn_rad` and drives up to `distance_m`; keeps the dead reckoning (the robot's
@@ -505,6 +605,7 @@ class NavigationRun {
     state_ = State::kFollowingRoute;
     sidestep_ = 0;
     forget_unrecognised();
+    forget_progress();
     probe_turn_rad_ =
         anchor_place_ < 0 ? sidestep_turn(probe_turns_, deg_to_rad(kProbeTurnDeg)) : 0.0;
   }
@@ -650,6 +751,7 @@ class NavigationRun {
   State state_ = State::kFollowingRoute;
   NavigationResult result_;
   RoutePlan plan_;             // made again without the links found blocked
+  RoutePlan fallback_;         // over the other link set (goal -1: none); swapped in on a stall
   int expected_ = -1;          // the place the plan said the robot would reach next
   int goal_matches_ = 0;       // consecutive views of the goal's place
   int sidestep_ = 0;           // sidesteps tried since the last move that was not blocked
@@ -660,8 +762,24 @@ class NavigationRun {
   std::vector<int> entries_;  // times each place was entered (loops)
   // Each place's neighbours over the plan's measured links, as planned (none over the lattice).
   const std::vector<std::vector<int>> link_neighbours_;
-  const double extent_m_;         // the diagonal of the lattice's bounding box (or ∞)
-  GoalCue homing_from_ = kNoCue;  // homing: the cue of the last view that moved
+  const double extent_m_;  // the diagonal of the lattice's bounding box (or ∞)
+  // The map's spacing: from stall_m when given, else as the plan tells it (spacing_of).
+  const double spacing_m_;
+  const double stall_m_;  // driven without progress: stalled (0: never)
+  // The recent views recognised without a jump (at most kMotionMemory), for
+  // lattice_follows_motion.
+  struct RecognisedView {
+    int place;
+    Eigen::Vector2d at_m;  // dead reckoning
+  };
+  static constexpr std::size_t kMotionMemory = 60;
+  std::deque<RecognisedView> recognised_views_;
+  // Progress: the place nearest the goal by the plan recognised since the last stall or return
+  // (-1: none yet), its cost then, and the distance driven since.
+  int nearest_place_ = -1;
+  double nearest_cost_m_ = std::numeric_limits<double>::infinity();
+  double since_progress_m_ = 0.0;  // step_m a step, blocked or not
+  GoalCue homing_from_ = kNoCue;   // homing: the cue of the last view that moved
 
   // Dead reckoning, in the frame of the robot's start (the robot at the origin facing +x).
   Eigen::Vector2d position_ = Eigen::Vector2d::Zero();
@@ -698,11 +816,24 @@ NavigationResult navigate(NavigationWorld& world, const std::vector<PlaceNode>& 
                           const NavigatorParams& params, const GoalHoming& homing,
                           double recognition_limit,
                           const std::vector<double>& place_recognition_limits) {
+  return navigate(world, places, plan, RoutePlan{}, localise, params, homing, recognition_limit,
+                  place_recognition_limits);
+}
+
+NavigationResult navigate(NavigationWorld& world, const std::vector<PlaceNode>& places,
+                          const RoutePlan& plan, const RoutePlan& fallback,
+                          const PanoramaLocaliser& localise, const NavigatorParams& params,
+                          const GoalHoming& homing, double recognition_limit,
+                          const std::vector<double>& place_recognition_limits) {
   if (!place_recognition_limits.empty() && place_recognition_limits.size() != places.size()) {
     throw UsageError("navigate: " + std::to_string(place_recognition_limits.size()) +
                      " recognition limits for " + std::to_string(places.size()) + " places");
   }
-  return NavigationRun(world, places, plan, localise, params, homing, recognition_limit,
+  if (fallback.goal >= 0 && fallback.goal != plan.goal) {
+    throw UsageError("navigate: the fallback plan leads to place " + std::to_string(fallback.goal) +
+                     ", the plan to place " + std::to_string(plan.goal));
+  }
+  return NavigationRun(world, places, plan, fallback, localise, params, homing, recognition_limit,
                        place_recognition_limits)
       .run();
 }

@@ -32,6 +32,9 @@ struct GoalNavigationSetup {
   std::vector<MeasuredLink> links;
   // Each place's own limit instead (place_recognition_limits); empty: recognition_limit.
   std::vector<double> place_recognition_limits;
+  // The motions when plans run over the lattice, for a stalled robot to switch to
+  // (NavigatorParams::stall_other_links; plan_over_other_links); empty: none.
+  std::vector<MeasuredLink> other_links;
 };
 
 // One navigation: the goal image's place, the plan to it and the run.

@@ -95,14 +95,21 @@ bool plans_over_motions(const memory::VisualMemory& memory, const RouteParams& p
 // The plan to `goal` over setup.links when it has them, else over the lattice.
 RoutePlan plan_route(const GoalNavigationSetup& setup, int goal);
 
+// The plan to `goal` over the other link set, which a stalled robot switches to
+// (NavigatorParams::stall_spacings, stall_other_links): over the lattice when setup.links has
+// the motions, over setup.other_links when it has them; none (goal -1) otherwise or when the
+// navigator's stalls or their switch are off.
+RoutePlan plan_over_other_links(const GoalNavigationSetup& setup, int goal);
+
 // The plan to `goal` over the links plans_over_motions chooses for `memory`: motion_links or the
 // lattice neighbours. `places` are places_from_memory(memory).
 RoutePlan plan_route(const memory::VisualMemory& memory, const std::vector<PlaceNode>& places,
                      const RouteParams& params, int goal);
 
 // What navigating to goal images on `memory` needs: its places (places_from_memory), its match
-// and recognition limits and homing scale, its motion_links when plans_over_motions, with
-// `localise` and the settings.
+// and recognition limits and homing scale, its motion_links when plans_over_motions (else, with
+// stalls switching link sets, as other_links), with `localise` and the settings (homing's and
+// the stall's metres from map_spacing).
 GoalNavigationSetup goal_navigation_setup(const memory::VisualMemory& memory,
                                           PanoramaLocaliser localise, const RouteParams& route,
                                           const NavigatorParams& navigator);

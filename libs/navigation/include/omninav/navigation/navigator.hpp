@@ -119,6 +119,24 @@ struct NavigatorParams {
   // the lattice's bounding box grown by this many lattice spacings, or the robot is lost.
   bool stay_within_lattice_box = false;
   double lattice_box_margin_spacings = 1.0;
+  // Beyond §3.5: not getting nearer the goal. Following the route, a robot that drives
+  // stall_spacings spacings of the map (steps × step_m, blocked ones included) without
+  // recognising a place nearer the goal by the plan than every place it recognised before
+  // (a place with a lower cost_m than the lowest when it was reached) is stalled: it goes back
+  // and forth over a link whose direction leads it astray (a motion measured between
+  // look-alikes, a folded lattice's neighbours), or round in circles wider than loop_entries
+  // sees. The link from the nearest place it reached to that place's next is dropped and the
+  // plan made again without it. With stall_other_links, and navigate's `fallback` plan over the
+  // other link set, the robot also switches plans when its own motion says the other set is the
+  // better here: to the lattice when the lattice explains the distances it drove between its
+  // recent recognised views (the median difference at most one spacing, over pairs at least two
+  // spacings apart), to the motions when it does not. 0: off; chosen across the zoo
+  // (navigation.yaml). stall_m is the distance in metres (goal_navigation_setup sets it from
+  // the map's own spacing, memory_places.hpp map_spacing; 0: stall_spacings × the lattice
+  // spacing of the places).
+  double stall_spacings = 8.0;
+  bool stall_other_links = true;
+  double stall_m = 0.0;
 };
 
 // Reads the `navigator:` section of navigation.yaml.
@@ -160,6 +178,8 @@ struct NavigationStep {
   bool recognised = false;
   NavigationPhase phase = NavigationPhase::kFollowingRoute;
   bool lost = false;  // the robot found itself lost at this step and turned back
+  // Stalled (NavigatorParams::stall_spacings) at this step: a link dropped, the plan switched.
+  bool stalled = false;
 };
 
 struct NavigationResult {
@@ -167,13 +187,15 @@ struct NavigationResult {
   std::vector<NavigationStep> steps;
   double path_length_m = 0.0;  // distance the robot drove
   int jumps = 0;
-  int sidesteps = 0;     // moves turned aside after a block
-  int replans = 0;       // links of the memory graph found blocked, and the plan made without them
-  int loops = 0;         // places entered loop_entries times, and the plan made without their link
-  int homing_steps = 0;  // steps taken towards the goal image after recognising its place
-  int lost_events = 0;   // times the robot found itself lost (NavigatorParams, lost_views)
-  int recoveries = 0;    // times it recognised a place again after being lost
-  bool gave_up = false;  // lost more than `recoveries` times: it went back and stopped
+  int sidesteps = 0;      // moves turned aside after a block
+  int replans = 0;        // links of the memory graph found blocked, and the plan made without them
+  int loops = 0;          // places entered loop_entries times, and the plan made without their link
+  int homing_steps = 0;   // steps taken towards the goal image after recognising its place
+  int lost_events = 0;    // times the robot found itself lost (NavigatorParams, lost_views)
+  int recoveries = 0;     // times it recognised a place again after being lost
+  bool gave_up = false;   // lost more than `recoveries` times: it went back and stopped
+  int stalls = 0;         // times it got no nearer the goal over stall_spacings (NavigatorParams)
+  int link_switches = 0;  // ... of them that switched to the plan over the other link set
 };
 
 // Drives `world`'s robot along `plan` until it recognises the goal place, then, when `homing`
@@ -192,6 +214,17 @@ NavigationResult navigate(NavigationWorld& world, const std::vector<PlaceNode>& 
                           const RoutePlan& plan, const PanoramaLocaliser& localise,
                           const NavigatorParams& params, const GoalHoming& homing,
                           double recognition_limit,
+                          const std::vector<double>& place_recognition_limits);
+
+// The same with a second plan to the same goal over the other link set (the lattice's
+// neighbours for a plan over measured motions, or the reverse; memory_places.hpp
+// plan_over_other_links), which a stalled robot switches to (NavigatorParams::stall_spacings,
+// stall_other_links). A fallback whose goal is -1 is none. Throws UsageError for a fallback to
+// another goal.
+NavigationResult navigate(NavigationWorld& world, const std::vector<PlaceNode>& places,
+                          const RoutePlan& plan, const RoutePlan& fallback,
+                          const PanoramaLocaliser& localise, const NavigatorParams& params,
+                          const GoalHoming& homing, double recognition_limit,
                           const std::vector<double>& place_recognition_limits);
 
 }  // namespace omninav::navigation
