@@ -58,6 +58,21 @@ RenderedSequence render_sequence(const sim::World& world, const std::string& spe
   return render_trajectory(trajectory, renderer);
 }
 
+// Renders frames `first`..`last` (inclusive) of `spec` in the world `world_spec` at 360x45, as
+// the full suite renders its routes, with their ground truth (a slice of a long route, cheaply).
+RenderedSequence render_frames(const std::string& world_spec, const std::string& spec,
+                               std::size_t first, std::size_t last) {
+  const sim::World world = sim::load_world(world_spec, sim::WorldsConfig{});
+  const sim::Trajectory trajectory = sim::make_trajectory(spec, world);
+  EXPECT_GT(trajectory.poses.size(), last) << spec;
+  sim::Trajectory slice;
+  const std::size_t end = std::min(last + 1, trajectory.poses.size());
+  slice.poses.assign(trajectory.poses.begin() + static_cast<std::ptrdiff_t>(std::min(first, end)),
+                     trajectory.poses.begin() + static_cast<std::ptrdiff_t>(end));
+  const sim::Renderer renderer(world, testing::render_params(360, 45));
+  return render_trajectory(slice, renderer);
+}
+
 // Renders `spec` in the default room, with its ground truth.
 RenderedSequence render_sequence(const std::string& spec, int width = 360, int height = 45) {
   const sim::Trajectory trajectory = sim::make_trajectory(spec, testing::room());
@@ -292,15 +307,10 @@ TEST(VisualCompass, GlobalFallbackFollowsSharpTurnsOfWanders) {
 // |e|: 29.8° with the rule (frame 242's 33° turn, read 27° short from a competing minimum,
 // stays), 134.8° without it, 103.0° for alg1-paper.
 TEST(VisualCompass, GlobalFallbackTakesAMuchDeeperMinimumOnATurnInOneFrame) {
-  const sim::World world =
-      sim::load_world("house:rooms=3,room_min_m=2.5,room_max_m=3.5,seed=1", sim::WorldsConfig{});
-  const sim::Trajectory trajectory = sim::make_trajectory(
-      "wander:x=2.1,y=2.4,length_m=5.1,speed_m_s=0.2,clearance_m=0.15,seed=1,fps=10,z_m=1", world);
-  ASSERT_GT(trajectory.poses.size(), 252u);
-  sim::Trajectory slice;
-  slice.poses.assign(trajectory.poses.begin() + 236, trajectory.poses.begin() + 253);
-  const sim::Renderer renderer(world, testing::render_params(360, 45));
-  const RenderedSequence sequence = render_trajectory(slice, renderer);
+  const RenderedSequence sequence = render_frames(
+      "house:rooms=3,room_min_m=2.5,room_max_m=3.5,seed=1",
+      "wander:x=2.1,y=2.4,length_m=5.1,speed_m_s=0.2,clearance_m=0.15,seed=1,fps=10,z_m=1", 236,
+      252);
   // The truth turns by more than 90° between two successive frames of the slice.
   double sharpest_deg = 0.0;
   for (std::size_t i = 1; i < sequence.truth.size(); ++i) {
@@ -318,6 +328,24 @@ TEST(VisualCompass, GlobalFallbackTakesAMuchDeeperMinimumOnATurnInOneFrame) {
   EXPECT_LE(with_rule.evaluation.error_deg.max_abs, 45.0);
   EXPECT_GT(without_rule.evaluation.error_deg.max_abs, 90.0);
   EXPECT_LE(with_rule.evaluation.error_deg.max_abs, paper.evaluation.error_deg.max_abs);
+}
+
+// A view into a box (frame 1061 of the full suite's room-plain-s1 zig-zag at 30 cm, rendered:
+// frames 1055-1066, the camera passing through one of the room's 16 boxes): the distance function
+// is flat (featureless), so its global minimum, however deep against the local one, is noise. The
+// truth does not turn over the slice; taking the deeper minimum turned the heading by 89.4°.
+// Measured on the slice, max |e|: 2.7° (the flat pair's local reading), 92.0° taking it.
+TEST(VisualCompass, AMuchDeeperMinimumOfAFeaturelessPairIsNotTaken) {
+  const RenderedSequence sequence = render_frames(
+      "room:size_x_m=10,size_y_m=8,boxes=16,walls=plain,seed=1",
+      "zigzag:x0=3.65,y0=2.95,x1=6.35,y1=5.05,rows=8,speed_m_s=0.2,fps=10,z_m=1", 1055, 1066);
+  const RenderedRun run = run_on(sequence, alg1());
+  // The slice holds the featureless pair the rule must leave alone.
+  const bool has_featureless =
+      std::any_of(run.estimates.begin(), run.estimates.end(),
+                  [](const CompassEstimate& estimate) { return estimate.flags.featureless; });
+  EXPECT_TRUE(has_featureless);
+  EXPECT_LE(run.evaluation.error_deg.max_abs, 10.0);
 }
 
 // The quick suite's compass routes (config/suites/quick.yaml: 180x24 at 10 frames/s; rotation on

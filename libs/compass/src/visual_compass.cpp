@@ -98,8 +98,10 @@ PairMatch VisualCompass::match_pair(const CompassFrame& first, const CompassFram
                       std::abs(signed_difference(local.rotation_rad, predicted_rotation_rad));
   const bool good = global.amplitude_norm >= params_.sampling.threshold_norm_amp &&
                     !global.flags.competing_minima;
+  // Not on a flat distance function (a view into a box or a blank wall): there every minimum is
+  // noise, however deep (a zig-zag frame inside a box took a 90° turn that was not).
   const bool deeper = global.distance_min < params_.fast_turns.deeper_ratio * local.distance_min &&
-                      !global.flags.competing_minima;
+                      !global.flags.competing_minima && !global.flags.featureless;
   const bool take_global = global.distance_min < local.distance_min && (nearer || good || deeper);
   PairMatch& best = take_global ? global : local;
   const PairMatch& other = take_global ? local : global;

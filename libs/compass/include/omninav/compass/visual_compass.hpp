@@ -110,11 +110,12 @@ struct TravelFitting {
 struct FastTurns {
   bool global_fallback = true;  // measured on the zoo: docs/compass.md "Fast turns"
   // A much deeper minimum elsewhere (docs/compass.md "A turn in one frame"): the global minimum
-  // also replaces the local one when it has no competing minimum and its distance is below this
-  // share of the local minimum's, whatever its amplitude and the prediction. A turn of 105° in one
-  // frame next to a wall (house-s1's wander) has its global minimum at 0.25-0.35 of the local
-  // one's, 𝒜_n 0.2-0.3 (below t) and far from the last turn; the grass's aliases lie at 0.67-0.99
-  // of it. 0: off. Chosen across the zoo, leaving one family out (compass.yaml).
+  // also replaces the local one when it has no competing minimum, the pair is not featureless and
+  // its distance is below this share of the local minimum's, whatever its amplitude and the
+  // prediction. A turn of 105° in one frame next to a wall (house-s1's wander) has its global
+  // minimum at 0.25-0.35 of the local one's, 𝒜_n 0.2-0.3 (below t) and far from the last turn; the
+  // grass's aliases lie at 0.67-0.99 of it. 0: off. Chosen across the zoo, leaving one family out
+  // (compass.yaml).
   double deeper_ratio = 0.6;
   // Two readings until the next frame decides (ours; docs/compass.md "Two readings"). When the
   // match that gave r_rc had another reading (PairMatch::competing_rotation_rad: the candidate
