@@ -27,5 +27,14 @@ TEST(UnreadableFileReason, SaysWhatThePathIsInstead) {
   fs::remove_all(dir);
 }
 
+TEST(PrintableName, KeepsUtf8AndEscapesControlsAndBytesThatAreNotUtf8) {
+  EXPECT_EQ(printable_name("/camera/image_raw"), "/camera/image_raw");
+  EXPECT_EQ(printable_name("/caméra"), "/caméra");
+  EXPECT_EQ(printable_name(std::string("/cam\x18\xff\n", 7)), "/cam\\x18\\xff\\x0a");
+  EXPECT_EQ(printable_name("\xc0\xaf"), "\\xc0\\xaf");           // an overlong '/'
+  EXPECT_EQ(printable_name("\xed\xa0\x80"), "\\xed\\xa0\\x80");  // a surrogate
+  EXPECT_EQ(printable_name("\xe2\x82"), "\\xe2\\x82");           // cut short
+}
+
 }  // namespace
 }  // namespace omninav

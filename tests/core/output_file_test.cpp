@@ -148,5 +148,21 @@ TEST_F(OutputFileTest, LostStandardOutputIsAnError) {
   EXPECT_NO_THROW(flush_standard_output()) << "the error is not sticky";
 }
 
+TEST_F(OutputFileTest, AnOutputThatIsAnInputIsRefusedWhateverItsSpelling) {
+  const fs::path map = dir_ / "room.vmem";
+  std::ofstream(map) << "map";
+  fs::create_symlink(map, dir_ / "link.vmem");
+  fs::create_hard_link(map, dir_ / "hard.vmem");
+  const fs::path dotted = dir_ / "." / "room.vmem";
+  for (const fs::path& output : {map, dotted, dir_ / "link.vmem", dir_ / "hard.vmem"}) {
+    SCOPED_TRACE(output.string());
+    EXPECT_THROW(check_output_path(output, {map}), UsageError);
+    EXPECT_THROW(check_not_an_input(map, {output}), UsageError);
+  }
+  EXPECT_NO_THROW(check_output_path(dir_ / "room.png", {map}));
+  EXPECT_NO_THROW(check_output_path(map, {dir_ / "missing.vmem", {}}));
+  EXPECT_EQ(read(map), "map");
+}
+
 }  // namespace
 }  // namespace omninav

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <limits>
 
 #include "omninav/core/errors.hpp"
@@ -48,6 +49,24 @@ TEST(Split, KeepsEmptyFieldsAndTrims) {
   EXPECT_EQ(fields[1], "b");
   EXPECT_EQ(fields[2], "");
   EXPECT_EQ(fields[3], "c");
+}
+
+TEST(CheckPose, EveryCoordinateWithinTheBoundAndEveryAngleFinite) {
+  EXPECT_NO_THROW(check_pose({1.0, -2.0, 0.5, 3.0, 0.1, -0.1}, "pose"));
+  const auto message = [](const CameraPose& pose) {
+    try {
+      check_pose(pose, "run.bag#/odom message 3");
+    } catch (const InputError& error) {
+      return std::string(error.what());
+    }
+    return std::string();
+  };
+  EXPECT_EQ(message({1e300, 0, 0, 0, 0, 0}),
+            "run.bag#/odom message 3: x: 1e+300 m is not a position (beyond ±1e+07 m)");
+  EXPECT_NE(message({0, std::nan(""), 0, 0, 0, 0}).find("y: nan m"), std::string::npos);
+  EXPECT_NE(message({0, 0, -INFINITY, 0, 0, 0}).find("z: -inf m"), std::string::npos);
+  EXPECT_EQ(message({0, 0, 0, std::nan(""), 0, 0}),
+            "run.bag#/odom message 3: heading is nan, not a finite angle");
 }
 
 }  // namespace

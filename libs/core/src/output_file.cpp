@@ -172,7 +172,23 @@ void write_output_file(const fs::path& path, std::string_view bytes) {
   file.commit();
 }
 
-void check_output_path(const fs::path& path) {
+bool same_file(const fs::path& a, const fs::path& b) {
+  std::error_code error;
+  if (a.empty() || b.empty() || !fs::exists(a, error) || !fs::exists(b, error)) return false;
+  return fs::equivalent(a, b, error);
+}
+
+void check_not_an_input(const fs::path& output, const std::vector<fs::path>& inputs) {
+  for (const fs::path& input : inputs) {
+    if (same_file(output, input)) {
+      throw UsageError(output.string() + ": is also the input " + input.string() +
+                       "; write it elsewhere");
+    }
+  }
+}
+
+void check_output_path(const fs::path& path, const std::vector<fs::path>& inputs) {
+  check_not_an_input(path, inputs);
   std::error_code error;
   if (fs::is_directory(path, error)) {
     throw InputError(path.string() + ": cannot write (it is a folder)");

@@ -68,11 +68,29 @@ int parse_int_argument(std::string_view text, const std::string& where) {
 }
 
 double check_coordinate_m(double value_m, const std::string& where) {
-  if (!std::isfinite(value_m) || std::abs(value_m) > kMaxCoordinateM) {
+  if (!std::isfinite(value_m)) {
+    throw InputError(
+        fmt::format("{}: {} m is not a position (not a finite number)", where, general(value_m)));
+  }
+  if (std::abs(value_m) > kMaxCoordinateM) {
     throw InputError(fmt::format("{}: {} m is not a position (beyond ±{} m)", where,
                                  general(value_m), general(kMaxCoordinateM)));
   }
   return value_m;
+}
+
+const CameraPose& check_pose(const CameraPose& pose, const std::string& where) {
+  check_coordinate_m(pose.x_m, where + ": x");
+  check_coordinate_m(pose.y_m, where + ": y");
+  check_coordinate_m(pose.z_m, where + ": z");
+  for (const auto& [angle, name] :
+       {std::pair{pose.heading_rad, "heading"}, std::pair{pose.pitch_rad, "pitch"},
+        std::pair{pose.roll_rad, "roll"}}) {
+    if (!std::isfinite(angle)) {
+      throw InputError(where + ": " + name + " is " + general(angle) + ", not a finite angle");
+    }
+  }
+  return pose;
 }
 
 }  // namespace omninav

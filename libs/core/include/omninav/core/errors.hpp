@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace omninav {
 
@@ -36,5 +37,10 @@ class UsageError : public Error {
 // regular file was wanted: "no such video file", "cannot reach the video file (Permission
 // denied)", "is a folder, not a video file", "is a FIFO, not a video file".
 std::string unreadable_file_reason(const std::filesystem::path& path, const std::string& kind);
+
+// A name read from inside a file (a bag's topic, a type), as a one-line message shows it: UTF-8
+// kept as it is, control characters and bytes that are not UTF-8 written as \xNN, so that a
+// damaged name cannot garble the terminal or break the line.
+std::string printable_name(std::string_view bytes);
 
 }  // namespace omninav

@@ -15,6 +15,7 @@
 #include <memory>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace omninav {
 
@@ -58,8 +59,21 @@ void remove_stale_temporaries(const std::filesystem::path& path);
 void write_output_file(const std::filesystem::path& path, std::string_view bytes);
 
 // Checks, before the work that produces it, that `path` can be written: not a folder, its
-// folder exists and may be written in. InputError naming `path` otherwise.
-void check_output_path(const std::filesystem::path& path);
+// folder exists and may be written in (InputError naming `path` otherwise), and not one of the
+// command's `inputs` (check_not_an_input).
+void check_output_path(const std::filesystem::path& path,
+                       const std::vector<std::filesystem::path>& inputs = {});
+
+// Whether `a` and `b` name the same existing file or folder (std::filesystem::equivalent: `./M`
+// and `M`, a link and its target, two hard links). False when either does not exist.
+bool same_file(const std::filesystem::path& a, const std::filesystem::path& b);
+
+// The one guard that no output of a command replaces one of its inputs (a map read and written
+// over, a CSV sequence replaced by its own headings): UsageError "<output>: is also the input
+// <input>; write it elsewhere" when `output` is the same file as one of `inputs` (empty paths
+// are skipped).
+void check_not_an_input(const std::filesystem::path& output,
+                        const std::vector<std::filesystem::path>& inputs);
 
 // Flushes standard output; InputError "standard output: ..." when anything written to it was
 // lost (a full disk, a closed pipe). Each command's last step.
