@@ -123,6 +123,13 @@ TEST(CameraSequence, AMissingDeviceIsAnInputErrorNamingIt) {
   EXPECT_THROW(CameraSequence{""}, UsageError);
 }
 
+TEST(CameraSequence, AMissingVideoIsAMissingFileAndANegativeNumberNoCamera) {
+  // Not a V4L2 problem: a name that is neither a number nor /dev/... is a video file.
+  EXPECT_INPUT_ERROR(CameraSequence{"missing.avi"}, "camera:missing.avi", "no such video file");
+  EXPECT_THROW(CameraSequence{"-1"}, UsageError);
+  EXPECT_THROW(CameraSequence{"123456789012"}, UsageError);  // not thrown by std::stoi
+}
+
 TEST(CameraSequence, PanoramaInputOpensACameraFromItsName) {
   const TempDir dir;
   const std::filesystem::path file = dir / "clip.avi";

@@ -2,6 +2,7 @@
 // (tests/io/bags/write_ros2_db3.py) from the rendered route database, read back frame for frame.
 
 #include <gtest/gtest.h>
+#include <sqlite3.h>
 
 #include "bag_test_support.hpp"
 #include "omninav/core/errors.hpp"
@@ -18,6 +19,28 @@ using testing::TempDir;
 // The bag's folder (with metadata.yaml); its storage file is <folder>/run.db3.
 std::filesystem::path write_bag(const TempDir& dir, const std::string& arguments) {
   return testing::write_with("write_ros2_db3.py", dir / "run", arguments);
+}
+
+TEST(Db3Bag, TopicNamesThatAreNotUtf8AreEscapedInMessages) {
+  const TempDir dir;
+  const std::filesystem::path db3 = write_bag(dir, "--encoding bgr8") / "run.db3";
+  sqlite3* db = nullptr;
+  ASSERT_EQ(sqlite3_open(db3.c_str(), &db), SQLITE_OK);
+  // "/cam", a control character, and a byte that is not UTF-8.
+  ASSERT_EQ(sqlite3_exec(db, "UPDATE topics SET name = CAST(X'2F63616D18FF' AS TEXT)", nullptr,
+                         nullptr, nullptr),
+            SQLITE_OK);
+  sqlite3_close(db);
+  try {
+    read_bag(db3, {.topic = "/camera/image_raw", .pose_topic = ""});
+    ADD_FAILURE() << "found a topic that is not there";
+  } catch (const InputError& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find("its image topics: /cam\\x18\\xff (sensor_msgs/msg/Image)"),
+              std::string::npos)
+        << message;
+    EXPECT_EQ(message.find('\xff'), std::string::npos) << "raw bytes in: " << message;
+  }
 }
 
 TEST(Db3Bag, RawImagesInEveryEncodingReadBackAsTheDatabase) {

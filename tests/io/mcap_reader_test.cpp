@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <fstream>
 #include <thread>
 
 #include "bag_test_support.hpp"
@@ -57,6 +58,40 @@ TEST(McapBag, TruncatedFileGivesTheFramesBeforeTheCutThenSaysWhere) {
   expect_route(posed, Pixels::kColour, true, posed.size());
   EXPECT_FALSE(frames.back().truth.has_value());
   EXPECT_TRUE(testing::same_pixels(frames.back().image, testing::route_frames()[5].image));
+}
+
+// route_raw.mcap with the byte at `offset` changed (its layout: the first chunk at byte 65, its
+// records from byte 114; the fourth chunk at byte 9150, its records from 9199).
+std::filesystem::path damaged_copy(const TempDir& dir, std::size_t offset, char byte) {
+  const std::filesystem::path bag = dir / "damaged.mcap";
+  std::filesystem::copy_file(kBagData / "route_raw.mcap", bag);
+  std::fstream file(bag, std::ios::in | std::ios::out | std::ios::binary);
+  file.seekp(static_cast<std::streamoff>(offset));
+  file.put(byte);
+  return bag;
+}
+
+TEST(McapBag, AChunkWhoseRecordsDoNotMatchItsCrcIsDamage) {
+  const TempDir dir;
+  // A pixel of the fourth chunk's image: every field still parses, only the CRC-32 tells.
+  const std::filesystem::path bag = damaged_copy(dir, 9199 + 2000, '\x5a');
+  const std::vector<Frame> frames =
+      testing::read_until_error(bag, {.topic = "", .pose_topic = ""}, "byte 9150 is damaged");
+  EXPECT_EQ(frames.size(), 3u);  // the images of the three chunks before it
+}
+
+TEST(McapBag, DamageInTheFirstRecordsIsReportedAsDamageNotAsNoTopics) {
+  const TempDir dir;
+  // The first record's length in the first chunk (which holds the schemas and channels).
+  const std::filesystem::path bag = damaged_copy(dir, 114 + 8, '\x7f');
+  try {
+    read_bag(bag, {});
+    ADD_FAILURE() << "read a damaged bag";
+  } catch (const InputError& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find("damaged.mcap: the chunk at byte 65"), std::string::npos) << message;
+    EXPECT_EQ(message.find("its topics"), std::string::npos) << message;
+  }
 }
 
 TEST(McapBag, Ros2BagFolderThroughPanoramaInput) {

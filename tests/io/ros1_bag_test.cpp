@@ -3,7 +3,11 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdint>
+#include <fstream>
 #include <opencv2/imgproc.hpp>
+#include <utility>
+#include <vector>
 
 #include "bag_test_support.hpp"
 #include "omninav/core/errors.hpp"
@@ -56,6 +60,56 @@ TEST(Ros1Bag, PoseStampedPosesThroughPanoramaInput) {
   std::vector<Frame> frames;
   while (std::optional<Frame> frame = input.next()) frames.push_back(std::move(*frame));
   expect_route(frames, Pixels::kColour, true);
+}
+
+// A PNG of its signature and an IHDR chunk declaring `width` x `height` (8-bit RGB), then
+// nothing: a decoder that trusts the header allocates width x height x 3 bytes before failing.
+std::filesystem::path header_only_png(const TempDir& dir, std::uint32_t width,
+                                      std::uint32_t height) {
+  std::string png = "\x89PNG\r\n\x1a\n";
+  const auto big_endian = [&png](std::uint32_t value) {
+    for (int shift = 24; shift >= 0; shift -= 8) png += static_cast<char>((value >> shift) & 0xFF);
+  };
+  big_endian(13);
+  png += "IHDR";
+  big_endian(width);
+  big_endian(height);
+  png += std::string("\x08\x02\x00\x00\x00", 5);
+  big_endian(0);  // a CRC that does not match: broken as well as large
+  const std::filesystem::path file = dir / "header.png";
+  std::ofstream(file, std::ios::binary) << png;
+  return file;
+}
+
+TEST(Ros1Bag, PosesBeyondTheBoundOrWithoutARotationAreRefusedNamingTheMessage) {
+  for (const auto& [pose, why] : std::vector<std::pair<std::string, std::string>>{
+           {"1e300,0,0,0,0,0,1", "x: 1e+300 m is not a position"},
+           {"nan,0,0,0,0,0,1", "x: nan m is not a position"},
+           {"1,2,0,0,0,0,0", "is not a rotation"}}) {
+    SCOPED_TRACE(pose);
+    const TempDir dir;
+    const auto bag = write_bag(dir, "--encoding bgr8 --poses odometry --first-pose " + pose);
+    EXPECT_INPUT_ERROR(read_bag(bag, {.topic = "", .pose_topic = "/odom"}),
+                       "run.bag#/odom message 0", why);
+  }
+}
+
+TEST(Ros1Bag, ACompressedImageDeclaringTooManyPixelsIsRefusedBeforeDecoding) {
+  const TempDir dir;
+  const auto bag =
+      write_bag(dir, "--encoding png --png-file " + header_only_png(dir, 12000, 12000).string());
+  EXPECT_INPUT_ERROR(read_bag(bag, {}), "run.bag#/camera/image_raw/compressed message 0",
+                     "12000x12000 px", "more than omninav reads");
+}
+
+TEST(Ros1Bag, ABrokenCompressedImageGivesOurLineAndNoLibpngLine) {
+  const TempDir dir;
+  const auto bag =
+      write_bag(dir, "--encoding png --png-file " + header_only_png(dir, 8, 4).string());
+  ::testing::internal::CaptureStderr();
+  EXPECT_INPUT_ERROR(read_bag(bag, {}), "message 0", "cannot decode the compressed image");
+  const std::string stderr_text = ::testing::internal::GetCapturedStderr();
+  EXPECT_EQ(stderr_text.find("libpng"), std::string::npos) << stderr_text;
 }
 
 TEST(Ros1Bag, TwoImageTopicsNeedTopicAndTheErrorNamesBoth) {

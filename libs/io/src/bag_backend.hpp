@@ -51,6 +51,9 @@ class BagBackend {
   virtual void start_images(const std::string& topic) = 0;
   // The next image, or nothing at the end; throws InputError at damage, after the images before.
   virtual std::optional<BagImage> next_image() = 0;
+  // The message of the damage met while listing the topics, if any: when it hides the topic
+  // asked for (damage in the first records), it is the error to report.
+  virtual std::optional<std::string> damage() const { return std::nullopt; }
 };
 
 bool is_image_type(const std::string& type);

@@ -7,6 +7,8 @@
 #include "bag_backend.hpp"
 #include "omninav/core/angles.hpp"
 #include "omninav/core/errors.hpp"
+#include "omninav/core/format.hpp"
+#include "omninav/core/parse.hpp"
 #include "omninav/io/image_file.hpp"
 
 namespace omninav::io {
@@ -66,9 +68,27 @@ std::filesystem::path storage_file_of(const std::filesystem::path& folder) {
 std::string names_of(const std::vector<BagTopic>& topics) {
   std::string names;
   for (const BagTopic& topic : topics) {
-    names += (names.empty() ? "" : ", ") + topic.name + " (" + topic.type + ")";
+    names += (names.empty() ? "" : ", ") + printable_name(topic.name) + " (" +
+             printable_name(topic.type) + ")";
   }
   return names;
+}
+
+// The pose message `index` of `where` ("<bag>#/odom message 3"), checked as every pose is
+// (check_pose): a finite stamp, a position within the bound, and an orientation that is a
+// rotation (a quaternion of zeros, or not finite, says nothing of the heading).
+void check_stamped_pose(const StampedPose& pose, const std::string& where) {
+  if (!std::isfinite(pose.stamp_s)) {
+    throw InputError(where + ": stamp " + general(pose.stamp_s) + " s is not a time");
+  }
+  const double norm =
+      std::sqrt(pose.qx * pose.qx + pose.qy * pose.qy + pose.qz * pose.qz + pose.qw * pose.qw);
+  if (!std::isfinite(norm) || norm < 1e-6) {
+    throw InputError(where + ": orientation (" + general(pose.qx) + ", " + general(pose.qy) + ", " +
+                     general(pose.qz) + ", " + general(pose.qw) +
+                     ") is not a rotation (a quaternion of length 0 or not finite)");
+  }
+  check_pose({.x_m = pose.x_m, .y_m = pose.y_m, .z_m = pose.z_m}, where);
 }
 
 double yaw_of(const StampedPose& pose) {
@@ -98,16 +118,19 @@ class BagSequence : public SequenceReader {
       const auto found = std::find_if(topics.begin(), topics.end(),
                                       [&](const BagTopic& t) { return t.name == options.topic; });
       if (found == topics.end()) {
+        if (const std::optional<std::string> damage = backend_->damage()) throw InputError(*damage);
         throw InputError(
-            what + "no topic " + options.topic + " in the " + backend_->kind() +
+            what + "no topic " + printable_name(options.topic) + " in the " + backend_->kind() +
             "; its image topics: " + (image_topics.empty() ? "none" : names_of(image_topics)));
       }
       if (!detail::is_image_type(found->type)) {
-        throw InputError(what + "topic " + options.topic + " holds " + found->type +
+        throw InputError(what + "topic " + printable_name(options.topic) + " holds " +
+                         printable_name(found->type) +
                          ", not sensor_msgs/Image or CompressedImage");
       }
       topic_ = *found;
     } else if (image_topics.empty()) {
+      if (const std::optional<std::string> damage = backend_->damage()) throw InputError(*damage);
       throw InputError(what + "no image topic (sensor_msgs/Image or CompressedImage) in the " +
                        backend_->kind() + "; its topics: " + names_of(topics));
     } else if (image_topics.size() > 1) {
@@ -121,15 +144,21 @@ class BagSequence : public SequenceReader {
         return t.name == options.pose_topic;
       });
       if (found == topics.end()) {
-        throw InputError(what + "no topic " + options.pose_topic + " (--pose-topic) in the " +
-                         backend_->kind());
+        if (const std::optional<std::string> damage = backend_->damage()) throw InputError(*damage);
+        throw InputError(what + "no topic " + printable_name(options.pose_topic) +
+                         " (--pose-topic) in the " + backend_->kind());
       }
       if (!detail::is_odometry_type(found->type) && !detail::is_pose_stamped_type(found->type)) {
-        throw InputError(what + "topic " + options.pose_topic + " holds " + found->type +
+        throw InputError(what + "topic " + printable_name(options.pose_topic) + " holds " +
+                         printable_name(found->type) +
                          ", not nav_msgs/Odometry or geometry_msgs/PoseStamped");
       }
       pose_topic_ = options.pose_topic;
       poses_ = backend_->poses(pose_topic_);
+      for (std::size_t i = 0; i < poses_.size(); ++i) {
+        check_stamped_pose(poses_[i], path.string() + "#" + printable_name(pose_topic_) +
+                                          " message " + std::to_string(i));
+      }
       std::stable_sort(
           poses_.begin(), poses_.end(),
           [](const StampedPose& a, const StampedPose& b) { return a.stamp_s < b.stamp_s; });
@@ -144,7 +173,8 @@ class BagSequence : public SequenceReader {
     frame.index = next_index_;
     frame.time_s = image->stamp_s;
     frame.image = std::move(image->image);
-    frame.source = path_.string() + "#" + topic_.name + " frame " + std::to_string(next_index_);
+    frame.source = path_.string() + "#" + printable_name(topic_.name) + " frame " +
+                   std::to_string(next_index_);
     if (!pose_topic_.empty()) frame.truth = interpolate_pose(poses_, image->stamp_s);
     size_check_.check(frame.image, frame.source);
     ++next_index_;
@@ -154,10 +184,12 @@ class BagSequence : public SequenceReader {
   std::size_t size() const override { return topic_.count; }
 
   std::string describe() const override {
-    std::string text = backend_->kind() + " " + path_.string() + " (" + topic_.name + ", " +
-                       std::to_string(topic_.count) + " images";
+    std::string text = backend_->kind() + " " + path_.string() + " (" +
+                       printable_name(topic_.name) + ", " + std::to_string(topic_.count) +
+                       " images";
     if (!pose_topic_.empty()) {
-      text += ", poses from " + pose_topic_ + " (" + std::to_string(poses_.size()) + ")";
+      text += ", poses from " + printable_name(pose_topic_) + " (" + std::to_string(poses_.size()) +
+              ")";
     }
     return text + ")";
   }

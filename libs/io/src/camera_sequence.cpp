@@ -62,8 +62,24 @@ CameraSequence::CameraSequence(const std::string& device, CameraOptions options)
                      "(camera:/dev/video0) or a video file standing in for one");
   }
   if (options_.queue_frames == 0) throw UsageError("a camera's queue must hold a frame at least");
-  std::error_code error;
-  is_file_ = !all_digits(device) && std::filesystem::is_regular_file(device, error);
+  // A number is a V4L2 device index, /dev/... a device, anything else a video file.
+  const bool number = all_digits(device);
+  if (number && device.size() > 4) {
+    throw UsageError(std::string(kCameraPrefix) + device + ": no such camera number (0 to 9999)");
+  }
+  if (!number && device.rfind("/dev/", 0) != 0) {
+    if (device.front() == '-' && device.find_first_not_of("-+0123456789") == std::string::npos) {
+      throw UsageError(std::string(kCameraPrefix) + device +
+                       ": not a camera (a device number is 0, 1, ...; or give /dev/videoN or a "
+                       "video file)");
+    }
+    std::error_code error;
+    if (!std::filesystem::is_regular_file(device, error)) {
+      throw InputError(std::string(kCameraPrefix) + device + ": " +
+                       unreadable_file_reason(device, "video file"));
+    }
+  }
+  is_file_ = !number && device.rfind("/dev/", 0) != 0;
   name_ = is_file_ ? device : "camera " + device;
   bool opened = false;
   cv::Mat first;

@@ -79,7 +79,9 @@ class Db3Bag : public BagBackend {
   }
 
   std::optional<BagImage> next_image() override {
-    if (!step(images_.get(), "reading the images of " + topic_.name)) return std::nullopt;
+    if (!step(images_.get(), "reading the images of " + printable_name(topic_.name))) {
+      return std::nullopt;
+    }
     return decode_cdr_image(topic_.type, blob(images_.get()), where(topic_.name, index_++));
   }
 
@@ -119,15 +121,16 @@ class Db3Bag : public BagBackend {
     for (const auto& [id, topic] : topics_) {
       if (topic.name != name) continue;
       if (topic.format != "cdr") {
-        throw InputError(file_.string() + ": topic " + name + " is serialised as '" + topic.format +
+        throw InputError(file_.string() + ": topic " + printable_name(name) +
+                         " is serialised as '" + printable_name(topic.format) +
                          "'; omninav reads ROS 2's 'cdr'");
       }
       return {id, topic};
     }
-    throw InputError(file_.string() + ": no topic " + name);
+    throw InputError(file_.string() + ": no topic " + printable_name(name));
   }
   std::string where(const std::string& topic, std::size_t index) const {
-    return file_.string() + "#" + topic + " message " + std::to_string(index);
+    return file_.string() + "#" + printable_name(topic) + " message " + std::to_string(index);
   }
 
   std::filesystem::path file_;

@@ -49,14 +49,15 @@ std::optional<cv::Size> png_size(const std::vector<unsigned char>& data) {
                   static_cast<int>(std::min(height, kMaxSide)));
 }
 
-std::optional<cv::Size> jpeg_size(const std::filesystem::path& file) {
+// `byte()` gives the next byte or a negative number at the end, `skip(n)` passes n bytes: the
+// same parser for a file and for bytes in memory.
+template <typename Byte, typename Skip>
+std::optional<cv::Size> jpeg_size(Byte byte, Skip skip) {
   // Segments from the start-of-image marker: FF <marker> <length, 2 bytes, including itself>
   // <payload>, up to a start-of-frame (C0-CF but C4 DHT, C8 JPG, CC DAC), whose payload is
   // precision (1), height (2), width (2). Exif thumbnails sit inside APP1's payload, skipped.
-  std::ifstream stream(file, std::ios::binary);
-  const auto byte = [&]() -> int { return stream.get(); };
   if (byte() != 0xFF || byte() != 0xD8) return std::nullopt;
-  while (stream) {
+  while (true) {
     int marker = byte();
     if (marker != 0xFF) return std::nullopt;
     while (marker == 0xFF) marker = byte();  // fill bytes
@@ -74,20 +75,57 @@ std::optional<cv::Size> jpeg_size(const std::filesystem::path& file) {
       if (w0 < 0) return std::nullopt;
       return cv::Size(w1 << 8 | w0, h1 << 8 | h0);
     }
-    stream.seekg(length - 2, std::ios::cur);
+    if (!skip(length - 2)) return std::nullopt;
   }
-  return std::nullopt;
+}
+
+std::optional<cv::Size> jpeg_size(const std::filesystem::path& file) {
+  std::ifstream stream(file, std::ios::binary);
+  return jpeg_size(
+      [&]() -> int { return stream.get(); },
+      [&](int count) { return static_cast<bool>(stream.seekg(count, std::ios::cur)); });
+}
+
+std::optional<cv::Size> jpeg_size(const std::vector<std::uint8_t>& bytes) {
+  std::size_t at = 0;
+  return jpeg_size([&]() -> int { return at < bytes.size() ? bytes[at++] : -1; },
+                   [&](int count) {
+                     at += static_cast<std::size_t>(count);
+                     return at <= bytes.size();
+                   });
 }
 
 void check_pixels(const cv::Size& size, const std::filesystem::path& file) {
-  if (static_cast<long long>(size.width) * size.height > kMaxImagePixels) {
-    throw InputError(file.string() + ": image is " + size_text(size) +
-                     ", more than omninav reads (" + std::to_string(kMaxImagePixels / 1000000) +
-                     " megapixels at most)");
-  }
+  check_image_pixels(size, file.string());
 }
 
 }  // namespace
+
+void check_image_pixels(const cv::Size& size, const std::string& where) {
+  if (static_cast<long long>(size.width) * size.height > kMaxImagePixels) {
+    throw InputError(where + ": image is " + size_text(size) + ", more than omninav reads (" +
+                     std::to_string(kMaxImagePixels / 1000000) + " megapixels at most)");
+  }
+}
+
+cv::Mat decode_image(const std::vector<std::uint8_t>& bytes, int flags, const std::string& where) {
+  const std::vector<unsigned char> prefix(bytes.begin(),
+                                          bytes.begin() + std::min<std::size_t>(bytes.size(), 24));
+  std::optional<cv::Size> declared = png_size(prefix);
+  if (!declared && bytes.size() >= 2 && bytes[0] == 0xFF && bytes[1] == 0xD8) {
+    declared = jpeg_size(bytes);
+  }
+  if (declared) check_image_pixels(*declared, where);
+  cv::Mat image;
+  try {
+    const QuietStderr quiet;  // no "libpng error: ..." before our message
+    image = cv::imdecode(bytes, flags);
+  } catch (const cv::Exception&) {
+    image = cv::Mat();  // some decoders throw on malformed headers instead of returning nothing
+  }
+  if (!image.empty()) check_image_pixels(image.size(), where);
+  return image;
+}
 
 std::string size_text(const cv::Size& size) {
   return std::to_string(size.width) + "x" + std::to_string(size.height) + " px";
@@ -124,6 +162,7 @@ cv::Mat read_image(const std::filesystem::path& file) {
 }
 
 void ImageSizeCheck::check(const cv::Mat& image, const std::string& source) {
+  check_image_pixels(image.size(), source);
   if (!first_size_) {
     first_size_ = image.size();
     first_source_ = source;

@@ -1,9 +1,11 @@
 // ROS 2 bags in MCAP (https://mcap.dev/spec), read by us: Debian packages no MCAP library (nor
 // rosbag2). The file is read front to back, record by record, without its summary section, so
 // that a file cut short (a recording killed mid-write) still gives the messages before the cut.
-// Chunks compressed with zstd or lz4 are decompressed with Debian's libzstd and liblz4.
+// Chunks compressed with zstd or lz4 are decompressed with Debian's libzstd and liblz4, and
+// checked against their CRC-32 (the spec's "CRC-32 (IEEE 802.3)", which is zlib's crc32).
 
 #include <lz4frame.h>
+#include <zlib.h>
 #include <zstd.h>
 
 #include <algorithm>
@@ -74,6 +76,16 @@ class Fields {
   const std::string& where_;
   std::size_t offset_ = 0;
 };
+
+// CRC-32 of `bytes`, fed to zlib in pieces its uInt length can hold.
+std::uint32_t crc32_of(const std::vector<std::uint8_t>& bytes) {
+  uLong crc = ::crc32(0L, Z_NULL, 0);
+  constexpr std::size_t kPiece = std::size_t{1} << 30;
+  for (std::size_t at = 0; at < bytes.size(); at += kPiece) {
+    crc = ::crc32(crc, bytes.data() + at, static_cast<uInt>(std::min(kPiece, bytes.size() - at)));
+  }
+  return static_cast<std::uint32_t>(crc);
+}
 
 struct Channel {
   std::string topic;
@@ -202,7 +214,7 @@ class Cursor {
     fields.u64();  // message start time
     fields.u64();  // message end time
     const std::uint64_t size = fields.u64();
-    fields.u32();  // CRC of the uncompressed records
+    const std::uint32_t crc = fields.u32();  // of the uncompressed records; 0: not computed
     const std::string compression = fields.string();
     const std::uint64_t compressed_size = fields.u64();
     if (compressed_size > fields.left()) throw InputError(where + " is cut short");
@@ -245,8 +257,11 @@ class Cursor {
       }
       if (made != size) throw InputError(where + ": cannot decompress (lz4: wrong size)");
     } else {
-      throw InputError(where + ": compressed with '" + compression +
+      throw InputError(where + ": compressed with '" + printable_name(compression) +
                        "' (omninav reads zstd, lz4 and uncompressed chunks)");
+    }
+    if (crc != 0 && crc32_of(records) != crc) {
+      throw InputError(where + " is damaged (its records do not match the chunk's CRC-32)");
     }
     return records;
   }
@@ -271,13 +286,15 @@ class McapBag : public BagBackend {
     Message message;
     try {
       while (cursor.next(message)) ++counts_[message.channel];
-    } catch (const InputError&) {
-      // next_image reports it when the images reach it.
+    } catch (const InputError& error) {
+      // next_image reports it when the images reach it; damage() when it hides the topics.
+      damage_ = error.what();
     }
     channels_ = cursor.channels();
   }
 
   std::string kind() const override { return "MCAP"; }
+  std::optional<std::string> damage() const override { return damage_; }
 
   std::vector<BagTopic> topics() override {
     std::map<std::string, BagTopic> by_name;
@@ -330,18 +347,20 @@ class McapBag : public BagBackend {
 
  private:
   std::string where(const std::string& topic, std::size_t index) const {
-    return file_.string() + "#" + topic + " message " + std::to_string(index);
+    return file_.string() + "#" + printable_name(topic) + " message " + std::to_string(index);
   }
   void check_cdr(const Channel& channel) const {
     if (channel.encoding != "cdr") {
-      throw InputError(file_.string() + ": topic " + channel.topic + " is encoded as '" +
-                       channel.encoding + "'; omninav reads ROS 2's 'cdr'");
+      throw InputError(file_.string() + ": topic " + printable_name(channel.topic) +
+                       " is encoded as '" + printable_name(channel.encoding) +
+                       "'; omninav reads ROS 2's 'cdr'");
     }
   }
 
   std::filesystem::path file_;
   std::map<std::uint16_t, Channel> channels_;
   std::map<std::uint16_t, std::size_t> counts_;
+  std::optional<std::string> damage_;
   std::string topic_;
   std::unique_ptr<Cursor> cursor_;
   std::size_t index_ = 0;

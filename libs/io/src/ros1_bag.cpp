@@ -16,6 +16,7 @@
 
 #include "bag_backend.hpp"
 #include "omninav/core/errors.hpp"
+#include "omninav/io/image_file.hpp"
 
 namespace omninav::io::detail {
 namespace {
@@ -98,7 +99,8 @@ class Ros1Bag : public BagBackend {
   }
 
   std::optional<BagImage> next_image() override {
-    const std::string where = file_.string() + "#" + topic_ + " message " + std::to_string(index_);
+    const std::string where =
+        file_.string() + "#" + printable_name(topic_) + " message " + std::to_string(index_);
     try {
       if (at_ == view_->end()) return std::nullopt;
       const rosbag::MessageInstance& message = *at_;
@@ -143,6 +145,9 @@ class Ros1Bag : public BagBackend {
 cv::Mat decode_raw_image(RawImage image, const std::string& where) {
   namespace encodings = sensor_msgs::image_encodings;
   if (image.width == 0 || image.height == 0) throw InputError(where + ": an empty image");
+  check_image_pixels(cv::Size(static_cast<int>(std::min<std::uint32_t>(image.width, 1u << 30)),
+                              static_cast<int>(std::min<std::uint32_t>(image.height, 1u << 30))),
+                     where);
   if (static_cast<std::uint64_t>(image.step) * image.height > image.data.size()) {
     throw InputError(where + ": " + std::to_string(image.data.size()) + " bytes of data for " +
                      std::to_string(image.height) + " rows of " + std::to_string(image.step) +
@@ -178,16 +183,13 @@ cv::Mat decode_raw_image(RawImage image, const std::string& where) {
 cv::Mat decode_compressed_image(const std::vector<std::uint8_t>& data, const std::string& format,
                                 const std::string& where) {
   if (format.find("compressedDepth") != std::string::npos) {
-    throw InputError(where + ": a compressed depth image ('" + format + "'), not a picture");
+    throw InputError(where + ": a compressed depth image ('" + printable_name(format) +
+                     "'), not a picture");
   }
-  cv::Mat image;
-  try {
-    image = cv::imdecode(data, cv::IMREAD_ANYCOLOR);
-  } catch (const cv::Exception&) {
-    image = cv::Mat();
-  }
+  cv::Mat image = decode_image(data, cv::IMREAD_ANYCOLOR, where);
   if (image.empty()) {
-    throw InputError(where + ": cannot decode the compressed image ('" + format + "')");
+    throw InputError(where + ": cannot decode the compressed image ('" + printable_name(format) +
+                     "')");
   }
   return image;
 }

@@ -1,10 +1,12 @@
 #include "omninav/io/video_sequence.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
 #include "omninav/core/errors.hpp"
 #include "omninav/core/log.hpp"
+#include "omninav/io/image_file.hpp"
 #include "quiet_stderr.hpp"
 
 namespace omninav::io {
@@ -17,7 +19,20 @@ VideoSequence::VideoSequence(const std::filesystem::path& file) : file_(file) {
   bool opened = false;
   {
     const QuietStderr quiet;  // FFmpeg's, GStreamer's and OpenCV's lines: ours says it
-    opened = capture_.open(file.string()) && capture_.read(pending_) && !pending_.empty();
+    opened = capture_.open(file.string());
+  }
+  // The size the stream declares, before a frame of it is decoded (ImageSizeCheck checks the
+  // decoded frames too).
+  const double width = opened ? capture_.get(cv::CAP_PROP_FRAME_WIDTH) : 0.0;
+  const double height = opened ? capture_.get(cv::CAP_PROP_FRAME_HEIGHT) : 0.0;
+  if (std::isfinite(width) && std::isfinite(height) && width * height > kMaxImagePixels) {
+    check_image_pixels(
+        cv::Size(static_cast<int>(std::min(width, 1e9)), static_cast<int>(std::min(height, 1e9))),
+        file.string());
+  }
+  if (opened) {
+    const QuietStderr quiet;
+    opened = capture_.read(pending_) && !pending_.empty();
   }
   if (!opened) {
     throw InputError(file.string() +

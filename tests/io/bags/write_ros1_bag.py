@@ -4,11 +4,14 @@ independent of omninav's C++ reader, for the io tests (run by them at test time)
   /usr/bin/python3 write_ros1_bag.py DATABASE OUT.bag [--encoding rgb8|bgr8|rgba8|bgra8|mono8|
       mono16|bayer_rggb8|png] [--poses odometry|pose_stamped] [--second-camera]
       [--truncate-bytes N] [--compression none|bz2|lz4] [--chunk-bytes N]
+      [--first-pose X,Y,Z,QX,QY,QZ,QW] [--png-file FILE]
 
 Images on /camera/image_raw (sensor_msgs/Image) or, with --encoding png,
 /camera/image_raw/compressed (sensor_msgs/CompressedImage, the PNG files' bytes); poses on /odom
 (nav_msgs/Odometry) or /pose (geometry_msgs/PoseStamped), stamped as the images and recorded
-just after them. --second-camera adds /camera2/image_raw; --truncate-bytes cuts the file."""
+just after them. --second-camera adds /camera2/image_raw; --truncate-bytes cuts the file;
+--first-pose replaces the first pose (damage: 1e300, nan, a quaternion of zeros); --png-file
+gives every CompressedImage that file's bytes (a decompression bomb, a broken PNG)."""
 
 import os
 
@@ -25,14 +28,17 @@ def main():
     parser = argument_parser()
     parser.add_argument("--compression", choices=["none", "bz2", "lz4"], default="none")
     parser.add_argument("--chunk-bytes", type=int, default=768 * 1024)
+    parser.add_argument("--first-pose")
+    parser.add_argument("--png-file")
     args = parser.parse_args()
+    png = open(args.png_file, "rb").read() if args.png_file else None
 
     with rosbag.Bag(args.out, "w", compression=args.compression,
                     chunk_threshold=args.chunk_bytes) as bag:
         for index, frame in enumerate(frames(args.database)):
             stamp = rospy.Time(frame["sec"], frame["nanosec"])
             if args.encoding == "png":
-                image = CompressedImage(format="png", data=frame["png"])
+                image = CompressedImage(format="png", data=png or frame["png"])
                 topic = "/camera/image_raw/compressed"
             else:
                 step, data = encode(frame["rows"], args.encoding)
@@ -57,6 +63,11 @@ def main():
                 target.position.x, target.position.y, target.position.z = frame["position"]
                 (target.orientation.x, target.orientation.y, target.orientation.z,
                  target.orientation.w) = frame["quaternion"]
+                if args.first_pose and index == 0:
+                    values = [float(v) for v in args.first_pose.split(",")]
+                    target.position.x, target.position.y, target.position.z = values[:3]
+                    (target.orientation.x, target.orientation.y, target.orientation.z,
+                     target.orientation.w) = values[3:]
                 bag.write("/odom" if args.poses == "odometry" else "/pose", pose,
                           stamp + rospy.Duration(0, 1000))
     if args.truncate_bytes:

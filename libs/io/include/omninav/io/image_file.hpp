@@ -1,10 +1,12 @@
 #pragma once
 // Reading image files the way every reader of io does, and the one-size-per-sequence check.
 
+#include <cstdint>
 #include <filesystem>
 #include <opencv2/core.hpp>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace omninav::io {
 
@@ -19,6 +21,17 @@ inline constexpr long long kMaxImagePixels = 8192LL * 8192LL;
 // kMaxImagePixels (for PNG and JPEG found from the header, before anything is decoded). Every
 // image file omninav reads goes through here.
 cv::Mat read_image(const std::filesystem::path& file);
+
+// Decodes an image held in memory (a bag's CompressedImage) as read_image decodes a file: the
+// size its PNG or JPEG header declares is checked against kMaxImagePixels before anything is
+// decoded, and the decoded size after; OpenCV's and libpng's own lines are kept off stderr.
+// `flags` as cv::imdecode's. Throws InputError "<where>: image is ..." for too many pixels;
+// returns an empty Mat when the bytes are no image OpenCV decodes (the caller says what it held).
+cv::Mat decode_image(const std::vector<std::uint8_t>& bytes, int flags, const std::string& where);
+
+// InputError "<where>: image is <w>x<h> px, more than omninav reads ..." beyond kMaxImagePixels:
+// for sizes declared before decoding (a raw image's header, a video's stream).
+void check_image_pixels(const cv::Size& size, const std::string& where);
 
 // Whether `file`'s extension, in any case, is one of the image formats omninav reads: png,
 // jpg, jpeg, bmp, tif, tiff, ppm, pgm (the one list: folders are read by it too).
@@ -35,7 +48,9 @@ std::string size_text(const cv::Size& size);
 // of panoramas of mixed sizes cannot be compared column by column.
 class ImageSizeCheck {
  public:
-  // Throws InputError naming `source` and both sizes when `image` differs from the first one.
+  // Throws InputError naming `source` and both sizes when `image` differs from the first one,
+  // or when it has more than kMaxImagePixels (every sequence's frames pass here, whatever
+  // decoded them).
   void check(const cv::Mat& image, const std::string& source);
 
  private:
