@@ -5,12 +5,15 @@
 #include <signal.h>
 #include <sqlite3.h>
 #include <sys/file.h>
+#include <sys/mount.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <functional>
 #include <random>
 
 #include "omninav/core/errors.hpp"
@@ -320,14 +323,15 @@ TEST_F(MapStoreTest, AppendingRefusesAMapChangedOnDiskOrMadeDifferently) {
   VisualMemory other = synthetic_memory(3, 10, 3, other_store.load());
   other_store.save(other);
   VisualMemory more = synthetic_memory(2, 10, 4, std::move(stale));
-  EXPECT_THROW(stale_store.save(more), UsageError);
+  // The losing writer of a race failed at run time (exit status 1), not by its arguments (2).
+  EXPECT_THROW(stale_store.save(more), InputError);
   EXPECT_EQ(load_map(file).place_count(), 8u);
   // Nor does a lattice organised from the stale map go into the changed one.
   MapStore organising_store(file);
   VisualMemory organised = organising_store.load();
   organised.set_lattice_positions(diagonal_lattice(organised));
   other_store.save(synthetic_memory(1, 10, 5, other_store.load()));
-  EXPECT_THROW(organising_store.save(organised), UsageError);
+  EXPECT_THROW(organising_store.save(organised), InputError);
   EXPECT_FALSE(load_map(file).all_have_lattice());
   // A memory that lost rows the map has is not written either.
   EXPECT_THROW(other_store.save(synthetic_memory(2)), UsageError);
@@ -427,6 +431,118 @@ TEST_F(MapStoreTest, AWriterKilledWhileAppendingLeavesThePreviousMap) {
   const VisualMemory after = load_map(file);
   expect_same(before, after);
   EXPECT_FALSE(fs::exists(journal)) << "opening rolls the journal back";
+}
+
+// Runs `write` in a child process whose files may not grow beyond `limit_bytes` (RLIMIT_FSIZE,
+// its SIGXFSZ ignored: writes fail with EFBIG, as on a full disk). Returns the message of the
+// InputError it threw ("" when it threw none, "other" for any other exception).
+std::string message_of_write_with_file_limit(std::uintmax_t limit_bytes,
+                                             const std::function<void()>& write) {
+  int pipe_fds[2];
+  EXPECT_EQ(::pipe(pipe_fds), 0);
+  const pid_t child = ::fork();
+  if (child == 0) {
+    ::close(pipe_fds[0]);
+    ::signal(SIGXFSZ, SIG_IGN);
+    const struct rlimit limit {
+      static_cast<rlim_t>(limit_bytes), static_cast<rlim_t>(limit_bytes)
+    };
+    ::setrlimit(RLIMIT_FSIZE, &limit);
+    std::string message;
+    try {
+      write();
+    } catch (const InputError& error) {
+      message = error.what();
+    } catch (...) {
+      message = "other";
+    }
+    (void)!::write(pipe_fds[1], message.data(), message.size());
+    ::_exit(0);
+  }
+  ::close(pipe_fds[1]);
+  std::string message;
+  char buffer[512];
+  for (ssize_t n; (n = ::read(pipe_fds[0], buffer, sizeof buffer)) > 0;) message.append(buffer, n);
+  ::close(pipe_fds[0]);
+  int status = 0;
+  EXPECT_EQ(::waitpid(child, &status, 0), child);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+  return message;
+}
+
+TEST_F(MapStoreTest, AnAppendThatCannotGrowTheFileRollsItselfBackBeforeItFails) {
+  const fs::path file = dir_ / "full.vmem";
+  fs::path journal = file;
+  journal += "-journal";
+  VisualMemory before = synthetic_memory(20, 100);
+  MapStore(file).save(before);
+  const std::uintmax_t size = fs::file_size(file);
+  MapStore store(file);
+  VisualMemory bigger = synthetic_memory(1500, 8000, 2, store.load());
+  const std::string message =
+      message_of_write_with_file_limit(size + 200'000, [&] { store.save(bigger); });
+  EXPECT_EQ(message.rfind(file.string() + ": cannot write the map (", 0), 0u) << message;
+  EXPECT_FALSE(fs::exists(journal)) << "no hot journal left for the next reader";
+  EXPECT_EQ(fs::file_size(file), size) << "the file did not keep the failed append's pages";
+  expect_same(before, load_map(file));
+}
+
+TEST_F(MapStoreTest, ANewMapThatCannotBeWrittenIsNamedNotItsTemporary) {
+  const fs::path file = dir_ / "new.vmem";
+  const std::string message = message_of_write_with_file_limit(
+      100'000, [&] { MapStore(file).save(synthetic_memory(600, 8000)); });
+  EXPECT_EQ(message.rfind(file.string() + ": cannot write", 0), 0u) << message;
+  EXPECT_EQ(message.find(".new."), std::string::npos) << message;
+  EXPECT_TRUE(folder_entries(dir_).empty()) << "no map, no temporary";
+}
+
+TEST_F(MapStoreTest, AReaderOnReadOnlyStorageReadsAMapAnotherWriterLeftAJournalIn) {
+  const fs::path folder = dir_ / "storage";
+  fs::create_directories(folder);
+  const bool mounted =
+      ::geteuid() == 0 && ::mount("tmpfs", folder.c_str(), "tmpfs", 0, "size=64m") == 0;
+  if (::geteuid() == 0 && !mounted)
+    GTEST_SKIP() << "root without a mount: cannot make storage read-only";
+  const fs::path file = folder / "killed.vmem";
+  fs::path journal = file;
+  journal += "-journal";
+  VisualMemory before = synthetic_memory(20, 100);
+  MapStore(file).save(before);
+  MapStore store(file);
+  kill_writer_midway(store, synthetic_memory(1500, 8000, 2, store.load()), 1000, false);
+  ASSERT_TRUE(fs::exists(journal)) << "the kill should leave a hot journal";
+  if (mounted) {
+    ASSERT_EQ(::mount(nullptr, folder.c_str(), nullptr, MS_REMOUNT | MS_RDONLY, nullptr), 0);
+  } else {
+    fs::permissions(file, fs::perms::owner_read | fs::perms::group_read);
+    fs::permissions(folder, fs::perms::owner_read | fs::perms::owner_exec);
+  }
+  VisualMemory after;
+  EXPECT_NO_THROW(after = load_map(file));
+  expect_same(before, after);
+  EXPECT_TRUE(fs::exists(journal)) << "the reader changed nothing where it may not write";
+  if (mounted) {
+    ::umount(folder.c_str());
+  } else {
+    fs::permissions(folder, fs::perms::owner_all);
+  }
+}
+
+TEST_F(MapStoreTest, APlaceWithAPoseNoMapCanHoldIsRefusedNamingItsSource) {
+  VisualMemory memory = synthetic_memory(1);
+  Place place = memory.place(0);
+  place.source = "run.bag#/camera frame 3";
+  place.truth = CameraPose{std::nan(""), 0.0, 0.0, 0.0, 0.0, 0.0};
+  try {
+    memory.add_place(place);
+    ADD_FAILURE() << "a NaN position joined the map";
+  } catch (const InputError& error) {
+    EXPECT_STREQ(error.what(),
+                 "run.bag#/camera frame 3: x: nan m is not a position (not a finite number)");
+  }
+  place.truth = CameraPose{1e300, 0.0, 0.0, 0.0, 0.0, 0.0};
+  EXPECT_THROW(memory.add_place(place), InputError);
+  EXPECT_EQ(memory.place_count(), 1u);
 }
 
 TEST_F(MapStoreTest, AWriterKilledWhileCreatingLeavesNoMapOrTheOldOne) {

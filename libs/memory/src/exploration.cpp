@@ -14,6 +14,7 @@
 #include "omninav/core/format.hpp"
 #include "omninav/core/log.hpp"
 #include "omninav/core/panorama.hpp"
+#include "omninav/core/parse.hpp"
 #include "omninav/core/progress.hpp"
 #include "omninav/signature/dissimilarity.hpp"
 #include "omninav/signature/motion.hpp"
@@ -149,6 +150,7 @@ const Run& Explorer::run() const {
 }
 
 std::optional<PlaceIndex> Explorer::add(const io::Frame& frame) {
+  if (frame.truth) check_pose(*frame.truth, frame.source);  // every source's, before any use
   const signature::Signature signature = extractor_.compute(frame.image, frame.source);
   track_heading(frame, signature);
   if (plateau_) plateau_->add(signature);
@@ -185,6 +187,7 @@ std::optional<PlaceIndex> Explorer::add(const io::Frame& frame) {
 }
 
 PlaceIndex Explorer::add_place(const io::Frame& frame) {
+  if (frame.truth) check_pose(*frame.truth, frame.source);
   const signature::Signature signature = extractor_.compute(frame.image, frame.source);
   track_heading(frame, signature);
   ++frames_;

@@ -7,10 +7,13 @@
 
 #include <algorithm>
 #include <bit>
+#include <cerrno>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <map>
+#include <optional>
 
 #include "omninav/core/errors.hpp"
 #include "omninav/core/format.hpp"
@@ -406,7 +409,7 @@ void write_new(const VisualMemory& memory, const std::filesystem::path& file,
   OutputFile output(file);
   if (output.in_place()) throw InputError(file.string() + ": is not a regular file");
   {
-    Database db(output.temporary(), Database::Mode::kCreate);
+    Database db(output.temporary(), Database::Mode::kCreate, file);
     // The temporary is thrown away if anything fails, so it needs no journal; it is synced
     // once, whole, before the rename.
     db.exec("PRAGMA journal_mode = OFF");
@@ -441,6 +444,20 @@ struct Change {
   bool lattice_changed = false;                 // a place it holds has moved on the lattice
 };
 
+// A connection that fails mid-transaction on a full disk leaves SQLite's pager in its error
+// state, which closes without rolling back: the journal stays hot and the file grown until the
+// next opener rolls them back. The failing writer is that opener, before it reports the failure.
+void roll_back_hot_journal(const std::filesystem::path& file) {
+  std::error_code error;
+  if (!std::filesystem::exists(file.string() + "-journal", error)) return;
+  try {
+    Database db(file, Database::Mode::kReadWrite);
+    db.exec("SELECT count(*) FROM sqlite_master", "cannot roll back the failed write");
+  } catch (const InputError&) {
+    // Left to the next opener, as SQLite intends; the first failure is the one reported.
+  }
+}
+
 void append(const VisualMemory& memory, const std::filesystem::path& file,
             const SaveOptions& options, const Change& change) {
   Database db(file, Database::Mode::kReadWrite);
@@ -453,9 +470,10 @@ void append(const VisualMemory& memory, const std::filesystem::path& file,
     if (count_rows(db, "places") != static_cast<std::int64_t>(change.places) ||
         count_rows(db, "edges") != static_cast<std::int64_t>(change.edges) ||
         count_rows(db, "runs") != static_cast<std::int64_t>(change.runs)) {
-      throw UsageError(file.string() +
+      // Another writer's append won the race: a failure of this run, not of its arguments.
+      throw InputError(file.string() +
                        ": the map on disk is not the one this memory was read from (another "
-                       "program changed it?); not writing");
+                       "process changed it meanwhile); not writing");
     }
     // The signature parameters must match, or the new places could not be compared.
     const auto mine = parameter_rows(memory);
@@ -487,6 +505,8 @@ void append(const VisualMemory& memory, const std::filesystem::path& file,
     db.exec("COMMIT");
   } catch (...) {
     sqlite3_exec(db.handle(), "ROLLBACK", nullptr, nullptr, nullptr);
+    db.close();
+    roll_back_hot_journal(file);
     throw;
   }
 }
@@ -540,16 +560,69 @@ Place read_place(const Statement& row, const std::filesystem::path& file, std::s
   return p;
 }
 
+// A copy of a map and of the hot journal a killed writer left beside it, in a private temporary
+// folder (removed with this object), for a reader that may not write where the map is (read-only
+// storage): SQLite rolls the journal back into the copy, which then holds the previous map.
+class RolledBackCopy {
+ public:
+  explicit RolledBackCopy(const std::filesystem::path& map) {
+    std::string pattern = (std::filesystem::temp_directory_path() / "omninav-map-XXXXXX").string();
+    if (::mkdtemp(pattern.data()) == nullptr) {
+      throw InputError(map.string() + ": cannot read (it has a journal to roll back, and no " +
+                       "temporary folder to do it in: " + std::strerror(errno) + ")");
+    }
+    folder_ = pattern;
+    file_ = folder_ / "map.vmem";
+    std::error_code error;
+    std::filesystem::copy_file(map, file_, error);
+    if (!error) {
+      std::filesystem::copy_file(map.string() + "-journal", file_.string() + "-journal", error);
+    }
+    if (error) {
+      std::filesystem::remove_all(folder_, error);
+      throw InputError(map.string() + ": cannot read (it has a journal to roll back, and " +
+                       "copying them failed: " + error.message() + ")");
+    }
+  }
+  ~RolledBackCopy() {
+    std::error_code ignored;
+    std::filesystem::remove_all(folder_, ignored);
+  }
+  RolledBackCopy(const RolledBackCopy&) = delete;
+  RolledBackCopy& operator=(const RolledBackCopy&) = delete;
+
+  const std::filesystem::path& file() const { return file_; }
+
+ private:
+  std::filesystem::path folder_, file_;
+};
+
+// Whether a reader of `file` must roll back a hot journal it may not write: the map or its
+// folder read-only (storage mounted read-only, or permissions), and a journal beside it.
+bool needs_rolled_back_copy(const std::filesystem::path& file) {
+  std::error_code error;
+  const std::filesystem::path journal = file.string() + "-journal";
+  if (!std::filesystem::exists(journal, error) || std::filesystem::file_size(journal, error) == 0) {
+    return false;
+  }
+  const std::filesystem::path folder = file.has_parent_path() ? file.parent_path() : ".";
+  return ::access(file.c_str(), W_OK) != 0 || ::access(folder.c_str(), W_OK) != 0;
+}
+
 // Opens a map for reading. Read-write when possible: a map left with a hot journal by a killed
 // writer is rolled back to its previous state when opened, which a read-only connection cannot
-// do.
-Database open_for_reading(const std::filesystem::path& file) {
+// do (then `copy` holds the map rolled back, and is what is read). Messages name `file`.
+Database open_for_reading(const std::filesystem::path& file, std::optional<RolledBackCopy>& copy) {
   std::error_code error;
   if (!std::filesystem::exists(file, error)) {
     throw InputError(file.string() + ": no such map file");
   }
   if (!std::filesystem::is_regular_file(file, error)) {
     throw InputError(file.string() + ": is not a map file (not a regular file)");
+  }
+  if (needs_rolled_back_copy(file)) {
+    copy.emplace(file);
+    return Database(copy->file(), Database::Mode::kReadWrite, file);
   }
   const bool writable = ::access(file.c_str(), W_OK) == 0;
   return Database(file, writable ? Database::Mode::kReadWrite : Database::Mode::kReadOnly);
@@ -731,9 +804,10 @@ void MapStore::check_replaceable() const {
 }
 
 VisualMemory MapStore::load() {
-  Database db = open_for_reading(file_);
+  std::optional<RolledBackCopy> copy;  // outlives db, declared before it
+  Database db = open_for_reading(file_, copy);
   const std::int64_t version = check_map(db);
-  db.exec("BEGIN");  // one consistent snapshot
+  db.exec("BEGIN", "cannot read the map");  // one consistent snapshot
   VisualMemory memory = read_parameters(db);
   for (Run& run : read_runs(db)) memory.add_run(std::move(run));
   std::vector<Place> places = read_places(db);

@@ -4,7 +4,8 @@
 
 namespace omninav::memory::detail {
 
-Database::Database(const std::filesystem::path& file, Mode mode) : file_(file) {
+Database::Database(const std::filesystem::path& file, Mode mode, std::filesystem::path name)
+    : name_(name.empty() ? file : std::move(name)) {
   int flags = SQLITE_OPEN_NOMUTEX;
   switch (mode) {
     case Mode::kReadOnly:
@@ -36,25 +37,30 @@ void Database::close() {
 
 void Database::fail(int code, const std::string& doing) const {
   const int primary = code & 0xff;
+  const std::string reason =
+      db_ != nullptr && sqlite3_errcode(db_) == code ? sqlite3_errmsg(db_) : sqlite3_errstr(code);
   std::string what;
   if (primary == SQLITE_NOTADB) {
     what = "is not an omninav map (not an SQLite database)";
   } else if (primary == SQLITE_CORRUPT) {
-    what = "is corrupt (SQLite: " +
-           std::string(db_ != nullptr ? sqlite3_errmsg(db_) : sqlite3_errstr(code)) + ")";
+    what = "is corrupt (SQLite: " + reason + ")";
+  } else if (primary == SQLITE_FULL) {
+    what = doing + " (the disk is full)";
+  } else if (primary == SQLITE_BUSY || primary == SQLITE_LOCKED) {
+    what = doing + " (another process is writing this map; try again later)";
+  } else if (primary == SQLITE_READONLY) {
+    what = doing + " (the map or its folder is read-only)";
   } else {
-    what = doing + ": " +
-           std::string(db_ != nullptr && sqlite3_errcode(db_) == code ? sqlite3_errmsg(db_)
-                                                                      : sqlite3_errstr(code));
+    what = doing + " (" + reason + ")";
   }
-  throw InputError(file_.string() + ": " + what);
+  throw InputError(name_.string() + ": " + what);
 }
 
-void Database::exec(const std::string& sql) {
+void Database::exec(const std::string& sql, const std::string& doing) {
   char* message = nullptr;
   const int code = sqlite3_exec(db_, sql.c_str(), nullptr, nullptr, &message);
   if (message != nullptr) sqlite3_free(message);
-  if (code != SQLITE_OK) fail(code, "cannot run '" + sql.substr(0, 60) + "'");
+  if (code != SQLITE_OK) fail(code, doing);
 }
 
 Statement Database::prepare(const std::string& sql) {
@@ -63,7 +69,7 @@ Statement Database::prepare(const std::string& sql) {
 
 Statement::Statement(Database& db, const std::string& sql) : db_(&db), sql_(sql) {
   const int code = sqlite3_prepare_v2(db.handle(), sql.c_str(), -1, &stmt_, nullptr);
-  if (code != SQLITE_OK) db.fail(code, "cannot read the map (" + sql.substr(0, 60) + ")");
+  if (code != SQLITE_OK) db.fail(code, "cannot read the map");
 }
 
 Statement::~Statement() {
@@ -110,7 +116,7 @@ bool Statement::step() {
   const int code = sqlite3_step(stmt_);
   if (code == SQLITE_ROW) return true;
   if (code == SQLITE_DONE) return false;
-  db_->fail(code, "cannot read or write the map");
+  db_->fail(code, sqlite3_stmt_readonly(stmt_) != 0 ? "cannot read the map" : "cannot write the map");
 }
 
 void Statement::run() {

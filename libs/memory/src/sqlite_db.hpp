@@ -1,6 +1,7 @@
 #pragma once
 // A thin RAII layer over SQLite's C API for the map file: a connection, prepared statements,
-// and errors turned into omninav's InputError with the file's name and what SQLite found.
+// and errors turned into omninav's InputError naming the map and saying in words what is wrong
+// (never the SQL, never the hidden temporary a new map is written in).
 
 #include <sqlite3.h>
 
@@ -17,22 +18,25 @@ class Statement;
 class Database {
  public:
   enum class Mode { kReadOnly, kReadWrite, kCreate };
-  Database(const std::filesystem::path& file, Mode mode);
+  // `name`: the map messages name, when `file` is a temporary or a copy of it (default: `file`).
+  Database(const std::filesystem::path& file, Mode mode, std::filesystem::path name = {});
   ~Database();
   Database(const Database&) = delete;
   Database& operator=(const Database&) = delete;
 
-  void exec(const std::string& sql);
+  // Runs `sql`; a failure is "<name>: <doing> (<SQLite's reason>)".
+  void exec(const std::string& sql, const std::string& doing = "cannot write the map");
   Statement prepare(const std::string& sql);
   // Throws InputError for `code` (an SQLite result code) with `doing` as context.
   [[noreturn]] void fail(int code, const std::string& doing) const;
   void close();
 
   sqlite3* handle() { return db_; }
-  const std::filesystem::path& file() const { return file_; }
+  // The map's name in messages.
+  const std::filesystem::path& file() const { return name_; }
 
  private:
-  std::filesystem::path file_;
+  std::filesystem::path name_;
   sqlite3* db_ = nullptr;
 };
 

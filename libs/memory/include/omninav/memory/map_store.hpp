@@ -65,9 +65,11 @@ class MapStore {
   //   - the whole memory, as a new file, when there is none or options.overwrite;
   //   - else what `memory` changed since this store's last load or save (nothing of it yet: an
   //     empty map): its new runs, places and edges are appended, the lattice positions replaced
-  //     when they changed, the parameters written. UsageError when the file no longer holds
-  //     what the store remembers (another program changed it), when `memory` lacks places,
-  //     edges or runs the file has, or when its signature parameters differ from the file's.
+  //     when they changed, the parameters written. InputError when the file no longer holds
+  //     what the store remembers (another process changed it meanwhile); UsageError when
+  //     `memory` lacks places, edges or runs the file has, or when its signature parameters
+  //     differ from the file's. A failed append (a full disk) is rolled back before it throws:
+  //     the file keeps its size and no hot journal is left.
   void save(const VisualMemory& memory, const SaveOptions& options = {});
 
  private:
