@@ -55,8 +55,7 @@ void check_output_folder(const std::filesystem::path& out, bool force,
     throw UsageError(out.string() + ": exists and is not a folder");
   }
   const fs::path input_folder = fs::is_directory(input, error) ? input : input.parent_path();
-  if (!input.empty() &&
-      fs::equivalent(out, input_folder.empty() ? fs::path(".") : input_folder, error)) {
+  if (!input.empty() && same_file(out, input_folder.empty() ? fs::path(".") : input_folder)) {
     throw UsageError(out.string() + ": is the input's folder; write the panoramas elsewhere");
   }
   if (!force && !fs::is_empty(out, error)) {

@@ -274,7 +274,7 @@ void run_compass(const GlobalOptions& global, const CompassOptions& options) {
   }
   for (const fs::path& output :
        {fs::path(options.out == "-" ? "" : options.out), options.plot, options.stats}) {
-    if (!output.empty()) check_output_path(output);
+    if (!output.empty()) check_output_path(output, {options.input, options.map});
   }
   const CompassSetup setup = compass_setup(global, options);
   const CompassRows run = run_over_input(global, options, setup);

@@ -81,6 +81,15 @@ void run_evaluate(const GlobalOptions& global, const EvaluateOptions& options) {
   }
   std::cout << "table: " << csv.string() << ", picture: " << picture.string()
             << "; the commands that remake each figure: " << commands.string() << "\n";
+  if (!result.failed_worlds.empty()) {
+    // The table is written, but a world that could not be measured is a failed run.
+    std::string failed;
+    for (const std::string& world : result.failed_worlds)
+      failed += (failed.empty() ? "" : "; ") + world;
+    throw InputError(suite.file.string() + ": " + std::to_string(result.failed_worlds.size()) +
+                     " of " + std::to_string(result.rows.size()) +
+                     " worlds could not be evaluated: " + failed);
+  }
 }
 
 }  // namespace

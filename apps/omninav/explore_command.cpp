@@ -5,6 +5,7 @@
 #include "cli.hpp"
 #include "omninav/core/errors.hpp"
 #include "omninav/core/log.hpp"
+#include "omninav/core/output_file.hpp"
 #include "omninav/core/parse.hpp"
 #include "omninav/memory/exploration.hpp"
 #include "omninav/memory/map_store.hpp"
@@ -52,7 +53,8 @@ void run_explore(const GlobalOptions& global, const ExploreOptions& options) {
     config.map.signature.normalise_brightness = options.brightness == "normalised";
   }
 
-  // The map is checked before the work: only a map may be replaced.
+  // The map is checked before the work: only a map may be replaced, never the input.
+  check_not_an_input(options.out, {options.input});
   memory::MapStore store(options.out);
   if (options.overwrite) store.check_replaceable();
   std::error_code error;

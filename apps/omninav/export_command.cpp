@@ -22,7 +22,8 @@ struct ExportOptions {
 };
 
 void run_export(const GlobalOptions& global, const ExportOptions& options) {
-  if (!options.out.empty() && options.what != "figures") check_output_path(options.out);
+  if (!options.out.empty() && options.what != "figures")
+    check_output_path(options.out, {options.map});
   const memory::VisualMemory map = memory::load_map(options.map);
   if (options.what == "figures") {
     if (options.out.empty()) throw UsageError("--what figures needs --out <folder>");

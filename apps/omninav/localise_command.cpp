@@ -51,7 +51,14 @@ void run_localise(const GlobalOptions& global, const LocaliseOptions& options) {
     params.hierarchy.levels = signature::parse_levels(*options.levels, "--levels");
   }
   if (options.top_k > 0) params.top_k = options.top_k;
-  if (!options.plot.empty()) check_output_path(options.plot);  // before the work
+  if (!options.plot.empty()) {  // before the work; neither the map nor a query may be replaced
+    std::vector<std::filesystem::path> inputs = options.queries;
+    inputs.push_back(options.map);
+    check_output_path(options.plot, inputs);
+    for (std::size_t i = 0; i < options.queries.size(); ++i) {
+      check_not_an_input(numbered_plot_file(options.plot, i), inputs);
+    }
+  }
 
   const memory::VisualMemory map = memory::load_map(options.map);
   if (map.place_count() == 0) throw InputError(options.map.string() + ": the map has no places");

@@ -123,7 +123,10 @@ void run_navigate(const GlobalOptions& global, const NavigateOptions& options) {
   // The output folder before the work, not after it.
   std::error_code error;
   std::filesystem::create_directories(options.out, error);
-  check_output_path(options.out / (options.trials > 0 ? "trials.csv" : "steps.csv"));
+  const std::vector<std::filesystem::path> inputs = {options.map, options.database, options.goal,
+                                                     options.world};
+  check_output_path(options.out / (options.trials > 0 ? "trials.csv" : "steps.csv"), inputs);
+  for (const char* name : {"steps.csv", "path.png"}) check_not_an_input(options.out / name, inputs);
 
   const memory::VisualMemory memory = memory::load_map(options.map);
   const memory::Localiser localiser(memory, memory_config.localisation);

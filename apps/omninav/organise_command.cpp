@@ -30,7 +30,7 @@ void run_organise(const GlobalOptions& global, const OrganiseOptions& options) {
   const std::filesystem::path picture =
       options.picture.empty() ? std::filesystem::path(options.map).replace_extension(".lattice.png")
                               : options.picture;
-  check_output_path(picture);  // before the work, not after it
+  check_output_path(picture, {options.map});  // before the work, not after it
   memory::MapStore store(options.map);
   const evaluation::OrganisedMap result = evaluation::organise_stored_map(store, params);
   const memory::VisualMemory& memory = result.memory;

@@ -30,7 +30,7 @@ struct RouteOptions {
 void run_route(const GlobalOptions& global, const RouteOptions& options) {
   std::filesystem::path plot = options.plot;
   if (plot.empty()) plot = std::filesystem::path(options.map).replace_extension(".route.png");
-  check_output_path(plot);  // before the work
+  check_output_path(plot, {options.map, options.from, options.to});  // before the work
   const memory::MemoryConfig memory_config = load_memory_config(global.config_dir);
   const NavigationConfig navigation = load_navigation_config(global.config_dir);
   const memory::VisualMemory memory = memory::load_map(options.map);

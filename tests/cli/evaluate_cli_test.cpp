@@ -3,6 +3,7 @@
 // the worst rows name real rows, the commands it prints remake its figures, and two runs give
 // the same table.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <cmath>
 #include <fstream>
@@ -172,6 +173,27 @@ TEST_F(EvaluateCommand, TheQuickSuiteMeasuresEveryWorld) {
     }
   }
   EXPECT_EQ(families, (std::set<std::string>{"room", "house", "field", "office", "obj"}));
+}
+
+TEST_F(EvaluateCommand, WorldsThatCannotBeLoadedFailTheRunAndSayWhy) {
+  const std::filesystem::path fifo = folder_ / "world.obj";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);  // read, it would block forever
+  std::ofstream(folder_ / "broken.obj") << "v 0 0 0\nv 1 0 0\nv nan 1 0\nf 1 2 3\n";
+  const std::filesystem::path suite = write_suite(std::string(kSuite).replace(
+      std::string(kSuite).find("worlds:"), std::string::npos,
+      "worlds:\n  - {name: zero, world: /dev/zero.obj}\n  - {name: device, world: "
+      "/dev/zero}\n  - {name: fifo, world: " +
+          fifo.string() + "}\n  - {name: broken, world: " + (folder_ / "broken.obj").string() +
+          "}\n"));
+  EXPECT_EQ(
+      run_omninav({"evaluate", "--suite", suite.string(), "--out", (folder_ / "out").string()}), 1);
+  EXPECT_NE(errors_.find("4 of 4 worlds could not be evaluated"), std::string::npos) << errors_;
+  EXPECT_NE(errors_.find("/dev/zero: is a device, not an OBJ file"), std::string::npos) << errors_;
+  EXPECT_NE(errors_.find("world.obj: is a FIFO, not an OBJ file"), std::string::npos) << errors_;
+  EXPECT_NE(errors_.find("broken.obj:3: vertex coordinate 'nan' is not a finite number"),
+            std::string::npos)
+      << errors_;
+  EXPECT_TRUE(std::filesystem::exists(folder_ / "out" / "evaluation.csv")) << "the table is kept";
 }
 
 TEST_F(EvaluateCommand, AnUnknownSuiteIsAUsageError) {

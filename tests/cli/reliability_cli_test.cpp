@@ -205,6 +205,46 @@ TEST_F(Reliability, EveryCommandChecksItsOutputPathsBeforeTheWork) {
   }
 }
 
+TEST_F(Reliability, NoOutputMayReplaceAnInputOfItsCommand) {
+  make_map();
+  const std::string map = map_.string();
+  // The map by other names: ./relative, through a link.
+  const fs::path link = folder_ / "link.vmem";
+  fs::create_symlink(map_, link);
+  const std::string dotted = (map_.parent_path() / "." / map_.filename()).string();
+  // A CSV sequence (file, x_m, y_m, heading_deg) of one of the grid's images.
+  const fs::path sequence = folder_ / "seq.csv";
+  std::ofstream(sequence) << "file,x_m,y_m,heading_deg\n" << image_ << ",1,1,0\n";
+  // navigate writes steps.csv into --out: here a copy of the map bears that name.
+  const fs::path steps = folder_ / "steps.csv";
+  fs::copy_file(map_, steps);
+  const std::vector<std::vector<std::string>> commands = {
+      {"export", map, "--out", dotted},
+      {"export", map, "--out", link.string()},
+      {"localise", map, image_, "--plot", map},
+      {"localise", map, image_, "--plot", image_},
+      {"route", map, "--from", image_, "--to", image_, "--plot", link.string()},
+      {"organise", map, "--step-m", "0.3", "--picture", dotted},
+      {"compass", "--input", grid_.string(), "--map", map, "--out", map},
+      {"compass", "--input", sequence.string(), "--out", sequence.string()},
+      {"compass", "--input", sequence.string(), "--plot", sequence.string()},
+      {"explore", "--input", sequence.string(), "--out", sequence.string()},
+      {"navigate", steps.string(), "--start", "1.5,1.3,0", "--goal", image_, "--out",
+       folder_.string()},
+  };
+  const std::string map_bytes = read_bytes(map_), sequence_bytes = read_bytes(sequence),
+                    image_bytes = read_bytes(image_), steps_bytes = read_bytes(steps);
+  for (const std::vector<std::string>& command : commands) {
+    SCOPED_TRACE(command[0] + " " + command.back());
+    EXPECT_EQ(run_omninav(command), 2) << errors_;
+    EXPECT_NE(errors_.find("is also the input"), std::string::npos) << errors_;
+    EXPECT_EQ(read_bytes(map_), map_bytes);
+    EXPECT_EQ(read_bytes(sequence), sequence_bytes);
+    EXPECT_EQ(read_bytes(image_), image_bytes);
+    EXPECT_EQ(read_bytes(steps), steps_bytes);
+  }
+}
+
 TEST_F(Reliability, FiguresRefuseAnAbsurdTruthInsteadOfSpinning) {
   make_map();
   memory::MapStore(map_).save(with_true_x(memory::load_map(map_), 2, 1e160),
