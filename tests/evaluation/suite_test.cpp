@@ -60,6 +60,19 @@ TEST(Suite, UnknownKeysAndBadValuesAreConfigErrorsNamingTheKey) {
   EXPECT_NE(error_of("worlds: [{world: room}, {world: room}]").find("two rows"), std::string::npos);
 }
 
+TEST(Suite, NamesAreNamesNotPaths) {
+  // A suite's name and a world's become folders under evaluation/: none may lead out of it.
+  for (const std::string name : {"../x", "/tmp/x", "a/b", "..", ".hidden", "x\\y", "a b"}) {
+    SCOPED_TRACE(name);
+    EXPECT_THROW(parse_suite("name: '" + name + "'\nworlds: [{world: room}]", "s.yaml"),
+                 ConfigError);
+    EXPECT_THROW(parse_suite("worlds: [{name: '" + name + "', world: room}]", "s.yaml"),
+                 ConfigError);
+  }
+  EXPECT_EQ(parse_suite("name: quick-2.1_b\nworlds: [{name: room_1, world: room}]", "s.yaml").name,
+            "quick-2.1_b");
+}
+
 TEST(Suite, FamiliesAreTheSpecsHeadsAndPathsAreObj) {
   EXPECT_EQ(family_of("room"), "room");
   EXPECT_EQ(family_of("house:seed=2,rooms=4"), "house");

@@ -1,9 +1,12 @@
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <utility>
+#include <vector>
 
 #include "omninav/core/angles.hpp"
 #include "omninav/core/errors.hpp"
@@ -93,6 +96,41 @@ TEST(ObjWorld, BadFilesAreClearErrors) {
   }
   std::ofstream(folder.path() / "empty.obj") << "# nothing\n";
   EXPECT_THROW(load_obj_world(folder.path() / "empty.obj"), InputError);
+}
+
+TEST(ObjWorld, VerticesThatAreNotFinitePositionsAreRefused) {
+  TempFolder folder;
+  for (const std::string bad : {"nan", "inf", "-inf", "1e30"}) {
+    SCOPED_TRACE(bad);
+    std::ofstream(folder.path() / "bad.obj") << "v 0 0 0\nv 1 0 0\nv 0 " << bad << " 1\nf 1 2 3\n";
+    try {
+      load_obj_world(folder.path() / "bad.obj");
+      ADD_FAILURE() << "loaded";
+    } catch (const InputError& error) {
+      // Text that is no number is refused as it is read (tinyobjloader would read it as 0); a
+      // number beyond the bound, once placed in the world.
+      const std::string why = bad == "1e30" ? "bad.obj: vertex 3 y: 1e+30 m is not a position"
+                                            : "bad.obj:3: vertex coordinate '" + bad + "'";
+      EXPECT_NE(std::string(error.what()).find(why), std::string::npos) << error.what();
+    }
+  }
+}
+
+TEST(ObjWorld, AFileThatIsNoRegularFileIsNamedForWhatItIs) {
+  TempFolder folder;
+  const std::filesystem::path fifo = folder.path() / "world.obj";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  for (const auto& [file, why] : std::vector<std::pair<std::filesystem::path, std::string>>{
+           {"/dev/zero", "/dev/zero: is a device, not an OBJ file"},
+           {fifo, "world.obj: is a FIFO, not an OBJ file"},
+           {folder.path() / "missing.obj", "missing.obj: no such OBJ file"}}) {
+    try {
+      load_obj_world(file);
+      ADD_FAILURE() << file;
+    } catch (const InputError& error) {
+      EXPECT_NE(std::string(error.what()).find(why), std::string::npos) << error.what();
+    }
+  }
 }
 
 TEST(ObjWorld, OfstadArenaLoadsAndRendersItsTexture) {

@@ -675,6 +675,7 @@ SuiteEvaluation evaluate_suite(const Suite& suite, const ConfigFolder& config, c
       evaluation.row.cells.assign(measures().size(), Cell::failed());
       evaluation.row.notes.push_back(error.what());
       log_warning(world.label + ": " + error.what());
+      result.failed_worlds.push_back(world.label + ": " + error.what());
     }
     result.commands.push_back("# " + world.label + ": " + world.spec + ", camera " +
                               num(world.camera_height_m) + " m");

@@ -1,5 +1,7 @@
 #include "omninav/evaluation/suite.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <fstream>
 #include <set>
@@ -49,6 +51,22 @@ void read_suite_params(const ConfigReader& top, SuiteParams& p) {
   top.section("navigation").read("trials", p.trials, 1, 1000000);
 }
 
+// A suite's or a world's name becomes a folder and file names under evaluation/: letters,
+// digits, '_', '-' and '.', not starting with '.', so that no name is a path ("../x", "/tmp").
+void check_name(const ConfigReader& section, const std::string& name) {
+  const bool plain =
+      !name.empty() && name.front() != '.' && std::all_of(name.begin(), name.end(), [](char c) {
+        return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.';
+      });
+  if (!plain) {
+    // Appended, not concatenated: GCC 12's -Wrestrict misfires on "'" + std::string here.
+    std::string problem = printable_name(name);
+    problem.insert(0, 1, '\'');
+    problem += "' is not a name (letters, digits, '_', '-', '.'; no folders)";
+    section.fail("name", problem);
+  }
+}
+
 // One entry of `worlds:`: a row per seed and camera height, appended to `suite`. An OBJ path is
 // relative to `base_dir`, the suite file's folder.
 void add_world_rows(const ConfigReader& entry, const std::filesystem::path& base_dir, Suite& suite,
@@ -59,6 +77,7 @@ void add_world_rows(const ConfigReader& entry, const std::filesystem::path& base
   entry.read("world", spec, {});
   if (spec.empty()) entry.fail("world", "is required: the --world spec");
   if (label.empty()) label = family_of(spec);
+  check_name(entry, label);
   if (family_of(spec) == "obj" && !base_dir.empty() && std::filesystem::path(spec).is_relative()) {
     spec = (base_dir / spec).lexically_normal().string();
   }
@@ -108,6 +127,7 @@ Suite parse_suite(const std::string& yaml, const std::string& name,
   for (const ConfigReader& entry : worlds) add_world_rows(entry, base_dir, suite, labels);
   top.require_all_known();
   if (suite.name.empty()) suite.name = std::filesystem::path(name).stem().string();
+  check_name(top, suite.name);
   return suite;
 }
 

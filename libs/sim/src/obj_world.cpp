@@ -3,11 +3,17 @@
 #include <tiny_obj_loader.h>
 
 #include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <fstream>
 #include <limits>
+#include <sstream>
+#include <string>
 #include <opencv2/imgcodecs.hpp>
 
 #include "omninav/core/errors.hpp"
 #include "omninav/core/log.hpp"
+#include "omninav/core/parse.hpp"
 #include "omninav/sim/world.hpp"
 
 namespace omninav::sim {
@@ -19,12 +25,36 @@ cv::Vec3f to_world(const float* xyz, const ObjWorldParams& params) {
   return {xyz[0] * scale, xyz[1] * scale, xyz[2] * scale};
 }
 
+// tinyobjloader reads a coordinate it cannot parse ("nan", "inf") as 0, silently: the vertex
+// lines ("v x y z [w]") are checked first, each coordinate a finite number.
+void check_vertex_lines(const std::filesystem::path& obj_file) {
+  std::ifstream stream(obj_file, std::ios::binary);
+  std::string line;
+  for (int number = 1; std::getline(stream, line); ++number) {
+    std::istringstream fields(line);
+    std::string tag;
+    if (!(fields >> tag) || tag != "v") continue;
+    std::string field;
+    for (int axis = 0; axis < 3 && fields >> field; ++axis) {
+      double value = 0.0;
+      const auto [end, error] = std::from_chars(field.data(), field.data() + field.size(), value);
+      if (error != std::errc() || end != field.data() + field.size() || !std::isfinite(value)) {
+        throw InputError(obj_file.string() + ":" + std::to_string(number) + ": vertex coordinate '" +
+                         printable_name(field) + "' is not a finite number");
+      }
+    }
+  }
+}
+
 }  // namespace
 
 World load_obj_world(const std::filesystem::path& obj_file, const ObjWorldParams& params) {
-  if (!std::filesystem::is_regular_file(obj_file)) {
-    throw InputError(obj_file.string() + ": no such OBJ file");
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(obj_file, error)) {
+    // A FIFO or a device is named for what it is, and never opened (a FIFO would block).
+    throw InputError(obj_file.string() + ": " + unreadable_file_reason(obj_file, "OBJ file"));
   }
+  check_vertex_lines(obj_file);
   tinyobj::ObjReaderConfig config;
   config.triangulate = true;
   config.mtl_search_path = obj_file.parent_path().string();
@@ -39,6 +69,12 @@ World load_obj_world(const std::filesystem::path& obj_file, const ObjWorldParams
   const tinyobj::attrib_t& attrib = reader.GetAttrib();
   for (std::size_t i = 0; i + 2 < attrib.vertices.size(); i += 3) {
     world.vertices.push_back(to_world(&attrib.vertices[i], params));
+    // The bound of every position (core/pose.hpp): NaN, inf or 1e30 m is damage, not a world.
+    const std::string where =
+        obj_file.string() + ": vertex " + std::to_string(world.vertices.size());
+    for (int axis = 0; axis < 3; ++axis) {
+      check_coordinate_m(world.vertices.back()[axis], where + " " + "xyz"[axis]);
+    }
   }
   for (const tinyobj::material_t& source : reader.GetMaterials()) {
     Material material;
@@ -64,16 +100,32 @@ World load_obj_world(const std::filesystem::path& obj_file, const ObjWorldParams
     const auto& indices = shape.mesh.indices;
     for (std::size_t face = 0; face < shape.mesh.num_face_vertices.size(); ++face) {
       Triangle triangle;
+      if (shape.mesh.num_face_vertices[face] != 3 || indices.size() < 3 * face + 3) {
+        throw InputError(obj_file.string() + ": a face of shape '" + shape.name +
+                         "' is not a triangle after triangulation");
+      }
       for (int corner = 0; corner < 3; ++corner) {
         const tinyobj::index_t& index = indices[3 * face + corner];
+        const bool vertex_known =
+            index.vertex_index >= 0 &&
+            static_cast<std::size_t>(index.vertex_index) < world.vertices.size();
+        const bool texcoord_known =
+            index.texcoord_index < 0 ||
+            2 * static_cast<std::size_t>(index.texcoord_index) + 1 < attrib.texcoords.size();
+        if (!vertex_known || !texcoord_known) {
+          throw InputError(obj_file.string() + ": a face of shape '" + shape.name +
+                           "' names a vertex or texture coordinate the file does not have");
+        }
         triangle.vertex[corner] = index.vertex_index;
         if (index.texcoord_index >= 0) {
           triangle.uv[corner] = {attrib.texcoords[2 * index.texcoord_index],
                                  attrib.texcoords[2 * index.texcoord_index + 1]};
         }
       }
-      const int material_id = shape.mesh.material_ids[face];
-      triangle.material = material_id >= 0 ? material_id : default_material;
+      const int material_id =
+          face < shape.mesh.material_ids.size() ? shape.mesh.material_ids[face] : -1;
+      triangle.material =
+          material_id >= 0 && material_id < default_material ? material_id : default_material;
       world.triangles.push_back(triangle);
     }
   }

@@ -13,6 +13,8 @@
 #include "omninav/core/angles.hpp"
 #include "omninav/core/config.hpp"
 #include "omninav/core/errors.hpp"
+#include "omninav/core/format.hpp"
+#include "omninav/core/parse.hpp"
 #include "texture_pyramid.hpp"
 
 namespace omninav::sim {
@@ -366,6 +368,10 @@ class Occluder {
 }  // namespace
 
 cv::Mat Renderer::render(const CameraPose& pose, double time_s, int frame_index) const {
+  // Embree asserts (aborts) on rays from NaN or overflowing origins: refused here first.
+  check_pose(pose, "the camera pose");
+  if (!std::isfinite(time_s))
+    throw InputError("render: time " + general(time_s) + " s is not finite");
   const Impl& impl = *impl_;
   const int width = impl.params.geometry.width_px;
   const int height = impl.params.geometry.height_px;

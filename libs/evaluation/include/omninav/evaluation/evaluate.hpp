@@ -100,6 +100,9 @@ WorldEvaluation evaluate_world(const SuiteWorld& world, const SuiteParams& param
 struct SuiteEvaluation {
   std::vector<Row> rows;
   std::vector<std::string> commands;  // every world's, each block headed by a comment line
+  // "<label>: <reason>" of each world that could not be evaluated at all (its world file
+  // missing, not an OBJ, damaged): its row is all failed, and `evaluate` exits non-zero.
+  std::vector<std::string> failed_worlds;
 };
 
 // Every world of the suite in order, each in <out>/<label>/; `on_row` (may be empty) is called

@@ -64,7 +64,8 @@ class Renderer {
   Renderer& operator=(const Renderer&) = delete;
 
   // The 8-bit BGR panorama at `pose`. `time_s` places the moving occluder; `frame_index`
-  // seeds the noise.
+  // seeds the noise. InputError for a pose check_pose refuses (NaN, inf, beyond ±1e7 m) or a
+  // time that is not finite.
   cv::Mat render(const CameraPose& pose, double time_s = 0.0, int frame_index = 0) const;
 
   const RenderParams& params() const;
