@@ -45,6 +45,22 @@ std::unique_ptr<io::PanoramaInput> open_panoramas(const std::filesystem::path& i
                                                   const std::optional<std::filesystem::path>& dir,
                                                   bool absolute_sources);
 
+// An object is for one thread at a time (the module's doc says so); a second thread calling
+// into it while the first is inside a call (which releases the GIL) gets a UsageError, not a
+// crash. Every method of an object with state (Map, Localiser, Compass, the sequences, the
+// navigator's map) holds a Busy on it for the length of the call.
+class Busy {
+ public:
+  // UsageError "<what> is in use by another thread ..." when another call holds `object`.
+  Busy(const void* object, const char* what);
+  ~Busy();
+  Busy(const Busy&) = delete;
+  Busy& operator=(const Busy&) = delete;
+
+ private:
+  const void* object_;
+};
+
 // A map as Python holds it: the visual memory and, once opened or saved, the file that keeps it.
 struct Map {
   memory::VisualMemory memory;

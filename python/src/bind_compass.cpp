@@ -4,10 +4,12 @@
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
+#include <cmath>
 #include <memory>
 
 #include "bind.hpp"
 #include "omninav/compass/compass_run.hpp"
+#include "omninav/core/errors.hpp"
 #include "omninav/evaluation/config_folder.hpp"
 #include "omninav/io/frame.hpp"
 
@@ -26,6 +28,11 @@ struct Compass {
 
   compass::CompassEstimate push(const py::array& panorama, std::optional<int> index,
                                 const std::string& source, std::optional<double> truth_rad) {
+    const Busy busy(this, "this Compass");
+    if (truth_rad && !std::isfinite(*truth_rad)) {
+      throw InputError(source + ": true heading " + std::to_string(*truth_rad) +
+                       " rad is not a finite angle");
+    }
     const int frame_index = index.value_or(next_index);
     const std::string what = source.empty() ? "frame " + std::to_string(frame_index) : source;
     py::object keep;
@@ -156,9 +163,17 @@ void bind_compass(py::module_& m) {
            py::arg("source") = "", py::arg("truth_heading_rad") = py::none(),
            "Feeds the next panorama (numpy, H x W x 3 BGR or H x W) and returns its "
            "CompassEstimate. Raises InputError when its shape differs from the first one's.")
-      .def_property_readonly("started", [](const Compass& c) { return c.run.started(); })
+      .def_property_readonly("started",
+                             [](const Compass& c) {
+                               const Busy busy(&c, "this Compass");
+                               return c.run.started();
+                             })
       .def_property_readonly(
-          "reference_count", [](const Compass& c) { return c.run.reference_count(); },
+          "reference_count",
+          [](const Compass& c) {
+            const Busy busy(&c, "this Compass");
+            return c.run.reference_count();
+          },
           "How many frames served as a reference (the Nb of Tables 3-4).");
 }
 

@@ -4,6 +4,8 @@
 
 #include <cstdlib>
 #include <map>
+#include <mutex>
+#include <unordered_set>
 #include <vector>
 
 #include "bind.hpp"
@@ -74,11 +76,36 @@ cv::Mat array_to_mat(const py::array& array, const std::string& what, py::object
   py::array pixels = array;
   if (!packed) {
     pixels = py::array_t<std::uint8_t, py::array::c_style | py::array::forcecast>::ensure(array);
+    // ensure() gives a null array (its Python error cleared) when the packed copy cannot be
+    // made: numpy could not allocate it.
+    if (!pixels) throw std::bad_alloc();  // MemoryError in Python
     keep = pixels;
   }
   return cv::Mat(static_cast<int>(pixels.shape(0)), static_cast<int>(pixels.shape(1)),
                  CV_8UC(channels), const_cast<void*>(pixels.data()),
                  static_cast<std::size_t>(pixels.strides(0)));
+}
+
+namespace {
+
+// The objects inside a call now, under their mutex.
+std::mutex g_busy_mutex;
+std::unordered_set<const void*> g_busy_objects;
+
+}  // namespace
+
+Busy::Busy(const void* object, const char* what) : object_(object) {
+  const std::lock_guard<std::mutex> lock(g_busy_mutex);
+  if (!g_busy_objects.insert(object).second) {
+    throw UsageError(std::string(what) +
+                     " is in use by another thread: an object is for one thread at a time "
+                     "(give each thread its own, or share it under a lock)");
+  }
+}
+
+Busy::~Busy() {
+  const std::lock_guard<std::mutex> lock(g_busy_mutex);
+  g_busy_objects.erase(object_);
 }
 
 std::filesystem::path config_dir_or_default(const std::optional<std::filesystem::path>& dir) {

@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "bind.hpp"
+#include "omninav/core/parse.hpp"
 #include "omninav/evaluation/config_folder.hpp"
 #include "omninav/io/image_file.hpp"
 #include "omninav/io/panorama_input.hpp"
@@ -18,6 +19,7 @@ namespace {
 // The next frame of `reader` (decoding without the GIL), or StopIteration.
 template <typename Reader>
 io::Frame next_frame(Reader& reader) {
+  const Busy busy(&reader, "this sequence");
   std::optional<io::Frame> frame;
   {
     py::gil_scoped_release release;
@@ -40,6 +42,7 @@ void bind_frame(py::module_& m) {
       .def(py::init([](const py::array& image, int index, std::optional<CameraPose> truth,
                        std::optional<double> time_s, std::string source) {
              py::object keep;
+             if (truth) check_pose(*truth, source.empty() ? "Frame truth" : source);
              return io::Frame{index, time_s, array_to_mat(image, "Frame image", keep).clone(),
                               truth, std::move(source)};
            }),
@@ -48,7 +51,15 @@ void bind_frame(py::module_& m) {
            "A frame of your own (e.g. from your robot or simulator); the image is copied.")
       .def_readwrite("index", &io::Frame::index)
       .def_readwrite("time_s", &io::Frame::time_s)
-      .def_readwrite("truth", &io::Frame::truth)
+      .def_property(
+          "truth", [](const io::Frame& f) { return f.truth; },
+          [](io::Frame& f, const std::optional<CameraPose>& truth) {
+            // The bound every pose source passes (core/parse.hpp), as the readers of files do.
+            if (truth) check_pose(*truth, f.source.empty() ? "Frame truth" : f.source);
+            f.truth = truth;
+          },
+          "The ground-truth CameraPose, or None. InputError for a position beyond ±1e7 m or a "
+          "value that is not finite.")
       .def_readwrite("source", &io::Frame::source)
       .def_property(
           "image", [](const io::Frame& f) { return mat_to_array(f.image); },

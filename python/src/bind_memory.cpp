@@ -147,6 +147,7 @@ void bind_localisation(py::module_& m) {
     memory::Localiser localiser;
     signature::SignatureExtractor extractor;
     double match_limit;
+    const Map* map;  // the map it reads, which must not change meanwhile
   };
   py::class_<Localiser>(m, "Localiser",
                         "Localises queries in a map coarse to fine (memory.yaml's localisation "
@@ -154,6 +155,7 @@ void bind_localisation(py::module_& m) {
       .def(py::init([](const Map& map, std::optional<memory::MemoryConfig> config,
                        std::optional<fs::path> config_dir,
                        std::optional<evaluation::NavigationConfig> navigation) {
+             const Busy busy(&map, "this Map");
              if (map.memory.place_count() == 0) throw InputError("the map has no places");
              const memory::LocalisationParams params =
                  memory_config(config, config_dir).localisation;
@@ -161,13 +163,15 @@ void bind_localisation(py::module_& m) {
              return std::make_unique<Localiser>(
                  Localiser{memory::Localiser(map.memory, params),
                            signature::SignatureExtractor(map.memory.parameters().signature),
-                           navigation::match_limit(map.memory, route)});
+                           navigation::match_limit(map.memory, route), &map});
            }),
            py::arg("map"), py::arg("config") = py::none(), py::arg("config_dir") = py::none(),
            py::arg("navigation") = py::none(), py::keep_alive<1, 2>())
       .def(
           "localise",
           [](Localiser& l, const py::array& panorama, bool exhaustive, const std::string& what) {
+            const Busy busy(&l, "this Localiser");
+            const Busy map_busy(l.map, "its Map");
             py::object keep;
             const cv::Mat image = array_to_mat(panorama, what, keep);
             py::gil_scoped_release release;
@@ -186,6 +190,8 @@ void bind_localisation(py::module_& m) {
       .def(
           "localise_signature",
           [](const Localiser& l, const signature::Signature& query, bool exhaustive) {
+            const Busy busy(&l, "this Localiser");
+            const Busy map_busy(l.map, "its Map");
             py::gil_scoped_release release;
             return exhaustive ? l.localiser.localise_exhaustive(query)
                               : l.localiser.localise(query);
@@ -258,6 +264,7 @@ void bind_memory(py::module_& m) {
       .def(
           "save",
           [](Map& map, std::optional<fs::path> file, bool overwrite) {
+            const Busy busy(&map, "this Map");
             if (file && (!map.store || map.store->file() != *file)) map.store.emplace(*file);
             if (!map.store) throw UsageError("save(): the map has no file yet; give one");
             py::gil_scoped_release release;
@@ -270,6 +277,7 @@ void bind_memory(py::module_& m) {
           "explore",
           [](Map& map, py::object input, std::optional<memory::MemoryConfig> config,
              std::optional<fs::path> config_dir, bool all_frames, bool unwrap) {
+            const Busy busy(&map, "this Map");
             const memory::ExplorationParams params = memory_config(config, config_dir).exploration;
             if (py::isinstance<py::str>(input) || py::hasattr(input, "__fspath__")) {
               const fs::path path = input.cast<fs::path>();
@@ -320,6 +328,7 @@ void bind_memory(py::module_& m) {
       .def(
           "organise",
           [](Map& map, double step_m, bool motion_constraints, std::optional<fs::path> config_dir) {
+            const Busy busy(&map, "this Map");
             lattice::OrganiseParams params =
                 evaluation::load_lattice_config(config_dir_or_default(config_dir));
             if (step_m > 0.0) params.step_m = step_m;
@@ -336,6 +345,7 @@ void bind_memory(py::module_& m) {
           "plan_route",
           [](const Map& map, int goal, std::optional<evaluation::NavigationConfig> config,
              std::optional<fs::path> config_dir) {
+            const Busy busy(&map, "this Map");
             const navigation::RouteParams params = navigation_config(config, config_dir).route;
             return navigation::plan_route(map.memory, navigation::places_from_memory(map.memory),
                                           params, goal);
@@ -343,15 +353,32 @@ void bind_memory(py::module_& m) {
           py::arg("goal"), py::arg("config") = py::none(), py::arg("config_dir") = py::none(),
           "Directions from every place to place `goal`, over the links route.links chooses: the "
           "lattice's neighbours (needs organise()) or the motions measured between places.")
-      .def("__len__", [](const Map& map) { return map.memory.place_count(); })
-      .def_property_readonly("place_count", [](const Map& map) { return map.memory.place_count(); })
-      .def_property_readonly("edge_count", [](const Map& map) { return map.memory.edge_count(); })
+      .def("__len__",
+           [](const Map& map) {
+             const Busy busy(&map, "this Map");
+             return map.memory.place_count();
+           })
+      .def_property_readonly("place_count",
+                             [](const Map& map) {
+                               const Busy busy(&map, "this Map");
+                               return map.memory.place_count();
+                             })
+      .def_property_readonly("edge_count",
+                             [](const Map& map) {
+                               const Busy busy(&map, "this Map");
+                               return map.memory.edge_count();
+                             })
       .def(
-          "place", [](const Map& map, std::size_t index) { return map.memory.place(index); },
+          "place",
+          [](const Map& map, std::size_t index) {
+            const Busy busy(&map, "this Map");
+            return map.memory.place(index);
+          },
           py::arg("index"), "A copy of place `index`. Raises UsageError beyond the places.")
       .def(
           "places",
           [](const Map& map) {
+            const Busy busy(&map, "this Map");
             std::vector<memory::Place> places;
             for (std::size_t i = 0; i < map.memory.place_count(); ++i)
               places.push_back(map.memory.place(i));
@@ -361,16 +388,26 @@ void bind_memory(py::module_& m) {
       .def(
           "edges",
           [](const Map& map) {
+            const Busy busy(&map, "this Map");
             std::vector<std::tuple<std::size_t, std::size_t, memory::Edge>> edges;
             for (const auto& e : map.memory.edges()) edges.emplace_back(e.from, e.to, *e.edge);
             return edges;
           },
           "(from, to, Edge) in the order they were added.")
-      .def_property_readonly("runs", [](const Map& map) { return map.memory.runs(); })
+      .def_property_readonly("runs",
+                             [](const Map& map) {
+                               const Busy busy(&map, "this Map");
+                               return map.memory.runs();
+                             })
       .def_property_readonly(
-          "signature_params", [](const Map& map) { return map.memory.parameters().signature; },
+          "signature_params",
+          [](const Map& map) {
+            const Busy busy(&map, "this Map");
+            return map.memory.parameters().signature;
+          },
           "The signature parameters every place shares.")
       .def_property_readonly("file", [](const Map& map) -> py::object {
+        const Busy busy(&map, "this Map");
         if (!map.store) return py::none();
         return py::cast(map.store->file());
       });

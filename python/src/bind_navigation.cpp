@@ -6,6 +6,9 @@
 #include <pybind11/stl/filesystem.h>
 
 #include "bind.hpp"
+#include "omninav/core/errors.hpp"
+#include "omninav/core/format.hpp"
+#include "omninav/core/parse.hpp"
 #include "omninav/evaluation/config_folder.hpp"
 #include "omninav/memory/localisation.hpp"
 #include "omninav/navigation/goal_navigation.hpp"
@@ -30,11 +33,16 @@ class PythonRobot : public navigation::NavigationWorld {
   }
   double move(double turn_rad, double distance_m) override {
     py::gil_scoped_acquire acquire;
-    return robot_.attr("move")(turn_rad, distance_m).cast<double>();
+    const double driven_m = robot_.attr("move")(turn_rad, distance_m).cast<double>();
+    if (!std::isfinite(driven_m) || std::abs(driven_m) > kMaxCoordinateM) {
+      throw InputError("robot.move() returned " + general(driven_m) +
+                       ", not the metres driven (a finite distance)");
+    }
+    return driven_m;
   }
   CameraPose truth() const override {
     py::gil_scoped_acquire acquire;
-    return robot_.attr("truth")().cast<CameraPose>();
+    return check_pose(robot_.attr("truth")().cast<CameraPose>(), "robot.truth()");
   }
 
  private:
@@ -81,6 +89,7 @@ void bind_navigation(py::module_& m, py::class_<Map>& map) {
       [](const Map& map, py::object robot, const py::array& goal_image,
          std::optional<evaluation::NavigationConfig> config, std::optional<fs::path> config_dir,
          int max_steps) {
+        const Busy busy(&map, "this Map");
         const memory::VisualMemory& memory = map.memory;
         const fs::path dir = config_dir_or_default(config_dir);
         const memory::MemoryConfig memory_config = evaluation::load_memory_config(dir);

@@ -122,3 +122,22 @@ def test_the_navigation_config_governs_the_run(organised_grid):
     run = organised_grid.navigate_to_image(robot, renderer.render(goal_pose), config=config)
     assert not run.reached and len(run.steps) <= 3
     assert run.path_length_m <= 3 * config.navigator.step_m + 1e-9
+
+
+class NaNRobot(RenderedRobot):
+    """A robot whose odometry breaks: move() says it drove NaN metres."""
+
+    def move(self, turn_rad, distance_m):
+        super().move(turn_rad, distance_m)
+        return float("nan")
+
+
+def test_a_robot_that_reports_nan_metres_driven_is_refused(organised_grid):
+    world = omninav.World(WORLD, width_px=WIDTH_PX, height_px=HEIGHT_PX, rays_per_pixel=1)
+    renderer = omninav.Renderer(world)
+    places = organised_grid.places()
+    start = places[0].truth
+    robot = NaNRobot(renderer, omninav.CameraPose(start.x_m, start.y_m, start.z_m,
+                                                  heading_rad=start.heading_rad + 2.0))
+    with pytest.raises(omninav.InputError, match=r"robot\.move\(\) returned nan"):
+        organised_grid.navigate_to_image(robot, renderer.render(places[-1].truth), max_steps=60)

@@ -52,3 +52,53 @@ def test_exploring_lets_another_thread_run():
     assert memory.place_count > 1
     assert took > 0.1, "the exploration was too quick to tell"
     assert longest < took / 2, f"main thread stalled {longest:.3f} s of {took:.3f} s"
+
+
+def calls_from_threads(call, threads=4):
+    """call() from `threads` threads at once; returns the exceptions they raised."""
+    start = threading.Barrier(threads)
+    raised = []
+
+    def worker():
+        start.wait()
+        try:
+            call()
+        except Exception as error:  # noqa: BLE001 - collected and checked by the caller
+            raised.append(error)
+
+    workers = [threading.Thread(target=worker) for _ in range(threads)]
+    for worker_thread in workers:
+        worker_thread.start()
+    for worker_thread in workers:
+        worker_thread.join()
+    return raised
+
+
+def test_one_map_explored_from_four_threads_raises_instead_of_crashing():
+    world = omninav.World("room:seed=6,boxes=6", width_px=360, height_px=45, rays_per_pixel=1)
+    renderer = omninav.Renderer(world)
+    frames = [omninav.Frame(renderer.render(pose), index=i, truth=pose)
+              for i, (_, pose) in enumerate(world.trajectory("line:x0=2,y0=2,x1=4,y1=2.6"))]
+    memory = omninav.Map()
+    for _ in range(3):
+        raised = calls_from_threads(lambda: (memory.explore(frames * 3), memory.place_count))
+        assert all(isinstance(error, omninav.UsageError) for error in raised), raised
+        assert all("in use by another thread" in str(error) for error in raised)
+    assert memory.place_count > 0
+
+
+def test_one_compass_pushed_from_four_threads_raises_instead_of_crashing():
+    world = omninav.World("room:seed=6,boxes=6", width_px=360, height_px=45, rays_per_pixel=1)
+    renderer = omninav.Renderer(world)
+    panoramas = [renderer.render(pose)
+                 for _, pose in world.trajectory("rotate:x=3,y=2.5,turns=0.2")]
+    compass = omninav.Compass()
+
+    def push_all():
+        for panorama in panoramas:
+            compass.push(panorama)
+
+    for _ in range(3):
+        raised = calls_from_threads(push_all)
+        assert all(isinstance(error, omninav.UsageError) for error in raised), raised
+    assert compass.started
