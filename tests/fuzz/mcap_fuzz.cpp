@@ -1,20 +1,7 @@
 // libFuzzer target: a ROS 2 MCAP bag (libs/io's own MCAP and CDR readers), read whole as its
 // one image topic, with and without poses from /odom or /pose. Seeds: tests/io/bags' MCAP files.
-#include "fuzz_support.hpp"
-#include "omninav/io/bag_sequence.hpp"
-#include "omninav/io/sequence.hpp"
+#include "read_bag.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  using namespace omninav;
-  static const std::filesystem::path bag = fuzz::scratch_dir() / "bag.mcap";
-  fuzz::write_file(bag, fuzz::as_text(data, size));
-  for (const char* pose_topic : {"", "/odom", "/pose"}) {
-    fuzz::expect_clean([pose_topic] {
-      std::unique_ptr<io::SequenceReader> reader =
-          io::open_bag(bag, {.topic = "", .pose_topic = pose_topic});
-      (void)reader->describe();
-      io::read_all(*reader);
-    });
-  }
-  return 0;
+  return omninav::fuzz::read_as_bag(data, size, "bag.mcap");
 }

@@ -41,11 +41,16 @@ def test_rendering_lets_another_thread_run():
     assert longest < took / 2, f"main thread stalled {longest:.3f} s of {took:.3f} s"
 
 
-def test_exploring_lets_another_thread_run():
+def line_frames():
+    """The frames of a short line across the room, rendered with their true poses."""
     world = omninav.World("room:seed=6,boxes=6", width_px=360, height_px=45, rays_per_pixel=1)
     renderer = omninav.Renderer(world)
-    frames = [omninav.Frame(renderer.render(pose), index=i, truth=pose)
-              for i, (_, pose) in enumerate(world.trajectory("line:x0=2,y0=2,x1=4,y1=2.6"))]
+    return [omninav.Frame(renderer.render(pose), index=i, truth=pose)
+            for i, (_, pose) in enumerate(world.trajectory("line:x0=2,y0=2,x1=4,y1=2.6"))]
+
+
+def test_exploring_lets_another_thread_run():
+    frames = line_frames()
     memory = omninav.Map()
     # The route there and back, five times: one call long enough to time.
     took, longest = longest_pause_while(lambda: memory.explore((frames + frames[::-1]) * 5))
@@ -75,10 +80,7 @@ def calls_from_threads(call, threads=4):
 
 
 def test_one_map_explored_from_four_threads_raises_instead_of_crashing():
-    world = omninav.World("room:seed=6,boxes=6", width_px=360, height_px=45, rays_per_pixel=1)
-    renderer = omninav.Renderer(world)
-    frames = [omninav.Frame(renderer.render(pose), index=i, truth=pose)
-              for i, (_, pose) in enumerate(world.trajectory("line:x0=2,y0=2,x1=4,y1=2.6"))]
+    frames = line_frames()
     memory = omninav.Map()
     for _ in range(3):
         raised = calls_from_threads(lambda: (memory.explore(frames * 3), memory.place_count))
