@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <fstream>
+#include <iterator>
 #include <opencv2/imgproc.hpp>
 #include <utility>
 #include <vector>
@@ -110,6 +111,30 @@ TEST(Ros1Bag, ABrokenCompressedImageGivesOurLineAndNoLibpngLine) {
   EXPECT_INPUT_ERROR(read_bag(bag, {}), "message 0", "cannot decode the compressed image");
   const std::string stderr_text = ::testing::internal::GetCapturedStderr();
   EXPECT_EQ(stderr_text.find("libpng"), std::string::npos) << stderr_text;
+}
+
+TEST(Ros1Bag, ARecordDeclaringMoreBytesThanTheFileIsDamageNotAnAllocation) {
+  // The fuzzer's finding: librosbag allocated the 4 GB header a record of a 40 KB bag declared.
+  const TempDir dir;
+  const auto bag = write_bag(dir, "--encoding bgr8");
+  std::string bytes;
+  {
+    std::ifstream in(bag, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  // The bag header's index_pos (8 bytes little-endian after "index_pos="): the first record of
+  // the index, a connection record, gets a header length of 0xFFFFFFFF.
+  const std::size_t field = bytes.find("index_pos=");
+  ASSERT_NE(field, std::string::npos);
+  std::uint64_t index_pos = 0;
+  for (int i = 7; i >= 0; --i) {
+    index_pos = index_pos << 8 | static_cast<unsigned char>(bytes[field + 10 + i]);
+  }
+  ASSERT_LT(index_pos + 4, bytes.size());
+  bytes.replace(index_pos, 4, "\xff\xff\xff\xff");
+  std::ofstream(bag, std::ios::binary | std::ios::trunc) << bytes;
+  EXPECT_INPUT_ERROR(read_bag(bag, {}), "run.bag: damaged ROS 1 bag: the record at byte",
+                     "declares a header of 4294967295 bytes");
 }
 
 TEST(Ros1Bag, TwoImageTopicsNeedTopicAndTheErrorNamesBoth) {

@@ -11,8 +11,12 @@
 #include <sensor_msgs/Image.h>
 #include <sensor_msgs/image_encodings.h>
 
+#include <cstdint>
+#include <fstream>
 #include <map>
 #include <opencv2/imgcodecs.hpp>
+#include <optional>
+#include <string>
 
 #include "bag_backend.hpp"
 #include "omninav/core/errors.hpp"
@@ -40,9 +44,84 @@ std::string reindex_advice(const std::filesystem::path& file) {
          "` (Debian's python3-rosbag) recovers the messages before the damage";
 }
 
+// librosbag allocates whatever length a record declares (a 4 GB header in a 40 KB file) and
+// a chunk's declared uncompressed size: the records are walked first (format 2.0: a 13-byte
+// magic, then records of header length, header, data length, data; header fields of length and
+// "name=value"), every length checked against the file and every chunk's size against the
+// largest a recorder writes. A file cut short (its index beyond its end) is left to librosbag,
+// whose error says how to recover it.
+constexpr std::uint64_t kMaxChunkBytes = std::uint64_t{256} << 20;  // as MCAP's (mcap_reader)
+
+void check_record_lengths(const std::filesystem::path& file) {
+  std::ifstream stream(file, std::ios::binary);
+  std::error_code error;
+  const std::uint64_t size = std::filesystem::file_size(file, error);
+  char magic[13] = {};
+  if (error || !stream.read(magic, sizeof magic) || std::string(magic, 13) != "#ROSBAG V2.0\n") {
+    return;  // librosbag says what it is not
+  }
+  const auto u32 = [](const std::string& bytes, std::size_t at) {
+    std::uint32_t value = 0;
+    for (int i = 3; i >= 0; --i) value = value << 8 | static_cast<unsigned char>(bytes[at + i]);
+    return value;
+  };
+  std::uint64_t at = sizeof magic;
+  std::optional<std::uint64_t> index_at;  // the bag header's index_pos
+  while (at < size) {
+    const auto damaged = [&](const std::string& what) {
+      // Cut short before its index: librosbag's own error (and the advice to reindex).
+      if (index_at && *index_at > size) return;
+      throw InputError(file.string() + ": damaged ROS 1 bag: the record at byte " +
+                       std::to_string(at) + " " + what);
+    };
+    std::string length(4, '\0');
+    if (size - at < 4 || !stream.read(length.data(), 4)) return damaged("is cut short");
+    const std::uint32_t header_bytes = u32(length, 0);
+    if (header_bytes > size - at - 4) {
+      return damaged("declares a header of " + std::to_string(header_bytes) +
+                     " bytes, beyond the end of the file");
+    }
+    std::string header(header_bytes, '\0');
+    stream.read(header.data(), header_bytes);
+    std::string op, compression;
+    std::optional<std::uint64_t> field_u64;
+    std::optional<std::uint32_t> chunk_size;
+    for (std::size_t field = 0; field + 4 <= header.size();) {
+      const std::uint32_t field_bytes = u32(header, field);
+      if (field_bytes > header.size() - field - 4) return damaged("has a header field too long");
+      const std::string text = header.substr(field + 4, field_bytes);
+      const std::size_t equals = text.find('=');
+      const std::string name = text.substr(0, equals);
+      const std::string value = equals == std::string::npos ? "" : text.substr(equals + 1);
+      if (name == "op" && value.size() == 1) op = value;
+      if (name == "size" && value.size() == 4) chunk_size = u32(value, 0);
+      if (name == "index_pos" && value.size() == 8) {
+        field_u64 = std::uint64_t{u32(value, 4)} << 32 | u32(value, 0);
+      }
+      field += 4 + field_bytes;
+    }
+    if (op == "\x03" && field_u64) index_at = field_u64;
+    if (op == "\x05" && chunk_size && *chunk_size > kMaxChunkBytes) {
+      return damaged("is a chunk of " + std::to_string(*chunk_size) +
+                     " bytes uncompressed, more than " + std::to_string(kMaxChunkBytes) +
+                     " (not a recording's chunk)");
+    }
+    at += 4 + header_bytes;
+    if (size - at < 4 || !stream.read(length.data(), 4)) return damaged("is cut short");
+    const std::uint32_t data_bytes = u32(length, 0);
+    if (data_bytes > size - at - 4) {
+      return damaged("declares " + std::to_string(data_bytes) +
+                     " bytes of data, beyond the end of the file");
+    }
+    at += 4 + data_bytes;
+    stream.seekg(static_cast<std::streamoff>(at));
+  }
+}
+
 class Ros1Bag : public BagBackend {
  public:
   explicit Ros1Bag(const std::filesystem::path& file) : file_(file) {
+    check_record_lengths(file);
     try {
       bag_.open(file.string(), rosbag::bagmode::Read);
     } catch (const rosbag::BagUnindexedException&) {
