@@ -116,7 +116,8 @@ bool Statement::step() {
   const int code = sqlite3_step(stmt_);
   if (code == SQLITE_ROW) return true;
   if (code == SQLITE_DONE) return false;
-  db_->fail(code, sqlite3_stmt_readonly(stmt_) != 0 ? "cannot read the map" : "cannot write the map");
+  db_->fail(code,
+            sqlite3_stmt_readonly(stmt_) != 0 ? "cannot read the map" : "cannot write the map");
 }
 
 void Statement::run() {

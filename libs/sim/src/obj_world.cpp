@@ -7,9 +7,9 @@
 #include <cmath>
 #include <fstream>
 #include <limits>
+#include <opencv2/imgcodecs.hpp>
 #include <sstream>
 #include <string>
-#include <opencv2/imgcodecs.hpp>
 
 #include "omninav/core/errors.hpp"
 #include "omninav/core/log.hpp"
@@ -39,8 +39,9 @@ void check_vertex_lines(const std::filesystem::path& obj_file) {
       double value = 0.0;
       const auto [end, error] = std::from_chars(field.data(), field.data() + field.size(), value);
       if (error != std::errc() || end != field.data() + field.size() || !std::isfinite(value)) {
-        throw InputError(obj_file.string() + ":" + std::to_string(number) + ": vertex coordinate '" +
-                         printable_name(field) + "' is not a finite number");
+        throw InputError(obj_file.string() + ":" + std::to_string(number) +
+                         ": vertex coordinate '" + printable_name(field) +
+                         "' is not a finite number");
       }
     }
   }
