@@ -32,8 +32,9 @@ packages=(
   librosbag-dev libsensor-msgs-dev libnav-msgs-dev libgeometry-msgs-dev libcv-bridge-dev
   liblz4-dev libzstd-dev python3-rosbag python3-sensor-msgs python3-nav-msgs
   python3-geometry-msgs
-  # the Python module and its tests and example
-  pybind11-dev python3-dev python3-numpy python3-pytest python3-matplotlib
+  # the Python module, its tests and example, and `pip install --no-build-isolation .`
+  pybind11-dev python3-dev python3-numpy python3-pytest python3-matplotlib python3-pip
+  python3-setuptools python3-wheel python3-venv
 )
 
 # clang and libFuzzer only for the fuzz action (and CI's test, which runs it).

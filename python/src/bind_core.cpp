@@ -2,6 +2,8 @@
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
+#include <dlfcn.h>
+
 #include <cstdlib>
 #include <map>
 #include <vector>
@@ -81,10 +83,25 @@ cv::Mat array_to_mat(const py::array& array, const std::string& what, py::object
                  static_cast<std::size_t>(pixels.strides(0)));
 }
 
+// The configuration folder inside the package: omninav/config beside the compiled module, as
+// `pip install` and `cmake --install` lay it out and as the build tree links it (python/
+// CMakeLists.txt). Found from the module's own file at run time (dladdr), so that the module
+// holds no path of the machine it was built on and works wherever it is copied.
+std::filesystem::path package_config_dir() {
+  Dl_info info{};
+  if (dladdr(reinterpret_cast<const void*>(&package_config_dir), &info) == 0 ||
+      info.dli_fname == nullptr) {
+    throw ConfigError(
+        "cannot find the omninav module's own file to locate its configuration folder; set "
+        "OMNINAV_CONFIG_DIR");
+  }
+  return std::filesystem::path(info.dli_fname).parent_path() / "config";
+}
+
 std::filesystem::path config_dir_or_default(const std::optional<std::filesystem::path>& dir) {
   if (dir) return *dir;
   if (const char* env = std::getenv("OMNINAV_CONFIG_DIR"); env && *env) return env;
-  return OMNINAV_DEFAULT_CONFIG_DIR;
+  return package_config_dir();
 }
 
 void bind_core(py::module_& m) {
@@ -159,7 +176,7 @@ void bind_core(py::module_& m) {
   m.def(
       "default_config_dir", [] { return config_dir_or_default(std::nullopt); },
       "The configuration folder used when none is given: $OMNINAV_CONFIG_DIR, else the "
-      "build's share/omninav/config.");
+      "package's own config/ folder (installed with it).");
 }
 
 }  // namespace omninav::python
