@@ -122,6 +122,7 @@ int run(const std::vector<std::string>& args) {
   add_navigate_command(app, global);
   add_demo_command(app, global);
   add_evaluate_command(app, global);
+  add_completion_command(app);
 
   try {
     // An unknown command is named as such (CLI11 would say "A subcommand is required").

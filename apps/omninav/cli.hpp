@@ -54,5 +54,6 @@ void add_route_command(CLI::App& app, const GlobalOptions& global);
 void add_navigate_command(CLI::App& app, const GlobalOptions& global);
 void add_demo_command(CLI::App& app, const GlobalOptions& global);
 void add_evaluate_command(CLI::App& app, const GlobalOptions& global);
+void add_completion_command(CLI::App& app);
 
 }  // namespace omninav::cli

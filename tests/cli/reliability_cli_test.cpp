@@ -277,7 +277,7 @@ TEST_F(Reliability, EachBadInputIsOneLineNamingIt) {
                   fifo.string() + ": is a FIFO, not a video file");
   expect_one_line({"frobnicate"}, 2,
                   "unknown command 'frobnicate' (commands: render, unwrap, compass, explore, "
-                  "localise, export, organise, route, navigate, demo, evaluate)");
+                  "localise, export, organise, route, navigate, demo, evaluate, completion)");
 }
 
 TEST_F(Reliability, ACutPngIsOneLineWithoutLibpngsOwn) {

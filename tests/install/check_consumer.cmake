@@ -22,7 +22,8 @@ endfunction()
 
 run("install" ${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${prefix})
 foreach(file bin/omninav share/omninav/config/memory.yaml include/omninav/memory/localisation.hpp
-             lib/pkgconfig/omninav.pc lib/cmake/omninav/omninavConfig.cmake)
+             lib/pkgconfig/omninav.pc lib/cmake/omninav/omninavConfig.cmake
+             share/bash-completion/completions/omninav)
   if(NOT EXISTS ${prefix}/${file})
     message(FATAL_ERROR "the install holds no ${file}")
   endif()
