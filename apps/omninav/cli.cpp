@@ -64,6 +64,29 @@ void check_output_folder(const std::filesystem::path& out, bool force,
   }
 }
 
+void add_old_flag_name(CLI::App* command, const std::string& old_name, const std::string& name,
+                       bool& value) {
+  command
+      ->add_flag_function(old_name,
+                          [&value, old_name, name](std::int64_t) {
+                            log_warning(old_name + " is now " + name + "; the old name will go");
+                            value = true;
+                          })
+      ->group("");
+}
+
+void add_old_option_name(CLI::App* command, const std::string& old_name, const std::string& name,
+                         std::filesystem::path& value) {
+  command
+      ->add_option_function<std::string>(
+          old_name,
+          [&value, old_name, name](const std::string& given) {
+            log_warning(old_name + " is now " + name + "; the old name will go");
+            value = given;
+          })
+      ->group("");
+}
+
 // The configuration folder beside the program: <prefix>/share/omninav/config for a program in
 // <prefix>/bin, as installed and as in the build tree (CMake links build/share/omninav/config
 // to the sources' config/). Found from /proc/self/exe at run time, so that the program holds no

@@ -27,6 +27,13 @@ enum class OutputFormat { kText, kCsv, kJson };
 // The --format option of `command`, "text, csv or json", default text.
 void add_format_option(CLI::App* command, OutputFormat& format);
 
+// The old spelling of a renamed flag or option (one name per idea across the commands: --force,
+// --plot, --out): hidden from --help, still accepted, with a warning that names the new one.
+void add_old_flag_name(CLI::App* command, const std::string& old_name, const std::string& name,
+                       bool& value);
+void add_old_option_name(CLI::App* command, const std::string& old_name, const std::string& name,
+                         std::filesystem::path& value);
+
 // The output folder of a command that writes many files (render, unwrap), checked before the
 // work: not a file, not the folder the input images live in (when `input` is given), and
 // empty unless --force. UsageError otherwise.

@@ -13,10 +13,12 @@
 namespace omninav::cli {
 namespace {
 
-// Every flag and option name of `command` (-s and --long), --help included.
+// Every flag and option name of `command` (-s and --long), --help included; not the hidden
+// ones (the old spellings of renamed flags).
 std::string option_words(const CLI::App& command) {
   std::set<std::string> words;
   for (const CLI::Option* option : command.get_options()) {
+    if (option->get_group().empty()) continue;
     for (const std::string& name : option->get_snames()) words.insert("-" + name);
     for (const std::string& name : option->get_lnames()) words.insert("--" + name);
   }

@@ -47,6 +47,9 @@ TEST_F(Completion, BashCompletesCommandsTheirOptionsAndFiles) {
   EXPECT_NE(compass.find("--format\n"), std::string::npos) << compass;
   EXPECT_NE(compass.find("--truth\n"), std::string::npos) << compass;
   EXPECT_EQ(compass.find("--trials"), std::string::npos) << "navigate's option" << compass;
+  const std::string explore = complete(script, "omninav explore --");
+  EXPECT_NE(explore.find("--force\n"), std::string::npos) << explore;
+  EXPECT_EQ(explore.find("--overwrite"), std::string::npos) << "an old spelling" << explore;
   const std::string global = complete(script, "omninav --config-dir /tmp --q");
   EXPECT_EQ(global, "--quiet\n");
 

@@ -164,7 +164,7 @@ TEST_F(Reliability, ASingleQuerysPlotLeavesAnEarlierRunsFiguresAlone) {
 TEST_F(Reliability, OrganiseChecksItsOutputsBeforeChangingTheMap) {
   make_map();
   const std::string before = read_bytes(map_);
-  EXPECT_EQ(run_omninav({"organise", map_.string(), "--step-m", "0.3", "--picture",
+  EXPECT_EQ(run_omninav({"organise", map_.string(), "--step-m", "0.3", "--plot",
                          (folder_ / "no" / "such" / "x.png").string()}),
             1);
   EXPECT_NE(errors_.find("x.png: cannot write"), std::string::npos) << errors_;
@@ -220,13 +220,12 @@ TEST_F(Reliability, FiguresRefuseAnAbsurdTruthInsteadOfSpinning) {
 
 TEST_F(Reliability, OutputsThatAreNotOursAreNotReplaced) {
   make_map();
-  // --overwrite replaces a map, not a picture; checked before the work.
+  // --force replaces a map, not a picture; checked before the work.
   const fs::path picture = folder_ / "picture.png";
   cv::imwrite(picture.string(), cv::Mat(4, 4, CV_8UC1, cv::Scalar(7)));
   const std::string bytes = read_bytes(picture);
   EXPECT_EQ(
-      run_omninav({"explore", "--input", grid_.string(), "--out", picture.string(), "--overwrite"}),
-      2);
+      run_omninav({"explore", "--input", grid_.string(), "--out", picture.string(), "--force"}), 2);
   EXPECT_NE(errors_.find("picture.png: is not an omninav map; not replacing it"), std::string::npos)
       << errors_;
   EXPECT_EQ(read_bytes(picture), bytes);
