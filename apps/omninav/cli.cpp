@@ -108,7 +108,12 @@ int run(int argc, const char* const* argv) {
   return run(args);
 }
 
-int run(const std::vector<std::string>& args) {
+namespace {
+
+// Thrown once a line is parsed and checked, when only that was asked (check_command_line).
+struct ParsedOnly {};
+
+int parse_and_run(const std::vector<std::string>& args, bool parse_only) {
   CLI::App app{
       "omninav: appearance-based topological mapping and navigation with omnidirectional "
       "cameras.\nBuild a visual memory of a room from panoramic images, localise a query image "
@@ -128,7 +133,9 @@ int run(const std::vector<std::string>& args) {
       ->check(CLI::ExistingDirectory);
   app.add_flag("-q,--quiet", global.quiet, "Print errors only");
   app.add_flag("-v,--verbose", global.verbose, "Print debugging detail");
+  // Runs after every option and requirement is checked, before the command's own callback.
   app.parse_complete_callback([&] {
+    if (parse_only) throw ParsedOnly{};
     set_log_level(global.quiet     ? LogLevel::kError
                   : global.verbose ? LogLevel::kDebug
                                    : LogLevel::kInfo);
@@ -169,6 +176,8 @@ int run(const std::vector<std::string>& args) {
                                       args.rend());  // CLI11 parses a reversed vector
     app.parse(reversed);
     flush_standard_output();  // a full disk or a closed pipe is a failure, not a success
+  } catch (const ParsedOnly&) {
+    return 0;
   } catch (const CLI::CallForHelp& help) {
     return app.exit(help);
   } catch (const CLI::CallForAllHelp& help) {
@@ -190,6 +199,16 @@ int run(const std::vector<std::string>& args) {
     return 1;
   }
   return 0;
+}
+
+}  // namespace
+
+int run(const std::vector<std::string>& args) {
+  return parse_and_run(args, false);
+}
+
+int check_command_line(const std::vector<std::string>& args) {
+  return parse_and_run(args, true);
 }
 
 }  // namespace omninav::cli

@@ -49,6 +49,11 @@ std::ostream& summary(const GlobalOptions& global);
 int run(int argc, const char* const* argv);
 int run(const std::vector<std::string>& args);  // args without the program name
 
+// Parses `args` as run() does (commands, options, their values and checks), without running
+// the command: 0 when omninav would accept the line, else 2 with the usage error printed. The
+// tests check every command line of README.md and docs/ with it.
+int check_command_line(const std::vector<std::string>& args);
+
 // Each subcommand registers itself; its callback runs when the user picks it.
 void add_render_command(CLI::App& app, const GlobalOptions& global);
 void add_unwrap_command(CLI::App& app, const GlobalOptions& global);
