@@ -145,38 +145,31 @@ void bind_localisation(py::module_& m) {
   // which a query still matches a place (route, navigate and localise's one criterion).
   struct Localiser {
     memory::Localiser localiser;
-    signature::SignatureExtractor extractor;
     double match_limit;
   };
   py::class_<Localiser>(m, "Localiser",
                         "Localises queries in a map coarse to fine (memory.yaml's localisation "
                         "section, or `config`). The map must not gain places meanwhile.")
-      .def(py::init([](const Map& map, std::optional<memory::MemoryConfig> config,
-                       std::optional<fs::path> config_dir,
-                       std::optional<evaluation::NavigationConfig> navigation) {
-             if (map.memory.place_count() == 0) throw InputError("the map has no places");
-             const memory::LocalisationParams params =
-                 memory_config(config, config_dir).localisation;
-             const navigation::RouteParams route = navigation_config(navigation, config_dir).route;
-             return std::make_unique<Localiser>(
-                 Localiser{memory::Localiser(map.memory, params),
-                           signature::SignatureExtractor(map.memory.parameters().signature),
-                           navigation::match_limit(map.memory, route)});
-           }),
-           py::arg("map"), py::arg("config") = py::none(), py::arg("config_dir") = py::none(),
-           py::arg("navigation") = py::none(), py::keep_alive<1, 2>())
+      .def(
+          py::init([](const Map& map, std::optional<memory::MemoryConfig> config,
+                      std::optional<fs::path> config_dir,
+                      std::optional<evaluation::NavigationConfig> navigation) {
+            if (map.memory.place_count() == 0) throw InputError("the map has no places");
+            const memory::LocalisationParams params =
+                memory_config(config, config_dir).localisation;
+            const navigation::RouteParams route = navigation_config(navigation, config_dir).route;
+            return std::make_unique<Localiser>(Localiser{
+                memory::Localiser(map.memory, params), navigation::match_limit(map.memory, route)});
+          }),
+          py::arg("map"), py::arg("config") = py::none(), py::arg("config_dir") = py::none(),
+          py::arg("navigation") = py::none(), py::keep_alive<1, 2>())
       .def(
           "localise",
           [](Localiser& l, const py::array& panorama, bool exhaustive, const std::string& what) {
             py::object keep;
             const cv::Mat image = array_to_mat(panorama, what, keep);
             py::gil_scoped_release release;
-            const signature::Signature query = l.extractor.compute(image, what);
-            const int rows = l.localiser.memory().parameters().panorama_rows;
-            if (query.rows != rows) {
-              throw InputError(what + ": a panorama of " + std::to_string(query.rows) +
-                               " rows; the map's have " + std::to_string(rows));
-            }
+            const signature::Signature query = l.localiser.signature_of(image, what);
             return exhaustive ? l.localiser.localise_exhaustive(query)
                               : l.localiser.localise(query);
           },
