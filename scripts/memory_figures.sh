@@ -49,7 +49,7 @@ for seed in 1 2 3; do
     for brightness in normalised raw; do
       map="$dir/${colour}_$brightness.vmem"
       run explore --input "$dir/grid" --out "$map" --colour "$colour" --brightness "$brightness" \
-        --components 181 --overwrite > /dev/null
+        --components 181 --force > /dev/null
       for queries in queries queries_exposure; do
         "$omninav" --config-dir "$config" localise "$map" "$dir/$queries" --format csv \
           > "$dir/localise_${colour}_${brightness}_$queries.csv" 2> "$dir/summary.txt"
@@ -65,7 +65,7 @@ for seed in 1 2 3; do
     done
   done
   # The default map of the room (memory.yaml: luminance, normalised, m = 15) for the figures.
-  run explore --input "$dir/grid" --out "$dir/default.vmem" --overwrite > /dev/null
+  run explore --input "$dir/grid" --out "$dir/default.vmem" --force > /dev/null
 done
 
 # Pooled over the three rooms: Σ N·P / Σ N, for both shares.

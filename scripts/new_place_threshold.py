@@ -68,7 +68,7 @@ def run_all(BIN):
                 vmem = os.path.join(OUT, "maps", f"{row}_{stream}_{candidate}.vmem")
                 os.makedirs(os.path.dirname(vmem), exist_ok=True)
                 run([BIN, "--config-dir", cfg, "explore", "--input", os.path.join(d, stream),
-                     "--dissimilarity", dis, "--heading-source", "none", "--out", vmem, "--overwrite"])
+                     "--dissimilarity", dis, "--heading-source", "none", "--out", vmem, "--force"])
                 places = len(run([BIN, "export", vmem, "--what", "places", "--format", "csv"]).strip().splitlines()) - 1
                 queries = within = unmatched = ""
                 if stream == "zigzag30":

@@ -3,7 +3,7 @@
 # missing), configures and builds, then optionally runs something.
 #
 #   scripts/setup.sh          install what is missing, configure, build
-#   scripts/setup.sh demo     ... then run `omninav demo` on the built-in room
+#   scripts/setup.sh demo     ... (only the program) then run `omninav demo` on the built-in room
 #   scripts/setup.sh test     ... then run the test suite (ctest)
 #   scripts/setup.sh bench    ... then run the benchmarks
 #   scripts/setup.sh fuzz [s] builds the libFuzzer targets of tests/fuzz with clang, AddressSanitizer
@@ -32,8 +32,9 @@ packages=(
   librosbag-dev libsensor-msgs-dev libnav-msgs-dev libgeometry-msgs-dev libcv-bridge-dev
   liblz4-dev libzstd-dev python3-rosbag python3-sensor-msgs python3-nav-msgs
   python3-geometry-msgs
-  # the Python module and its tests and example
-  pybind11-dev python3-dev python3-numpy python3-pytest python3-matplotlib
+  # the Python module, its tests and example, and `pip install --no-build-isolation .`
+  pybind11-dev python3-dev python3-numpy python3-pytest python3-matplotlib python3-pip
+  python3-setuptools python3-wheel python3-venv
 )
 
 # clang and libFuzzer only for the fuzz action (and CI's test, which runs it).
@@ -48,20 +49,30 @@ install_missing_packages() {
       missing+=("$package")
   done
   [ ${#missing[@]} -eq 0 ] && return
-  echo "setup: installing ${missing[*]}" >&2
+  # apt's own output goes to a log: one line here, and the log's end and path if it fails.
+  local log=${TMPDIR:-/tmp}/omninav-setup-apt.log
+  echo "setup: installing ${#missing[@]} Debian packages (apt's log: $log)" >&2
   local sudo=()
   [ "$(id -u)" -ne 0 ] && sudo=(sudo)
-  "${sudo[@]}" apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive "${sudo[@]}" apt-get install -y -qq --no-install-recommends \
-    "${missing[@]}" >&2
+  if ! { "${sudo[@]}" apt-get update -qq &&
+         DEBIAN_FRONTEND=noninteractive "${sudo[@]}" apt-get install -y -qq \
+           --no-install-recommends "${missing[@]}"; } > "$log" 2>&1; then
+    tail -n 20 "$log" >&2
+    echo "setup: installing the packages failed; apt's whole log: $log" >&2
+    exit 1
+  fi
+  echo "setup: installed ${missing[*]}" >&2
 }
 
+# Configures, then builds the given targets (all when none): the demo needs only the program.
 configure_and_build() {
   local options=(-DCMAKE_BUILD_TYPE="$build_type")
   [ "${CI:-}" = true ] && options+=(-DOMNINAV_WERROR=ON)
   [ "${SANITIZE:-0}" = 1 ] && options+=(-DOMNINAV_SANITIZE=ON)
   cmake -S "$root" -B "$build_dir" -G Ninja "${options[@]}" >/dev/null
-  cmake --build "$build_dir" --parallel "$(nproc)"
+  local targets=()
+  for target in "$@"; do targets+=(--target "$target"); done
+  cmake --build "$build_dir" --parallel "$(nproc)" "${targets[@]}"
 }
 
 # Builds the fuzz targets (tests/fuzz) in their own clang build and runs each for $1 seconds.
@@ -95,7 +106,7 @@ if [ "$action" = fuzz ]; then
   run_fuzzers "$@"
   exit
 fi
-configure_and_build
+if [ "$action" = demo ]; then configure_and_build omninav; else configure_and_build; fi
 
 case "$action" in
   build) ;;

@@ -63,6 +63,29 @@ void check_output_folder(const std::filesystem::path& out, bool force,
   }
 }
 
+void add_old_flag_name(CLI::App* command, const std::string& old_name, const std::string& name,
+                       bool& value) {
+  command
+      ->add_flag_function(old_name,
+                          [&value, old_name, name](std::int64_t) {
+                            log_warning(old_name + " is now " + name + "; the old name will go");
+                            value = true;
+                          })
+      ->group("");
+}
+
+void add_old_option_name(CLI::App* command, const std::string& old_name, const std::string& name,
+                         std::filesystem::path& value) {
+  command
+      ->add_option_function<std::string>(
+          old_name,
+          [&value, old_name, name](const std::string& given) {
+            log_warning(old_name + " is now " + name + "; the old name will go");
+            value = given;
+          })
+      ->group("");
+}
+
 // The configuration folder beside the program: <prefix>/share/omninav/config for a program in
 // <prefix>/bin, as installed and as in the build tree (CMake links build/share/omninav/config
 // to the sources' config/). Found from /proc/self/exe at run time, so that the program holds no
@@ -84,7 +107,12 @@ int run(int argc, const char* const* argv) {
   return run(args);
 }
 
-int run(const std::vector<std::string>& args) {
+namespace {
+
+// Thrown once a line is parsed and checked, when only that was asked (check_command_line).
+struct ParsedOnly {};
+
+int parse_and_run(const std::vector<std::string>& args, bool parse_only) {
   CLI::App app{
       "omninav: appearance-based topological mapping and navigation with omnidirectional "
       "cameras.\nBuild a visual memory of a room from panoramic images, localise a query image "
@@ -104,7 +132,9 @@ int run(const std::vector<std::string>& args) {
       ->check(CLI::ExistingDirectory);
   app.add_flag("-q,--quiet", global.quiet, "Print errors only");
   app.add_flag("-v,--verbose", global.verbose, "Print debugging detail");
+  // Runs after every option and requirement is checked, before the command's own callback.
   app.parse_complete_callback([&] {
+    if (parse_only) throw ParsedOnly{};
     set_log_level(global.quiet     ? LogLevel::kError
                   : global.verbose ? LogLevel::kDebug
                                    : LogLevel::kInfo);
@@ -121,6 +151,7 @@ int run(const std::vector<std::string>& args) {
   add_navigate_command(app, global);
   add_demo_command(app, global);
   add_evaluate_command(app, global);
+  add_completion_command(app);
 
   try {
     // An unknown command is named as such (CLI11 would say "A subcommand is required").
@@ -144,6 +175,8 @@ int run(const std::vector<std::string>& args) {
                                       args.rend());  // CLI11 parses a reversed vector
     app.parse(reversed);
     flush_standard_output();  // a full disk or a closed pipe is a failure, not a success
+  } catch (const ParsedOnly&) {
+    return 0;
   } catch (const CLI::CallForHelp& help) {
     return app.exit(help);
   } catch (const CLI::CallForAllHelp& help) {
@@ -165,6 +198,16 @@ int run(const std::vector<std::string>& args) {
     return 1;
   }
   return 0;
+}
+
+}  // namespace
+
+int run(const std::vector<std::string>& args) {
+  return parse_and_run(args, false);
+}
+
+int check_command_line(const std::vector<std::string>& args) {
+  return parse_and_run(args, true);
 }
 
 }  // namespace omninav::cli

@@ -27,6 +27,13 @@ enum class OutputFormat { kText, kCsv, kJson };
 // The --format option of `command`, "text, csv or json", default text.
 void add_format_option(CLI::App* command, OutputFormat& format);
 
+// The old spelling of a renamed flag or option (one name per idea across the commands: --force,
+// --plot, --out): hidden from --help, still accepted, with a warning that names the new one.
+void add_old_flag_name(CLI::App* command, const std::string& old_name, const std::string& name,
+                       bool& value);
+void add_old_option_name(CLI::App* command, const std::string& old_name, const std::string& name,
+                         std::filesystem::path& value);
+
 // The output folder of a command that writes many files (render, unwrap), checked before the
 // work: not a file, not the folder the input images live in (when `input` is given), and
 // empty unless --force. UsageError otherwise.
@@ -42,6 +49,11 @@ std::ostream& summary(const GlobalOptions& global);
 int run(int argc, const char* const* argv);
 int run(const std::vector<std::string>& args);  // args without the program name
 
+// Parses `args` as run() does (commands, options, their values and checks), without running
+// the command: 0 when omninav would accept the line, else 2 with the usage error printed. The
+// tests check every command line of README.md and docs/ with it.
+int check_command_line(const std::vector<std::string>& args);
+
 // Each subcommand registers itself; its callback runs when the user picks it.
 void add_render_command(CLI::App& app, const GlobalOptions& global);
 void add_unwrap_command(CLI::App& app, const GlobalOptions& global);
@@ -54,5 +66,6 @@ void add_route_command(CLI::App& app, const GlobalOptions& global);
 void add_navigate_command(CLI::App& app, const GlobalOptions& global);
 void add_demo_command(CLI::App& app, const GlobalOptions& global);
 void add_evaluate_command(CLI::App& app, const GlobalOptions& global);
+void add_completion_command(CLI::App& app);
 
 }  // namespace omninav::cli

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -41,7 +42,8 @@ struct CompassOptions {
   double threshold = -1.0;  // < 0: compass.yaml's sampling.threshold_norm_amp
   bool truth = false;
   bool unwrap = false;
-  std::string out;  // CSV; "-" for stdout
+  std::string out;  // CSV; "-" for stdout, each row as soon as it is computed
+  std::string format = "csv";
   fs::path plot;
   fs::path stats;
   std::string label;
@@ -142,9 +144,10 @@ std::optional<MapRealignment> load_map_realignment(const GlobalOptions& global,
 
 // The compass over every frame of --input, raw images unwrapped first when asked or marked;
 // with --map, each frame whose place the map recognises re-aligns the compass on that place's
-// heading (navigation::MapHeadings).
+// heading (navigation::MapHeadings). `on_frame` sees each frame's row as soon as it is computed.
 CompassRows run_over_input(const GlobalOptions& global, const CompassOptions& options,
-                           const CompassSetup& setup) {
+                           const CompassSetup& setup,
+                           const std::function<void(const evaluation::CompassFrame&)>& on_frame) {
   std::optional<MapRealignment> map = load_map_realignment(global, options.map);
   bool in_map_frame = false;
   // Sources as the input names them: the CSV's source column.
@@ -190,6 +193,7 @@ CompassRows run_over_input(const GlobalOptions& global, const CompassOptions& op
           row.realigned_place = static_cast<int>(heading->place);
         }
       }
+      on_frame(result.rows.back());
       progress.advance();
     }
   }
@@ -276,20 +280,31 @@ void run_compass(const GlobalOptions& global, const CompassOptions& options) {
        {fs::path(options.out == "-" ? "" : options.out), options.plot, options.stats}) {
     if (!output.empty()) check_output_path(output, {options.input, options.map});
   }
+  const evaluation::RowFormat format = evaluation::row_format_of(options.format);
   const CompassSetup setup = compass_setup(global, options);
-  const CompassRows run = run_over_input(global, options, setup);
+  // --out -: each row to standard output as soon as it is computed, so that another program can
+  // follow a live robot; the columns are set by the first frame (truth or not).
+  // Each row is handed to write_standard_output, which flushes it and turns a lost standard
+  // output (a full disk, a closed pipe) into an error naming why.
+  std::ostringstream pending;
+  std::optional<evaluation::CompassRowWriter> live;
+  const auto on_frame = [&](const evaluation::CompassFrame& row) {
+    if (options.out != "-") return;
+    if (!live) live.emplace(pending, format, row.truth.has_value(), !options.map.empty());
+    live->write(row);
+    write_standard_output(pending.str());
+    pending.str("");
+  };
+  const CompassRows run = run_over_input(global, options, setup, on_frame);
 
-  const bool has_truth =
-      std::any_of(run.rows.begin(), run.rows.end(),
-                  [](const evaluation::CompassFrame& r) { return r.truth.has_value(); });
-  if (!options.out.empty()) {
-    std::ostringstream csv;
-    evaluation::write_compass_csv(csv, run.rows, has_truth, !options.map.empty());
-    if (options.out == "-") {
-      write_standard_output(csv.str());
-    } else {
-      write_output_file(options.out, csv.str());
-    }
+  if (!options.out.empty() && options.out != "-") {
+    const bool has_truth =
+        std::any_of(run.rows.begin(), run.rows.end(),
+                    [](const evaluation::CompassFrame& r) { return r.truth.has_value(); });
+    std::ostringstream text;
+    evaluation::CompassRowWriter writer(text, format, has_truth, !options.map.empty());
+    for (const evaluation::CompassFrame& row : run.rows) writer.write(row);
+    write_output_file(options.out, text.str());
   }
 
   // Evaluation over the frames that have ground truth.
@@ -388,8 +403,15 @@ void add_compass_command(CLI::App& app, const GlobalOptions& global) {
           "heading_unwrapped_deg, rotation_deg, amplitude_norm, reference_frame,\n"
           "confidence, shift_px, evaluations, pitch_deg, roll_deg (relative to the\n"
           "reference, with compass.yaml tilt.level); truth_heading_deg, error_deg, distance_m\n"
-          "when the input has ground truth); '-' for standard output")
+          "when the input has ground truth); '-' for standard output, each row written\n"
+          "and flushed as soon as its frame is computed (to follow a live camera)")
       ->type_name("FILE");
+  command
+      ->add_option("--format", options->format,
+                   "csv, or jsonl: one JSON object per frame, its keys the CSV's columns (null "
+                   "where the CSV is empty)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"csv", "jsonl"}));
   command->add_option("--plot", options->plot, "Write a PNG of heading and error against frame")
       ->type_name("FILE.png");
   command

@@ -76,10 +76,9 @@ class Demo {
     step("1. render an exploration of the room (exact poses, a BoB database)",
          {"render", "--trajectory", kGrid, "--out", exploration, "--force"});
     step("2. explore: every image a place (Fourier signature, heading, thumbnail)",
-         {"explore", "--input", exploration, "--out", map, "--overwrite"});
+         {"explore", "--input", exploration, "--out", map, "--force"});
     step("3. organise the places into a lattice (springs and motions, Ceres)",
-         {"organise", map, "--step-m", kGridSpacing, "--picture",
-          (report / "lattice.png").string()});
+         {"organise", map, "--step-m", kGridSpacing, "--plot", (report / "lattice.png").string()});
 
     // Queries: a random walk with long steps and sharp turns over the same floor.
     const std::string queries = (report / "queries").string();
@@ -128,8 +127,9 @@ void add_demo_command(CLI::App& app, const GlobalOptions& global) {
       "images, plans a route and drives to a goal image, then over random start and goal "
       "pairs. Prints every command it runs with its report; pictures and tables go into the "
       "report folder.");
-  command->add_option("--report", options->report, "Folder for the demo's outputs")
+  command->add_option("--out", options->report, "Folder for the demo's outputs")
       ->capture_default_str();
+  add_old_option_name(command, "--report", "--out", options->report);
   command->add_option("--map", options->map, "Where to write the demo's map")
       ->capture_default_str();
   command->add_option("--queries", options->queries, "Query images to localise")

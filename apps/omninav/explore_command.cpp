@@ -25,7 +25,7 @@ struct ExploreOptions {
   int components = 0;
   bool all_frames = false;
   bool unwrap = false;
-  bool overwrite = false;
+  bool force = false;  // --force: replace the map at --out
   io::BagOptions bag;
 };
 
@@ -56,9 +56,9 @@ void run_explore(const GlobalOptions& global, const ExploreOptions& options) {
   // The map is checked before the work: only a map may be replaced, never the input.
   check_not_an_input(options.out, {options.input});
   memory::MapStore store(options.out);
-  if (options.overwrite) store.check_replaceable();
+  if (options.force) store.check_replaceable();
   std::error_code error;
-  const bool extending = std::filesystem::exists(options.out, error) && !options.overwrite;
+  const bool extending = std::filesystem::exists(options.out, error) && !options.force;
   memory::VisualMemory memory = extending ? store.load() : memory::VisualMemory(config.map);
   if (extending) {
     const memory::MapParameters& map = memory.parameters();
@@ -96,7 +96,7 @@ void run_explore(const GlobalOptions& global, const ExploreOptions& options) {
                                                   .next = [&input] { return input.next(); }});
   // A camera's dropped frames and stop by Ctrl-C stay with the run they shaped.
   memory.add_run_note(memory.runs().size() - 1, input.notes());
-  store.save(memory, {.overwrite = options.overwrite, .after_place = {}});
+  store.save(memory, {.overwrite = options.force, .after_place = {}});
   const std::size_t added = memory.place_count() - places_before;
   summary(global) << "explored " << run.frames << " frames of " << options.input.string()
                   << ": added " << added << (added == 1 ? " place" : " places") << " ("
@@ -171,8 +171,8 @@ void add_explore_command(CLI::App& app, const GlobalOptions& global) {
       ->check(NumberRange(1, 4096));
   command->add_flag("--unwrap", options->unwrap,
                     "The images are raw omnidirectional images: unwrap them with camera.yaml");
-  command->add_flag("--overwrite", options->overwrite,
-                    "Replace the map at --out instead of extending it");
+  command->add_flag("--force", options->force, "Replace the map at --out instead of extending it");
+  add_old_flag_name(command, "--overwrite", "--force", options->force);
   add_bag_options(command, options->bag);
   command->callback([&global, options] { run_explore(global, *options); });
 }

@@ -62,8 +62,7 @@ void run_localise(const GlobalOptions& global, const LocaliseOptions& options) {
 
   const memory::VisualMemory map = memory::load_map(options.map);
   if (map.place_count() == 0) throw InputError(options.map.string() + ": the map has no places");
-  const memory::Localiser localiser(map, params);
-  signature::SignatureExtractor extractor(map.parameters().signature);
+  memory::Localiser localiser(map, params);
   // A query matches a place by route's and navigate's criterion (navigation.yaml).
   const double match_limit =
       navigation::match_limit(map, load_navigation_config(global.config_dir).route);
@@ -83,11 +82,7 @@ void run_localise(const GlobalOptions& global, const LocaliseOptions& options) {
                                               .topic = options.bag.topic,
                                               .pose_topic = options.bag.pose_topic});
     while (std::optional<io::Frame> frame = input.next()) {
-      const signature::Signature signature = extractor.compute(frame->image, frame->source);
-      if (signature.rows != map.parameters().panorama_rows) {
-        throw InputError(frame->source + ": a panorama of " + std::to_string(signature.rows) +
-                         " rows; the map's have " + std::to_string(map.parameters().panorama_rows));
-      }
+      const signature::Signature signature = localiser.signature_of(frame->image, frame->source);
       evaluation::QueryLocalisation q;
       q.source = frame->source;
       q.truth = frame->truth;

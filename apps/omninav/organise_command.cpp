@@ -20,7 +20,7 @@ struct OrganiseOptions {
   std::filesystem::path map;
   double step_m = 0.0;
   bool no_motion = false;
-  std::filesystem::path picture;
+  std::filesystem::path plot;  // --plot: the lattice's picture
 };
 
 void run_organise(const GlobalOptions& global, const OrganiseOptions& options) {
@@ -28,8 +28,8 @@ void run_organise(const GlobalOptions& global, const OrganiseOptions& options) {
   if (options.step_m > 0.0) params.step_m = options.step_m;
   if (options.no_motion) params.motion_constraints = false;
   const std::filesystem::path picture =
-      options.picture.empty() ? std::filesystem::path(options.map).replace_extension(".lattice.png")
-                              : options.picture;
+      options.plot.empty() ? std::filesystem::path(options.map).replace_extension(".lattice.png")
+                           : options.plot;
   check_output_path(picture, {options.map});  // before the work, not after it
   memory::MapStore store(options.map);
   const evaluation::OrganisedMap result = evaluation::organise_stored_map(store, params);
@@ -117,8 +117,9 @@ void add_organise_command(CLI::App& app, const GlobalOptions& global) {
       ->check(NumberRange(0.0, 100.0));
   command->add_flag("--no-motion", options->no_motion,
                     "Springs only: no motions measured from the phases");
-  command->add_option("--picture", options->picture,
+  command->add_option("--plot", options->plot,
                       "Where to draw the lattice (default: <map>.lattice.png)");
+  add_old_option_name(command, "--picture", "--plot", options->plot);
   command->callback([&global, options] { run_organise(global, *options); });
 }
 

@@ -18,6 +18,7 @@ Parameters are read from the configuration folder (``omninav.default_config_dir(
 """
 
 from ._omninav import (  # noqa: F401 (re-exported)
+    __version__,
     CameraPose,
     Compass,
     CompassConfig,
@@ -67,5 +68,37 @@ from ._omninav import (  # noqa: F401 (re-exported)
     set_log_level,
     similarities,
 )
+
+
+
+def _short_repr(value):
+    """A field's value in a repr: arrays and long lists by their size, so a repr stays a line."""
+    if hasattr(value, "shape"):
+        return f"<array {'x'.join(str(n) for n in value.shape)}>"
+    if isinstance(value, (list, tuple)) and len(value) > 4:
+        return f"[{len(value)} items]"
+    return repr(value)
+
+
+def _fields_repr(value):
+    """ClassName(field=value, ...) over the class's properties in the order the binding defines
+    them: what a result or a parameter set holds, readable at the prompt."""
+    fields = []
+    for name, member in vars(type(value)).items():
+        if name.startswith("_") or not isinstance(member, property):
+            continue
+        try:
+            fields.append(f"{name}={_short_repr(getattr(value, name))}")
+        except Exception as error:  # a field that cannot be read says why, the rest still show
+            fields.append(f"{name}=<{type(error).__name__}>")
+    return f"{type(value).__name__}({', '.join(fields)})"
+
+
+# The result and parameter types print their fields (the others keep their own __repr__).
+for _type in (SamplingParams, MinimiserParams, WindowParams, CompassConfig, SignatureParams,
+              ExplorationParams, LocalisationParams, MemoryConfig, RouteParams, NavigatorParams,
+              NavigationConfig, Place, Edge, Localisation, RoutePlan, Run, NavigationStep, GoalRun):
+    _type.__repr__ = _fields_repr
+del _type
 
 __all__ = [name for name in dir() if not name.startswith("_")]

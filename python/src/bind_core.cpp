@@ -1,4 +1,5 @@
 // numpy <-> cv::Mat, poses, and the panorama's column convention.
+#include <dlfcn.h>
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
@@ -108,10 +109,25 @@ Busy::~Busy() {
   g_busy_objects.erase(object_);
 }
 
+// The configuration folder inside the package: omninav/config beside the compiled module, as
+// `pip install` and `cmake --install` lay it out and as the build tree links it (python/
+// CMakeLists.txt). Found from the module's own file at run time (dladdr), so that the module
+// holds no path of the machine it was built on and works wherever it is copied.
+std::filesystem::path package_config_dir() {
+  Dl_info info{};
+  if (dladdr(reinterpret_cast<const void*>(&package_config_dir), &info) == 0 ||
+      info.dli_fname == nullptr) {
+    throw ConfigError(
+        "cannot find the omninav module's own file to locate its configuration folder; set "
+        "OMNINAV_CONFIG_DIR");
+  }
+  return std::filesystem::path(info.dli_fname).parent_path() / "config";
+}
+
 std::filesystem::path config_dir_or_default(const std::optional<std::filesystem::path>& dir) {
   if (dir) return *dir;
   if (const char* env = std::getenv("OMNINAV_CONFIG_DIR"); env && *env) return env;
-  return OMNINAV_DEFAULT_CONFIG_DIR;
+  return package_config_dir();
 }
 
 void bind_core(py::module_& m) {
@@ -186,7 +202,7 @@ void bind_core(py::module_& m) {
   m.def(
       "default_config_dir", [] { return config_dir_or_default(std::nullopt); },
       "The configuration folder used when none is given: $OMNINAV_CONFIG_DIR, else the "
-      "build's share/omninav/config.");
+      "package's own config/ folder (installed with it).");
 }
 
 }  // namespace omninav::python

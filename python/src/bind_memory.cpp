@@ -141,11 +141,10 @@ void bind_localisation(py::module_& m) {
           "The best place and its neighbours among the best, weighted by dissimilarity "
           "(x_m, y_m), or None.");
 
-  // The localiser, the extractor of the map's signatures, and the largest dissimilarity at
+  // The localiser (which extracts the queries' signatures) and the largest dissimilarity at
   // which a query still matches a place (route, navigate and localise's one criterion).
   struct Localiser {
     memory::Localiser localiser;
-    signature::SignatureExtractor extractor;
     double match_limit;
     const Map* map;  // the map it reads, which must not change meanwhile
   };
@@ -162,7 +161,6 @@ void bind_localisation(py::module_& m) {
              const navigation::RouteParams route = navigation_config(navigation, config_dir).route;
              return std::make_unique<Localiser>(
                  Localiser{memory::Localiser(map.memory, params),
-                           signature::SignatureExtractor(map.memory.parameters().signature),
                            navigation::match_limit(map.memory, route), &map});
            }),
            py::arg("map"), py::arg("config") = py::none(), py::arg("config_dir") = py::none(),
@@ -175,12 +173,7 @@ void bind_localisation(py::module_& m) {
             py::object keep;
             const cv::Mat image = array_to_mat(panorama, what, keep);
             py::gil_scoped_release release;
-            const signature::Signature query = l.extractor.compute(image, what);
-            const int rows = l.localiser.memory().parameters().panorama_rows;
-            if (query.rows != rows) {
-              throw InputError(what + ": a panorama of " + std::to_string(query.rows) +
-                               " rows; the map's have " + std::to_string(rows));
-            }
+            const signature::Signature query = l.localiser.signature_of(image, what);
             return exhaustive ? l.localiser.localise_exhaustive(query)
                               : l.localiser.localise(query);
           },

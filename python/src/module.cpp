@@ -8,6 +8,7 @@ PYBIND11_MODULE(_omninav, m) {
       "cameras. Images are numpy arrays (H x W x 3 uint8 BGR, or H x W grey), angles are in "
       "radians (names end in _rad), errors are omninav.Error subclasses. Long calls release "
       "the GIL; an object (a Compass, a Map, a Localiser) is for one thread at a time.";
+  m.attr("__version__") = OMNINAV_VERSION;
   using namespace omninav::python;
   bind_errors(m);
   bind_core(m);

@@ -8,8 +8,11 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
 #include <thread>
@@ -51,6 +54,35 @@ bool write_turning_video(const std::filesystem::path& file, int frames, double f
 }
 
 constexpr const char* kNoWriter = "cv::VideoWriter cannot write MJPG in AVI on this build";
+
+// The program itself started with `args` (after its name and --config-dir), as a user starts
+// it: the read end of a pipe from its file descriptor `piped` (1 or 2) is returned with its
+// pid; its other output goes to /dev/null. {-1, -1} when it could not start.
+std::pair<pid_t, int> spawn_omninav(const std::filesystem::path& config_dir,
+                                    const std::vector<std::string>& args, int piped) {
+  std::vector<std::string> words{OMNINAV_PROGRAM, "--config-dir", config_dir.string()};
+  words.insert(words.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (const std::string& word : words) argv.push_back(const_cast<char*>(word.c_str()));
+  argv.push_back(nullptr);
+  int ends[2];
+  if (::pipe(ends) != 0) return {-1, -1};
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_adddup2(&actions, ends[1], piped);
+  posix_spawn_file_actions_addclose(&actions, ends[0]);
+  posix_spawn_file_actions_addopen(&actions, piped == 1 ? 2 : 1, "/dev/null", O_WRONLY, 0);
+  pid_t child = 0;
+  const int status =
+      ::posix_spawn(&child, OMNINAV_PROGRAM, &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  ::close(ends[1]);
+  if (status != 0) {
+    ::close(ends[0]);
+    return {-1, -1};
+  }
+  return {child, ends[0]};
+}
 
 std::string read_file(const std::filesystem::path& file) {
   std::ifstream in(file);
@@ -118,40 +150,27 @@ TEST_F(CameraCommands, CtrlCStopsExploringWithTheMapHoldingTheFramesProcessed) {
   if (!write_turning_video(video, kFrames, kFps)) GTEST_SKIP() << kNoWriter;
   const std::filesystem::path map = folder_ / "live.vmem";
 
-  const std::vector<std::string> args{OMNINAV_PROGRAM, "--config-dir", config_dir_.string(),
-                                      "explore",       "--input",      "camera:" + video.string(),
-                                      "--out",         map.string(),   "--all-frames"};
-  std::vector<char*> argv;
-  for (const std::string& arg : args) argv.push_back(const_cast<char*>(arg.c_str()));
-  argv.push_back(nullptr);
-  int err_pipe[2];
-  ASSERT_EQ(::pipe(err_pipe), 0);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_adddup2(&actions, err_pipe[1], 2);
-  posix_spawn_file_actions_addclose(&actions, err_pipe[0]);
-  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
-  pid_t child = 0;
-  ASSERT_EQ(::posix_spawn(&child, OMNINAV_PROGRAM, &actions, nullptr, argv.data(), environ), 0);
-  posix_spawn_file_actions_destroy(&actions);
-  ::close(err_pipe[1]);
+  const auto [child, from_stderr] = spawn_omninav(
+      config_dir_,
+      {"explore", "--input", "camera:" + video.string(), "--out", map.string(), "--all-frames"}, 2);
+  ASSERT_GT(child, 0);
 
   // Its log says when the camera is open (and its Ctrl-C handler in place); a second later about
   // 20 frames have come.
   std::string errors;
   char buffer[4096];
   while (errors.find("exploring ") == std::string::npos) {
-    const ssize_t got = ::read(err_pipe[0], buffer, sizeof buffer);
+    const ssize_t got = ::read(from_stderr, buffer, sizeof buffer);
     if (got <= 0) break;
     errors.append(buffer, static_cast<std::size_t>(got));
   }
   ASSERT_NE(errors.find("exploring "), std::string::npos) << "no start in its log:\n" << errors;
   std::this_thread::sleep_for(std::chrono::seconds(1));
   ASSERT_EQ(::kill(child, SIGINT), 0);
-  for (ssize_t got; (got = ::read(err_pipe[0], buffer, sizeof buffer)) > 0;) {
+  for (ssize_t got; (got = ::read(from_stderr, buffer, sizeof buffer)) > 0;) {
     errors.append(buffer, static_cast<std::size_t>(got));
   }
-  ::close(err_pipe[0]);
+  ::close(from_stderr);
   int status = 0;
   ASSERT_EQ(::waitpid(child, &status, 0), child);
   ASSERT_TRUE(WIFEXITED(status)) << "killed by signal " << WTERMSIG(status) << ":\n" << errors;
@@ -180,6 +199,67 @@ TEST_F(CameraCommands, CtrlCStopsExploringWithTheMapHoldingTheFramesProcessed) {
     EXPECT_EQ(place.source, frame->source);
     EXPECT_EQ(place.signature.magnitude, extractor.compute(frame->image).magnitude) << place.source;
     previous_index = place.frame_index;
+  }
+}
+
+// Another program following a live robot: `compass --input camera:... --out - --format jsonl`
+// delivers each frame's row while the camera runs, at the camera's pace, not all together at
+// the end; and the rows are the ones the video read directly gives.
+TEST_F(CameraCommands, ALiveRunWritesEachRowWhenItsFrameIsComputed) {
+  constexpr int kFrames = 30;
+  constexpr double kFps = 10.0;
+  const std::filesystem::path video = folder_ / "live.avi";
+  if (!write_turning_video(video, kFrames, kFps)) GTEST_SKIP() << kNoWriter;
+
+  const auto [child, from_stdout] = spawn_omninav(
+      config_dir_,
+      {"-q", "compass", "--input", "camera:" + video.string(), "--out", "-", "--format", "jsonl"},
+      1);
+  ASSERT_GT(child, 0);
+
+  // Each line with the time it arrived.
+  using Clock = std::chrono::steady_clock;
+  std::vector<std::pair<Clock::time_point, std::string>> lines;
+  std::string pending;
+  char buffer[4096];
+  for (ssize_t got; (got = ::read(from_stdout, buffer, sizeof buffer)) > 0;) {
+    pending.append(buffer, static_cast<std::size_t>(got));
+    for (std::size_t end; (end = pending.find('\n')) != std::string::npos;) {
+      lines.emplace_back(Clock::now(), pending.substr(0, end));
+      pending.erase(0, end + 1);
+    }
+  }
+  ::close(from_stdout);
+  int status = 0;
+  ASSERT_EQ(::waitpid(child, &status, 0), child);
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+  ASSERT_EQ(lines.size(), static_cast<std::size_t>(kFrames));
+
+  // Row i comes about i frame periods after the first: the camera's pace. All rows at once at
+  // the end would put every one at 0 s; the median lag allows for a loaded machine.
+  std::vector<double> lags_s;
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    const double since_first_s =
+        std::chrono::duration<double>(lines[i].first - lines.front().first).count();
+    lags_s.push_back(std::abs(since_first_s - static_cast<double>(i) / kFps));
+  }
+  std::nth_element(lags_s.begin(), lags_s.begin() + lags_s.size() / 2, lags_s.end());
+  EXPECT_LE(lags_s[lags_s.size() / 2], 1.0 / kFps) << "rows did not come at the camera's pace";
+  const double spread_s =
+      std::chrono::duration<double>(lines.back().first - lines.front().first).count();
+  EXPECT_GE(spread_s, 0.5 * (kFrames - 1) / kFps) << "rows came together";
+
+  // The JSON rows hold the CSV's values of the same frames read from the video.
+  const std::filesystem::path video_csv = folder_ / "video.csv";
+  ASSERT_EQ(run_omninav({"compass", "--input", video.string(), "--out", video_csv.string()}), 0)
+      << errors_;
+  const auto rows = csv_rows(read_file(video_csv));
+  ASSERT_EQ(rows.size(), lines.size() + 1);
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    const nlohmann::json row = nlohmann::json::parse(lines[i].second);
+    EXPECT_EQ(row.at("frame").get<int>(), static_cast<int>(i));
+    EXPECT_NEAR(row.at("heading_unwrapped_deg").get<double>(), std::stod(rows[i + 1][4]), 1e-9);
+    EXPECT_EQ(row.at("confidence").get<std::string>(), rows[i + 1][8]);
   }
 }
 

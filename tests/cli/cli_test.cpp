@@ -92,11 +92,31 @@ TEST_F(CommandLine, HelpAndUsageErrors) {
   EXPECT_EQ(run_omninav({"no-such-command"}), 2);
 }
 
+// One name per idea: --force replaces, --plot draws, --out is where outputs go. The old
+// spellings still work, with a warning that names the new one, and are hidden from --help.
+TEST_F(CommandLine, RenamedFlagsKeepTheirOldSpellingWithAWarning) {
+  render_and_explore_grid();
+  ASSERT_EQ(
+      run_omninav({"explore", "--input", grid_.string(), "--out", map_.string(), "--overwrite"}), 0)
+      << errors_;
+  EXPECT_NE(errors_.find("--overwrite is now --force"), std::string::npos) << errors_;
+  const std::filesystem::path picture = folder_ / "old.png";
+  ASSERT_EQ(run_omninav({"organise", map_.string(), "--picture", picture.string()}), 0) << errors_;
+  EXPECT_NE(errors_.find("--picture is now --plot"), std::string::npos) << errors_;
+  EXPECT_TRUE(std::filesystem::exists(picture));
+  for (const char* command : {"explore", "organise", "demo"}) {
+    ASSERT_EQ(run_omninav({command, "--help"}), 0);
+    for (const char* old_name : {"--overwrite", "--picture", "--report"}) {
+      EXPECT_EQ(output_.find(old_name), std::string::npos) << command << " --help: " << old_name;
+    }
+  }
+}
+
 TEST_F(CommandLine, DemoWritesItsReport) {
   const std::filesystem::path report = folder_ / "report";
   const std::filesystem::path map = folder_ / "demo.vmem";
-  ASSERT_EQ(run_omninav({"demo", "--report", report.string(), "--map", map.string(), "--queries",
-                         "4", "--trials", "2"}),
+  ASSERT_EQ(run_omninav({"demo", "--out", report.string(), "--map", map.string(), "--queries", "4",
+                         "--trials", "2"}),
             0)
       << errors_;
   // Every stage leaves its output: the exploration, the organised map, the localisation, the

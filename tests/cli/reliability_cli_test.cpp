@@ -164,7 +164,7 @@ TEST_F(Reliability, ASingleQuerysPlotLeavesAnEarlierRunsFiguresAlone) {
 TEST_F(Reliability, OrganiseChecksItsOutputsBeforeChangingTheMap) {
   make_map();
   const std::string before = read_bytes(map_);
-  EXPECT_EQ(run_omninav({"organise", map_.string(), "--step-m", "0.3", "--picture",
+  EXPECT_EQ(run_omninav({"organise", map_.string(), "--step-m", "0.3", "--plot",
                          (folder_ / "no" / "such" / "x.png").string()}),
             1);
   EXPECT_NE(errors_.find("x.png: cannot write"), std::string::npos) << errors_;
@@ -224,7 +224,7 @@ TEST_F(Reliability, NoOutputMayReplaceAnInputOfItsCommand) {
       {"localise", map, image_, "--plot", map},
       {"localise", map, image_, "--plot", image_},
       {"route", map, "--from", image_, "--to", image_, "--plot", link.string()},
-      {"organise", map, "--step-m", "0.3", "--picture", dotted},
+      {"organise", map, "--step-m", "0.3", "--plot", dotted},
       {"compass", "--input", grid_.string(), "--map", map, "--out", map},
       {"compass", "--input", sequence.string(), "--out", sequence.string()},
       {"compass", "--input", sequence.string(), "--plot", sequence.string()},
@@ -260,13 +260,12 @@ TEST_F(Reliability, FiguresRefuseAnAbsurdTruthInsteadOfSpinning) {
 
 TEST_F(Reliability, OutputsThatAreNotOursAreNotReplaced) {
   make_map();
-  // --overwrite replaces a map, not a picture; checked before the work.
+  // --force replaces a map, not a picture; checked before the work.
   const fs::path picture = folder_ / "picture.png";
   cv::imwrite(picture.string(), cv::Mat(4, 4, CV_8UC1, cv::Scalar(7)));
   const std::string bytes = read_bytes(picture);
   EXPECT_EQ(
-      run_omninav({"explore", "--input", grid_.string(), "--out", picture.string(), "--overwrite"}),
-      2);
+      run_omninav({"explore", "--input", grid_.string(), "--out", picture.string(), "--force"}), 2);
   EXPECT_NE(errors_.find("picture.png: is not an omninav map; not replacing it"), std::string::npos)
       << errors_;
   EXPECT_EQ(read_bytes(picture), bytes);
@@ -317,7 +316,7 @@ TEST_F(Reliability, EachBadInputIsOneLineNamingIt) {
                   fifo.string() + ": is a FIFO, not a video file");
   expect_one_line({"frobnicate"}, 2,
                   "unknown command 'frobnicate' (commands: render, unwrap, compass, explore, "
-                  "localise, export, organise, route, navigate, demo, evaluate)");
+                  "localise, export, organise, route, navigate, demo, evaluate, completion)");
 }
 
 TEST_F(Reliability, ACutPngIsOneLineWithoutLibpngsOwn) {

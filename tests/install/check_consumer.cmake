@@ -22,7 +22,8 @@ endfunction()
 
 run("install" ${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${prefix})
 foreach(file bin/omninav share/omninav/config/memory.yaml include/omninav/memory/localisation.hpp
-             lib/pkgconfig/omninav.pc lib/cmake/omninav/omninavConfig.cmake)
+             lib/pkgconfig/omninav.pc lib/cmake/omninav/omninavConfig.cmake
+             share/bash-completion/completions/omninav)
   if(NOT EXISTS ${prefix}/${file})
     message(FATAL_ERROR "the install holds no ${file}")
   endif()
@@ -51,3 +52,16 @@ run("building the example with pkg-config" ${CXX} ${SOURCE_DIR}/examples/cpp_con
     ${flags} -o ${work}/omninav_consumer_pc)
 run("running the pkg-config build" ${work}/omninav_consumer_pc ${work}/out-pc)
 message(STATUS "pkg-config build: ${output}")
+
+# The Python package as `cmake --install` lays it out (python/CMakeLists.txt): imported from the
+# prefix alone, it finds the configuration installed inside it.
+if(DEFINED PYTHON AND DEFINED PYTHON_INSTALL_DIR)
+  set(ENV{PYTHONPATH} ${prefix}/${PYTHON_INSTALL_DIR})
+  unset(ENV{OMNINAV_CONFIG_DIR})
+  run("importing the installed module" ${PYTHON} -c
+      "import omninav\nprint(omninav.__version__)\nprint(omninav.default_config_dir())\nprint(omninav.CompassConfig.load().sampling)")
+  if(NOT output MATCHES "${prefix}/${PYTHON_INSTALL_DIR}/omninav/config\n")
+    message(FATAL_ERROR "the installed module's configuration is not its own:\n${output}")
+  endif()
+  message(STATUS "installed Python module: ${output}")
+endif()

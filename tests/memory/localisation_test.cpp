@@ -106,6 +106,31 @@ TEST(GridLocalisation, RandomPosesBetweenGridPointsLocaliseWithinOneSpacing) {
   EXPECT_LT(median(s.between_errors_m), 0.8 * median(s.place_errors_m));
 }
 
+// A panorama straight from a camera or a renderer (cv::Mat) is localised as its signature is:
+// the same best places; a panorama of other rows is refused naming it.
+TEST(GridLocalisation, APanoramaIsLocalisedAsItsSignatureIs) {
+  const VisualMemory memory = testing::grid_memory(signature::ColourMode::kLuminance);
+  Localiser localiser(memory, {});
+  signature::SignatureExtractor extractor(memory.parameters().signature);
+  for (const testing::Query& q : testing::random_queries(5)) {
+    const Localisation from_image = localiser.localise(q.frame.image, "q.png");
+    const Localisation from_signature = localiser.localise(extractor.compute(q.frame.image));
+    ASSERT_EQ(from_image.best.size(), from_signature.best.size());
+    for (std::size_t i = 0; i < from_image.best.size(); ++i) {
+      EXPECT_EQ(from_image.best[i].place, from_signature.best[i].place);
+      EXPECT_EQ(from_image.best[i].dissimilarity, from_signature.best[i].dissimilarity);
+    }
+  }
+  const cv::Mat taller(memory.parameters().panorama_rows + 4, 120, CV_8UC3, cv::Scalar(9, 80, 200));
+  try {
+    localiser.localise(taller, "tall.png");
+    FAIL() << "a panorama of other rows was localised";
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what()).find("tall.png: a panorama of"), std::string::npos)
+        << error.what();
+  }
+}
+
 TEST(GridLocalisation, ColourPerChannel) {
   const GridScores s = score(signature::ColourMode::kPerChannel, 60);
   EXPECT_GE(s.within_spacing, 0.95 * s.queries);

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "omninav/core/errors.hpp"
+#include "omninav/eval/hershey_text.hpp"
 
 namespace omninav::eval {
 namespace {
@@ -34,8 +35,10 @@ cv::Mat as_bgr(const cv::Mat& image, std::size_t index) {
 }
 
 // Draws `caption` centred in `band`, shrinking the font and then cutting the text to fit.
-void draw_caption(cv::Mat& sheet, std::string caption, const cv::Rect& band, double font_scale) {
-  if (caption.empty()) return;
+void draw_caption(cv::Mat& sheet, const std::string& text, const cv::Rect& band,
+                  double font_scale) {
+  if (text.empty()) return;
+  std::string caption = hershey_text(text);
   const int room = band.width - 4;
   int baseline = 0;
   double scale = font_scale;

@@ -11,6 +11,7 @@
 
 #include "omninav/core/errors.hpp"
 #include "omninav/core/format.hpp"
+#include "omninav/eval/hershey_text.hpp"
 #include "omninav/eval/png.hpp"
 
 namespace omninav::eval {
@@ -56,12 +57,13 @@ enum class Align { kLeft, kCentre, kRight };
 // Draws `text` with its vertical centre at anchor.y, aligned on anchor.x as asked.
 void draw_text(cv::Mat& image, const std::string& text, cv::Point anchor, double scale, Align align,
                int thickness = 1, const cv::Scalar& colour = kText) {
+  const std::string ascii = hershey_text(text);
   int baseline = 0;
-  const cv::Size size = cv::getTextSize(text, kFont, scale, thickness, &baseline);
+  const cv::Size size = cv::getTextSize(ascii, kFont, scale, thickness, &baseline);
   int x = anchor.x;
   if (align == Align::kCentre) x -= size.width / 2;
   if (align == Align::kRight) x -= size.width;
-  cv::putText(image, text, cv::Point(x, anchor.y + size.height / 2), kFont, scale, colour,
+  cv::putText(image, ascii, cv::Point(x, anchor.y + size.height / 2), kFont, scale, colour,
               thickness, cv::LINE_AA);
 }
 
@@ -69,10 +71,11 @@ void draw_text(cv::Mat& image, const std::string& text, cv::Point anchor, double
 // putText cannot rotate, so the text is drawn on a white strip that is rotated and copied in.
 void draw_vertical_text(cv::Mat& image, const std::string& text, cv::Point centre, double scale) {
   if (text.empty()) return;
+  const std::string ascii = hershey_text(text);
   int baseline = 0;
-  const cv::Size size = cv::getTextSize(text, kFont, scale, 1, &baseline);
+  const cv::Size size = cv::getTextSize(ascii, kFont, scale, 1, &baseline);
   cv::Mat strip(size.height + baseline + 4, size.width + 4, CV_8UC3, kWhite);
-  cv::putText(strip, text, cv::Point(2, size.height + 2), kFont, scale, kText, 1, cv::LINE_AA);
+  cv::putText(strip, ascii, cv::Point(2, size.height + 2), kFont, scale, kText, 1, cv::LINE_AA);
   cv::Mat rotated;
   cv::rotate(strip, rotated, cv::ROTATE_90_COUNTERCLOCKWISE);
   const cv::Rect target(centre.x - rotated.cols / 2, centre.y - rotated.rows / 2, rotated.cols,
@@ -179,7 +182,8 @@ void draw_legend(cv::Mat& image, const Frame& frame, const std::vector<LegendEnt
   for (const LegendEntry& entry : entries) {
     int baseline = 0;
     text_width =
-        std::max(text_width, cv::getTextSize(entry.name, kFont, kTickScale, 1, &baseline).width);
+        std::max(text_width,
+                 cv::getTextSize(hershey_text(entry.name), kFont, kTickScale, 1, &baseline).width);
   }
   const int width = kSwatch + text_width + 24;
   const int height = static_cast<int>(entries.size()) * kRow + 10;

@@ -10,6 +10,7 @@
 #include "omninav/core/csv.hpp"
 #include "omninav/core/errors.hpp"
 #include "omninav/core/format.hpp"
+#include "omninav/eval/hershey_text.hpp"
 
 namespace omninav::evaluation {
 namespace {
@@ -191,12 +192,13 @@ cv::Mat table_picture(const std::vector<Row>& rows, const std::vector<Measure>& 
   const int height = kTitleH + kHeaderH + kCellH * (static_cast<int>(rows.size()) + 1) + 10;
   cv::Mat picture(height, width, CV_8UC3, cv::Scalar(255, 255, 255));
   const int font = cv::FONT_HERSHEY_SIMPLEX;
-  cv::putText(picture, title, {8, 24}, font, 0.6, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
+  cv::putText(picture, eval::hershey_text(title), {8, 24}, font, 0.6, cv::Scalar(0, 0, 0), 1,
+              cv::LINE_AA);
   // Headers written upwards, one per column.
   for (std::size_t c = 0; c < columns.size(); ++c) {
     cv::Mat header(kCellW, kHeaderH, CV_8UC3, cv::Scalar(255, 255, 255));
-    cv::putText(header, columns[c].group + " " + columns[c].title, {4, kCellW / 2 + 5}, font, 0.4,
-                cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
+    cv::putText(header, eval::hershey_text(columns[c].group + " " + columns[c].title),
+                {4, kCellW / 2 + 5}, font, 0.4, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
     cv::Mat rotated;
     cv::rotate(header, rotated, cv::ROTATE_90_COUNTERCLOCKWISE);
     rotated.copyTo(
@@ -205,8 +207,8 @@ cv::Mat table_picture(const std::vector<Row>& rows, const std::vector<Measure>& 
   const auto row_top = [&](std::size_t r) { return kTitleH + kHeaderH + kCellH * int(r); };
   for (std::size_t r = 0; r <= rows.size(); ++r) {
     const std::string label = r < rows.size() ? rows[r].world : "WORST";
-    cv::putText(picture, label, {6, row_top(r) + 16}, font, 0.42, cv::Scalar(0, 0, 0), 1,
-                cv::LINE_AA);
+    cv::putText(picture, eval::hershey_text(label), {6, row_top(r) + 16}, font, 0.42,
+                cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
   }
   for (std::size_t c = 0; c < columns.size(); ++c) {
     // Rank of each value in the column, 0 best .. 1 worst.
@@ -237,8 +239,9 @@ cv::Mat table_picture(const std::vector<Row>& rows, const std::vector<Measure>& 
                   0.4, ink, 1, cv::LINE_AA);
     }
     if (worst[c] >= 0) {
-      cv::putText(picture, rows[worst[c]].family, {x + 4, row_top(rows.size()) + 16}, font, 0.4,
-                  cv::Scalar(0, 0, 160), 1, cv::LINE_AA);
+      cv::putText(picture, eval::hershey_text(rows[worst[c]].family),
+                  {x + 4, row_top(rows.size()) + 16}, font, 0.4, cv::Scalar(0, 0, 160), 1,
+                  cv::LINE_AA);
     }
   }
   return picture;

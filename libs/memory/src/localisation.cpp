@@ -208,7 +208,8 @@ Localiser::Localiser(const VisualMemory& memory, LocalisationParams params)
       params_(std::move(params)),
       index_(memory.parameters().panorama_rows > 0 ? memory.parameters().panorama_rows : 1,
              memory.parameters().signature.colour == signature::ColourMode::kLuminance ? 1 : 3,
-             params_.hierarchy.levels, memory.parameters().weights) {
+             params_.hierarchy.levels, memory.parameters().weights),
+      extractor_(memory.parameters().signature) {
   if (params_.hierarchy.levels.back() > memory.parameters().signature.components) {
     throw UsageError("the finest level compares " +
                      std::to_string(params_.hierarchy.levels.back()) +
@@ -234,6 +235,20 @@ std::size_t Localiser::searched_top() const {
 Localisation Localiser::localise(const signature::Signature& query) const {
   return finish(query, index_.search(query, params_.hierarchy.candidate_similarity, searched_top(),
                                      params_.hierarchy.max_probes));
+}
+
+signature::Signature Localiser::signature_of(const cv::Mat& panorama, const std::string& what) {
+  signature::Signature query = extractor_.compute(panorama, what);
+  const int rows = memory_.parameters().panorama_rows;
+  if (query.rows != rows) {
+    throw InputError(what + ": a panorama of " + std::to_string(query.rows) +
+                     " rows; the map's have " + std::to_string(rows));
+  }
+  return query;
+}
+
+Localisation Localiser::localise(const cv::Mat& panorama, const std::string& what) {
+  return localise(signature_of(panorama, what));
 }
 
 Localisation Localiser::localise_exhaustive(const signature::Signature& query) const {

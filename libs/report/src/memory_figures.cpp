@@ -13,6 +13,7 @@
 #include "omninav/core/output_file.hpp"
 #include "omninav/core/pose.hpp"
 #include "omninav/core/statistics.hpp"
+#include "omninav/eval/hershey_text.hpp"
 #include "omninav/eval/plot.hpp"
 #include "omninav/io/image_file.hpp"
 #include "omninav/signature/dissimilarity.hpp"
@@ -34,7 +35,8 @@ cv::Scalar viridis(double similarity) {
 
 void put_text(cv::Mat& image, const std::string& text, cv::Point origin, double scale = 0.5,
               cv::Scalar colour = cv::Scalar(30, 30, 30)) {
-  cv::putText(image, text, origin, cv::FONT_HERSHEY_SIMPLEX, scale, colour, 1, cv::LINE_AA);
+  cv::putText(image, eval::hershey_text(text), origin, cv::FONT_HERSHEY_SIMPLEX, scale, colour, 1,
+              cv::LINE_AA);
 }
 
 // The layout of a localisation figure: the places' bounds with a margin of one spacing, drawn

@@ -12,6 +12,7 @@
 
 #include "omninav/memory/visual_memory.hpp"
 #include "omninav/signature/hierarchy.hpp"
+#include "omninav/signature/signature.hpp"
 
 namespace omninav {
 class ConfigReader;
@@ -130,6 +131,12 @@ class Localiser {
   // Pruned, coarse-to-fine. Throws UsageError when the query's signature does not match the
   // map's layout.
   Localisation localise(const signature::Signature& query) const;
+  // A query panorama (8-bit grey or BGR, cv::Mat): its signature as the map's places were made
+  // (signature_of), then localise(). Not const: the extraction reuses the localiser's buffers.
+  Localisation localise(const cv::Mat& panorama, const std::string& what = "query");
+  // The signature of a query panorama with the map's signature parameters. Throws InputError
+  // naming `what` for an image that is not a panorama, or whose rows differ from the map's.
+  signature::Signature signature_of(const cv::Mat& panorama, const std::string& what = "query");
   // Every level over every place (the oracle).
   Localisation localise_exhaustive(const signature::Signature& query) const;
 
@@ -146,6 +153,7 @@ class Localiser {
   const VisualMemory& memory_;
   LocalisationParams params_;
   signature::SignatureIndex index_;
+  signature::SignatureExtractor extractor_;  // the map's signature parameters
   std::optional<std::pair<PositionFrame, std::vector<Eigen::Vector2d>>> positions_;
   std::vector<double> line_weights_;
   double recognition_scale_ = 1.0;  // line_weighted_scale of line_weights_
