@@ -1,7 +1,7 @@
 """omninav: appearance-based topological mapping and navigation with omnidirectional cameras.
 
 The C++ library from Python. Images are numpy arrays (H x W x 3 uint8 BGR, as OpenCV's
-Python binding uses, or H x W grey); angles are radians and their names end in ``_rad``;
+Python binding uses, or RGB after ``set_channel_order("rgb")``, or H x W grey); angles are radians and their names end in ``_rad``;
 errors are :class:`Error` subclasses (:class:`InputError`, :class:`ConfigError`,
 :class:`UsageError`) carrying the command line's one-line messages.
 
@@ -59,12 +59,14 @@ from ._omninav import (  # noqa: F401 (re-exported)
     WindowParams,
     World,
     azimuth_of_column,
+    channel_order,
     column_of_azimuth,
     default_config_dir,
     dissimilarity,
     open_sequence,
     read_image,
     roll_columns,
+    set_channel_order,
     set_log_level,
     similarities,
 )

@@ -3,6 +3,7 @@
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
+#include <atomic>
 #include <cstdlib>
 #include <map>
 #include <mutex>
@@ -64,6 +65,13 @@ py::array mat_to_array(const cv::Mat& mat) {
   return py::array(dtype_of_depth(mat.depth()), shape, strides, owner->data, base);
 }
 
+namespace {
+
+// The order of the channels of the colour arrays Python hands in (set_channel_order).
+std::atomic<ChannelOrder> g_channel_order{ChannelOrder::kBgr};
+
+}  // namespace
+
 cv::Mat array_to_mat(const py::array& array, const std::string& what, py::object& keep) {
   const bool shape_ok =
       array.ndim() == 2 || (array.ndim() == 3 && (array.shape(2) == 1 || array.shape(2) == 3));
@@ -82,9 +90,10 @@ cv::Mat array_to_mat(const py::array& array, const std::string& what, py::object
     if (!pixels) throw std::bad_alloc();  // MemoryError in Python
     keep = pixels;
   }
-  return cv::Mat(static_cast<int>(pixels.shape(0)), static_cast<int>(pixels.shape(1)),
-                 CV_8UC(channels), const_cast<void*>(pixels.data()),
-                 static_cast<std::size_t>(pixels.strides(0)));
+  const cv::Mat view(static_cast<int>(pixels.shape(0)), static_cast<int>(pixels.shape(1)),
+                     CV_8UC(channels), const_cast<void*>(pixels.data()),
+                     static_cast<std::size_t>(pixels.strides(0)));
+  return to_bgr(view, g_channel_order.load());  // RGB: a BGR copy that owns its pixels
 }
 
 namespace {
@@ -199,6 +208,15 @@ void bind_core(py::module_& m) {
       py::arg("level"),
       "How much the library writes to stderr: error, warning, info (the default) or debug "
       "(the command line's --quiet is error).");
+  m.def(
+      "set_channel_order",
+      [](const std::string& order) { g_channel_order = channel_order_of(order, "channel order"); },
+      py::arg("order"),
+      "The order of the channels of the colour images you hand omninav: \"bgr\" (the default, "
+      "OpenCV's) or \"rgb\" (PIL, imageio, matplotlib). Images omninav returns stay BGR.");
+  m.def(
+      "channel_order", [] { return std::string(to_string(g_channel_order.load())); },
+      "The order set by set_channel_order: \"bgr\" or \"rgb\".");
   m.def(
       "default_config_dir", [] { return config_dir_or_default(std::nullopt); },
       "The configuration folder used when none is given: $OMNINAV_CONFIG_DIR, else the "

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <opencv2/imgproc.hpp>
+
 #include "omninav/core/angles.hpp"
 #include "omninav/core/errors.hpp"
 
@@ -93,6 +95,29 @@ TEST(PanoramaGeometry, RowsSpanTheElevationRange) {
   EXPECT_NEAR(geometry.elevation_of_row(59.5), deg_to_rad(-40.0), 1e-12);  // bottom edge
   EXPECT_NEAR(geometry.elevation_of_row(0), deg_to_rad(19.5), 1e-12);
   EXPECT_NEAR(geometry.row_of_elevation(0.0), 19.5, 1e-9);
+}
+
+}  // namespace
+}  // namespace omninav
+
+namespace omninav {
+namespace {
+
+// An RGB image said to be RGB becomes the BGR image it was made from, pixel for pixel; a BGR
+// or grey image is left as it is; an unknown order is a usage error.
+TEST(ChannelOrder, AnRgbImageBecomesTheBgrImageItWasMadeFrom) {
+  cv::Mat bgr(4, 6, CV_8UC3);
+  cv::randu(bgr, 0, 256);
+  cv::Mat rgb;
+  cv::cvtColor(bgr, rgb, cv::COLOR_BGR2RGB);
+  ASSERT_NE(cv::norm(rgb, bgr, cv::NORM_INF), 0.0) << "the test image has no colour";
+  EXPECT_EQ(cv::norm(to_bgr(rgb, ChannelOrder::kRgb), bgr, cv::NORM_INF), 0.0);
+  EXPECT_EQ(to_bgr(bgr, ChannelOrder::kBgr).data, bgr.data) << "no copy when already BGR";
+  const cv::Mat grey(4, 6, CV_8UC1, cv::Scalar(7));
+  EXPECT_EQ(to_bgr(grey, ChannelOrder::kRgb).data, grey.data);
+  EXPECT_EQ(channel_order_of("rgb"), ChannelOrder::kRgb);
+  EXPECT_EQ(channel_order_of("bgr"), ChannelOrder::kBgr);
+  EXPECT_THROW(channel_order_of("RGBA", "--channels"), UsageError);
 }
 
 }  // namespace

@@ -4,6 +4,8 @@ and objects that print what they hold."""
 import re
 from pathlib import Path
 
+import pytest
+
 import omninav
 
 SOURCE = Path(__file__).resolve().parents[2]
@@ -39,3 +41,22 @@ def test_results_and_parameters_print_their_fields(route_map, query_db):
     exploration = config.exploration
     text = repr(exploration)
     assert "ExplorationParams(" in text and "=" in text, text
+
+
+def test_rgb_images_said_to_be_rgb_give_the_bgr_results():
+    world = omninav.World("room", width_px=120, height_px=24)
+    bgr = omninav.Renderer(world).render(omninav.CameraPose(2.0, 1.5, 1.0, heading_rad=0.3))
+    rgb = bgr[..., ::-1].copy()
+    signature = omninav.SignatureExtractor().compute
+    as_bgr = signature(bgr).magnitude.copy()
+    assert omninav.channel_order() == "bgr"
+    assert not (signature(rgb).magnitude == as_bgr).all(), "red and blue trade rows when unsaid"
+    try:
+        omninav.set_channel_order("rgb")
+        assert omninav.channel_order() == "rgb"
+        assert (signature(rgb).magnitude == as_bgr).all()
+        assert (signature(bgr[..., 0]).magnitude == signature(bgr[..., 0]).magnitude).all()
+        with pytest.raises(omninav.UsageError, match="expected bgr or rgb"):
+            omninav.set_channel_order("rgba")
+    finally:
+        omninav.set_channel_order("bgr")

@@ -1,6 +1,7 @@
 #include "omninav/core/panorama.hpp"
 
 #include <cmath>
+#include <opencv2/imgproc.hpp>
 
 #include "omninav/core/angles.hpp"
 #include "omninav/core/config.hpp"
@@ -51,6 +52,23 @@ cv::Mat roll_columns_fractional(const cv::Mat& panorama, double shift_px) {
   cv::Mat blended;
   cv::addWeighted(lower, 1.0 - fraction, upper, fraction, 0.0, blended);
   return blended;
+}
+
+ChannelOrder channel_order_of(const std::string& name, const std::string& what) {
+  if (name == "bgr") return ChannelOrder::kBgr;
+  if (name == "rgb") return ChannelOrder::kRgb;
+  throw UsageError(what + " '" + name + "': expected bgr or rgb");
+}
+
+const char* to_string(ChannelOrder order) {
+  return order == ChannelOrder::kRgb ? "rgb" : "bgr";
+}
+
+cv::Mat to_bgr(const cv::Mat& image, ChannelOrder order) {
+  if (order == ChannelOrder::kBgr || image.channels() != 3) return image;
+  cv::Mat bgr;
+  cv::cvtColor(image, bgr, cv::COLOR_RGB2BGR);
+  return bgr;
 }
 
 void require_panorama(const cv::Mat& panorama, const std::string& what) {

@@ -35,6 +35,19 @@ cv::Mat roll_columns(const cv::Mat& panorama, int shift_px);
 // whole-column rolls (a mild low-pass; exact when shift_px is whole).
 cv::Mat roll_columns_fractional(const cv::Mat& panorama, double shift_px);
 
+// The order of a colour image's channels. omninav works in OpenCV's BGR, which its readers give;
+// an image from elsewhere in RGB (PIL, imageio, a ROS rgb8 message) must say so, or its red
+// and blue rows trade places and its signature and dissimilarities change.
+enum class ChannelOrder { kBgr, kRgb };
+
+// "bgr" or "rgb"; UsageError naming `what` otherwise.
+ChannelOrder channel_order_of(const std::string& name, const std::string& what = "channel order");
+const char* to_string(ChannelOrder order);
+
+// `image` in BGR: a 3-channel RGB image with its channels swapped (a new image), any other
+// image as it is (a grey image has no order).
+cv::Mat to_bgr(const cv::Mat& image, ChannelOrder order);
+
 // Throws InputError naming `what` unless `panorama` is a non-empty 8-bit 1- or 3-channel image.
 void require_panorama(const cv::Mat& panorama, const std::string& what);
 
