@@ -145,7 +145,10 @@ class BagSequence : public SequenceReader {
     frame.time_s = image->stamp_s;
     frame.image = std::move(image->image);
     frame.source = path_.string() + "#" + topic_.name + " frame " + std::to_string(next_index_);
-    if (!pose_topic_.empty()) frame.truth = interpolate_pose(poses_, image->stamp_s);
+    if (!pose_topic_.empty()) {
+      frame.truth = interpolate_pose(poses_, image->stamp_s);
+      frame.odometry = frame.truth;  // a robot's pose topic is its odometry
+    }
     size_check_.check(frame.image, frame.source);
     ++next_index_;
     return frame;
