@@ -26,6 +26,7 @@ struct ExploreOptions {
   bool all_frames = false;
   bool unwrap = false;
   bool force = false;  // --force: replace the map at --out
+  bool odometry = false;
   io::BagOptions bag;
 };
 
@@ -41,6 +42,7 @@ void run_explore(const GlobalOptions& global, const ExploreOptions& options) {
   }
   if (options.every_n_frames >= 0) params.every_n_frames = options.every_n_frames;
   if (options.every_m >= 0.0) params.every_m = options.every_m;
+  params.odometry = options.odometry;
   if (!options.heading_source.empty()) {
     params.heading_source = memory::heading_policy_from_string(options.heading_source);
   }
@@ -148,6 +150,12 @@ void add_explore_command(CLI::App& app, const GlobalOptions& global) {
                    "Also a place every d metres travelled (inputs with poses); 0 = off")
       ->check(NumberRange(0.0, 1000.0));
   command->add_flag("--all-frames", options->all_frames, "Make every frame a place");
+  command->add_flag("--odometry", options->odometry,
+                    "Measure the distance travelled (--every-m) by the input's odometry, as a "
+                    "robot without ground truth does: a BoB database's Odometry X/Y/Heading "
+                    "columns (render writes them with the trajectory key odometry_noise), a "
+                    "CSV's odometry_x_m, odometry_y_m, odometry_heading_deg, or a bag's "
+                    "--pose-topic; the poses stay the ground truth kept for evaluation");
   command
       ->add_option("--heading-source", options->heading_source,
                    "Headings of places: auto (the visual compass along a stream; a grid "

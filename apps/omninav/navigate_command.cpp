@@ -36,6 +36,7 @@ struct NavigateOptions {
   int max_steps = 0;
   int trials = 0;
   int seed = 1;
+  double goal_radius_m = 0.0;  // 0: navigation.yaml's trials.goal_radius_m
 };
 
 Pose2 parse_start(const std::string& text) {
@@ -84,6 +85,7 @@ void evaluate_trials(const GlobalOptions& global, const NavigateOptions& options
   }
   navigation.trials.count = options.trials;
   navigation.trials.seed = static_cast<std::uint32_t>(options.seed);
+  if (options.goal_radius_m > 0.0) navigation.trials.goal_radius_m = options.goal_radius_m;
   const evaluation::MapTrials map_trials = evaluation::run_map_trials(
       memory, setup, {world, renderer, navigation.robot}, navigation.trials);
   const std::vector<evaluation::TrialOutcome>& outcomes = map_trials.outcomes;
@@ -239,6 +241,11 @@ void add_navigate_command(CLI::App& app, const GlobalOptions& global) {
                    "robot.seed + the trial's index)")
       ->check(NumberRange(0, 1'000'000'000))
       ->capture_default_str();
+  command
+      ->add_option("--goal-radius-m", options->goal_radius_m,
+                   "--trials: a goal counts as reached when the robot stops within this distance "
+                   "of its position, metres (default: navigation.yaml trials.goal_radius_m)")
+      ->check(NumberRange(0.01, 100.0));
   command->callback([&global, options] { run_navigate(global, *options); });
 }
 

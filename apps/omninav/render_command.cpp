@@ -95,8 +95,13 @@ void add_render_command(CLI::App& app, const GlobalOptions& global) {
           "  grid (x0, y0, nx, ny, spacing_m, heading_deg)\n"
           "  zigzag (x0, y0, x1, y1, rows, speed_m_s, turn_rate_deg_s: turns on the spot at "
           "corners)\n"
+          "  tour (x0, y0, x1, y1, lane_m, clearance_m, speed_m_s, turn_rate_deg_s, x, y, seed: "
+          "a coverage planner's tour of the free space, every room through its doorways, in "
+          "lanes lane_m apart)\n"
           "  csv (path: columns x_m, y_m, heading_deg[, time_s, z_m, pitch_deg, roll_deg])\n"
-          "and every kind takes fps, z_m, pitch_noise_deg, roll_noise_deg, noise_seed.\n"
+          "and every kind takes fps, z_m, pitch_noise_deg, roll_noise_deg, noise_seed, and "
+          "odometry_noise, odometry_seed: write wheel odometry beside the truth (relative "
+          "noise of distance and turn, for explore --odometry).\n"
           "Example: line:x0=0.5,y0=2.5,x1=5.5,y1=2.5,speed_m_s=0.2,fps=5")
       ->required();
   command->add_option("--out", options->out, "Folder to write the database into")->required();

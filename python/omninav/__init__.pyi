@@ -151,6 +151,7 @@ class Frame:
     time_s: Optional[float]
     truth: Optional[CameraPose]
     source: str
+    odometry: Optional[CameraPose]
     image: Image  # a view of the frame's pixels
     def __init__(self, image: Image, index: int = 0, truth: Optional[CameraPose] = None,
                  time_s: Optional[float] = None, source: str = "") -> None: ...

@@ -61,6 +61,10 @@ void bind_frame(py::module_& m) {
           "The ground-truth CameraPose, or None. InputError for a position beyond ±1e7 m or a "
           "value that is not finite.")
       .def_readwrite("source", &io::Frame::source)
+      .def_readwrite("odometry", &io::Frame::odometry,
+                     "What the robot's own odometry measured (a CameraPose), when the source "
+                     "records it (a rendered database with odometry_noise, a CSV's odometry_* "
+                     "columns, a bag's pose topic)")
       .def_property(
           "image", [](const io::Frame& f) { return mat_to_array(f.image); },
           [](io::Frame& f, const py::array& image) {

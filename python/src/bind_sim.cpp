@@ -54,7 +54,8 @@ void bind_sim(py::module_& m) {
           py::arg("spec"),
           "The (time_s, CameraPose) of a trajectory spec as `omninav render --trajectory` "
           "takes it, e.g. \"line:x0=1,y0=1,x1=4,y1=1\", \"circle:radius_m=1\", "
-          "\"grid:nx=5,ny=4\".");
+          "\"grid:nx=5,ny=4\", \"tour:lane_m=0.3\" (a coverage planner's tour of the free "
+          "space, every room through its doorways).");
 
   py::class_<sim::Renderer>(m, "Renderer",
                             "Renders panoramas of a World (Embree ray casting): "

@@ -36,7 +36,7 @@ worlds:
 // RMSE when no place of the lattice is interior, a path ratio when no trial reached its goal.
 bool may_be_empty(const std::string& key) {
   return key == "memory_right_room" || key.ends_with("_rmse_interior") ||
-         key == "navigation_path_ratio";
+         key == "navigation_path_ratio" || key == "navigation_driven_path_ratio";
 }
 
 class EvaluateCommand : public CommandLineTest {
@@ -85,6 +85,13 @@ TEST_F(EvaluateCommand, WritesATableWithEveryMeasureForEveryWorldTheSameTwice) {
   }
   EXPECT_NE(printed.find("WORST"), std::string::npos);
   EXPECT_TRUE(std::filesystem::exists(folder_ / "a" / "evaluation.png"));
+  // The driven map's commands: the tour rendered with odometry, explored by it, navigated.
+  const std::string script = read_file(folder_ / "a" / "commands.sh");
+  EXPECT_NE(script.find("--trajectory tour:"), std::string::npos) << script;
+  EXPECT_NE(script.find("odometry_noise="), std::string::npos) << script;
+  EXPECT_NE(script.find("--odometry"), std::string::npos) << script;
+  EXPECT_NE(script.find("driven.vmem --world"), std::string::npos) << script;
+  EXPECT_NE(script.find("--goal-radius-m 0.3"), std::string::npos) << script;
 
   // Deterministic: the same suite gives the same table.
   ASSERT_EQ(run_omninav({"evaluate", "--suite", suite.string(), "--out", (folder_ / "b").string()}),

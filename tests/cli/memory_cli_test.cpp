@@ -211,5 +211,51 @@ TEST_F(ExploreLocaliseExport, ExploringAStreamTakesHeadingsFromTheCompassAndExte
   EXPECT_EQ(extended.place_count(), 2 * first.place_count());
 }
 
+TEST_F(ExploreLocaliseExport, ExploringByOdometrySpacesPlacesByWhatTheWheelsMeasured) {
+  // A straight drive rendered with noisy wheel odometry beside the truth (30 % relative, so
+  // that it differs from the truth by more than a frame's step): --every-m with --odometry
+  // makes a place every 0.3 m of odometry, without it every 0.3 m of the true poses.
+  const std::filesystem::path drive = folder_ / "drive";
+  ASSERT_EQ(run_omninav({"render", "--trajectory",
+                         "line:x0=1,y0=1.5,x1=4.5,y1=1.5,speed_m_s=0.2,fps=5,odometry_noise=0.3,"
+                         "odometry_seed=2",
+                         "--out", drive.string(), "--width", "96", "--height", "14"}),
+            0)
+      << errors_;
+  const std::vector<io::Frame> frames = io::read_all(*io::open_sequence(drive));
+  double odometry_m = 0.0, true_m = 0.0;
+  for (std::size_t i = 1; i < frames.size(); ++i) {
+    ASSERT_TRUE(frames[i].odometry) << "frame " << i;
+    odometry_m += std::hypot(frames[i].odometry->x_m - frames[i - 1].odometry->x_m,
+                             frames[i].odometry->y_m - frames[i - 1].odometry->y_m);
+    true_m += std::hypot(frames[i].truth->x_m - frames[i - 1].truth->x_m,
+                         frames[i].truth->y_m - frames[i - 1].truth->y_m);
+  }
+  ASSERT_GT(std::abs(odometry_m - true_m), 0.3) << "the seed's odometry is too close to the truth";
+  const auto places = [&](const std::vector<std::string>& extra) {
+    const std::filesystem::path map = folder_ / "drive.vmem";
+    std::vector<std::string> args = {
+        "explore",     "--input",   drive.string(), "--out",           map.string(),
+        "--overwrite", "--every-m", "0.3",          "--dissimilarity", "0"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    EXPECT_EQ(run_omninav(args), 0) << errors_;
+    return static_cast<double>(memory::load_map(map).place_count());
+  };
+  // The first frame, then one every 0.3 m travelled (a frame's 4 cm of slack either way).
+  EXPECT_NEAR(places({"--odometry"}), std::floor(odometry_m / 0.3) + 1, 1.0);
+  EXPECT_NEAR(places({}), std::floor(true_m / 0.3) + 1, 1.0);
+
+  // A database without odometry cannot be explored by it.
+  const std::filesystem::path plain = folder_ / "plain";
+  ASSERT_EQ(run_omninav({"render", "--trajectory", "line:x0=1,y0=1.5,x1=2,y1=1.5,fps=5", "--out",
+                         plain.string(), "--width", "96", "--height", "14"}),
+            0)
+      << errors_;
+  EXPECT_EQ(run_omninav({"explore", "--input", plain.string(), "--out",
+                         (folder_ / "plain.vmem").string(), "--every-m", "0.3", "--odometry"}),
+            2);
+  EXPECT_NE(errors_.find("no odometry"), std::string::npos) << errors_;
+}
+
 }  // namespace
 }  // namespace omninav::cli

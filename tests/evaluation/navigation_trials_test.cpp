@@ -107,6 +107,28 @@ TEST_F(RoomNavigation, SeededTrialsReachTheirGoals) {
   EXPECT_LE(summary.mean_path_ratio, 1.5) << summary.text();
 }
 
+TEST_F(RoomNavigation, AGoalIsReachedWithinARadiusInMetres) {
+  // One trial, run three times (the robot's noise is seeded, so it stops at the same pose): its
+  // final error is the true distance from where it stopped to the goal, and it counts as
+  // reached exactly when that is within the radius, whatever the map's spacing.
+  const Trial trial{{2.55, 1.15, 1.0, deg_to_rad(150.0), 0.0, 0.0},
+                    {2.3, 2.9, 1.0, deg_to_rad(-60.0), 0.0, 0.0}};
+  const TrialScene scene{map().world, *map().renderer, sim::RobotParams{}};
+  const TrialOutcome wide = run_trials({trial}, scene, setup(), 10.0).front();
+  ASSERT_TRUE(wide.stopped_at_goal);
+  EXPECT_TRUE(wide.reached);
+  EXPECT_DOUBLE_EQ(wide.final_error_m,
+                   std::hypot(wide.end.x_m - trial.goal.x_m, wide.end.y_m - trial.goal.y_m));
+  ASSERT_GT(wide.final_error_m, 0.002);
+  const TrialOutcome just_outside =
+      run_trials({trial}, scene, setup(), wide.final_error_m - 0.001).front();
+  EXPECT_DOUBLE_EQ(just_outside.final_error_m, wide.final_error_m);
+  EXPECT_FALSE(just_outside.reached);
+  EXPECT_TRUE(run_trials({trial}, scene, setup(), wide.final_error_m + 0.001).front().reached);
+  // The default radius is 0.3 m (navigation.yaml's trials.goal_radius_m).
+  EXPECT_DOUBLE_EQ(TrialParams{}.goal_radius_m, 0.3);
+}
+
 // The robot on the grid's stored images: turning rolls the panorama, a step goes to the next
 // grid image.
 TEST_F(RoomNavigation, GridWorldTurnsByRollingAndStepsToTheNearestImage) {

@@ -14,7 +14,8 @@ TEST(Suite, ExpandsSeedsAndCameraHeightsIntoRows) {
 name: test
 panorama: {width_px: 120, height_px: 16}
 memory: {queries: 30, spacing_m: 0.25}
-navigation: {trials: 7}
+navigation: {trials: 7, goal_radius_m: 0.2}
+tour: {fps: 4, turn_rate_deg_s: 60, odometry_noise: 0.1}
 worlds:
   - {name: room, world: "room:boxes=3", seeds: [1, 2]}
   - {world: field, camera_heights_m: [0.1, 1.0], spacing_m: 0.5}
@@ -25,6 +26,11 @@ worlds:
   EXPECT_EQ(suite.params.width_px, 120);
   EXPECT_EQ(suite.params.queries, 30);
   EXPECT_EQ(suite.params.trials, 7);
+  EXPECT_EQ(suite.params.goal_radius_m, 0.2);
+  EXPECT_EQ(suite.params.tour_fps, 4.0);
+  EXPECT_EQ(suite.params.tour_turn_rate_deg_s, 60.0);
+  EXPECT_EQ(suite.params.odometry_noise, 0.1);
+  EXPECT_EQ(SuiteParams{}.goal_radius_m, 0.3);  // the default of every suite
   ASSERT_EQ(suite.worlds.size(), 5u);
   EXPECT_EQ(suite.worlds[0].label, "room-s1");
   EXPECT_EQ(suite.worlds[0].spec, "room:boxes=3,seed=1");
@@ -56,6 +62,12 @@ TEST(Suite, UnknownKeysAndBadValuesAreConfigErrorsNamingTheKey) {
   EXPECT_NE(error_of("worlds: [{world: room}]\nmemory: {queries: -3}").find("memory.queries"),
             std::string::npos);
   EXPECT_NE(error_of("worlds: []").find("worlds"), std::string::npos);
+  EXPECT_NE(
+      error_of("worlds: [{world: room}]\ntour: {odometry_noise: 2}").find("tour.odometry_noise"),
+      std::string::npos);
+  EXPECT_NE(error_of("worlds: [{world: room}]\nnavigation: {goal_radius_m: 0}")
+                .find("navigation.goal_radius_m"),
+            std::string::npos);
   EXPECT_NE(error_of("worlds: [{name: a}]").find("world"), std::string::npos);
   EXPECT_NE(error_of("worlds: [{world: room}, {world: room}]").find("two rows"), std::string::npos);
 }

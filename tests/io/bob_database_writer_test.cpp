@@ -99,6 +99,45 @@ TEST(DatabaseWriter, RouteRoundTripKeepsPosesImagesTimesAndInfo) {
   EXPECT_EQ(std::filesystem::path(frames[3].source).filename(), "image_00003.png");
 }
 
+TEST(DatabaseWriter, OdometryBesideTheTruthRoundTrips) {
+  const TempDir dir;
+  const std::filesystem::path folder = dir / "odometry";
+  const auto odometry_of = [](int i) {
+    return CameraPose{0.5 + 0.31 * i, -0.2 * i, 0.123456789, deg_to_rad(10.0 * i), 0.0, 0.0};
+  };
+  {
+    DatabaseWriter writer(folder, route_info());
+    for (int i = 0; i < 3; ++i) {
+      Frame frame = route_frame(i);
+      frame.odometry = odometry_of(i);
+      writer.add(frame);
+    }
+    // Odometry for some frames and not others cannot be written.
+    EXPECT_THROW(writer.add(route_frame(3)), UsageError);
+    writer.finish();
+  }
+  EXPECT_NE(first_line(folder / kBobEntriesFile)
+                .find("Odometry X [mm], Odometry Y [mm], Odometry Heading [degrees]"),
+            std::string::npos);
+  BobDatabaseReader reader(folder);
+  const std::vector<Frame> frames = read_all(reader);
+  ASSERT_EQ(frames.size(), 3u);
+  for (int i = 0; i < 3; ++i) {
+    ASSERT_TRUE(frames[i].odometry) << "frame " << i;
+    expect_same_pose(*frames[i].odometry, odometry_of(i));
+    expect_same_pose(*frames[i].truth, *route_frame(i).truth);  // the truth stays the truth
+  }
+  // A database without the columns has no odometry.
+  const std::filesystem::path plain = dir / "plain";
+  {
+    DatabaseWriter writer(plain, route_info());
+    writer.add(route_frame(0));
+    writer.finish();
+  }
+  BobDatabaseReader plain_reader(plain);
+  EXPECT_FALSE(read_all(plain_reader).front().odometry);
+}
+
 TEST(DatabaseWriter, GridRoundTripKeepsIndicesAndUsesBobGridNames) {
   const TempDir dir;
   DatabaseInfo info;

@@ -47,3 +47,24 @@ def test_the_renderer_from_python_draws_the_databases_pixels(route_db):
     frame = next(omninav.open_sequence(route_db))
     np.testing.assert_array_equal(renderer.render(frame.truth, frame.time_s or 0.0, frame.index),
                                   frame.image)
+
+
+def test_a_csv_sequence_gives_the_robots_odometry_beside_the_truth(tmp_path):
+    Image.fromarray(np.zeros((4, 8, 3), np.uint8), "RGB").save(tmp_path / "a.png")
+    (tmp_path / "poses.csv").write_text(
+        "file,x_m,y_m,heading_deg,odometry_x_m,odometry_y_m,odometry_heading_deg\n"
+        "a.png,1.0,2.0,90.0,1.1,2.2,80.0\n")
+    frame = next(omninav.open_sequence(tmp_path / "poses.csv"))
+    assert (frame.truth.x_m, frame.truth.y_m) == (1.0, 2.0)
+    assert (frame.odometry.x_m, frame.odometry.y_m) == (1.1, 2.2)
+    assert math.isclose(frame.odometry.heading_rad, math.radians(80.0), abs_tol=1e-12)
+
+
+def test_a_tour_covers_the_floor_in_lanes(tmp_path):
+    world = omninav.World("room:boxes=0", width_px=WIDTH_PX, height_px=HEIGHT_PX,
+                          rays_per_pixel=1)
+    tour = world.trajectory("tour:lane_m=0.5,clearance_m=0.25,fps=2")
+    xs = [pose.x_m for _, pose in tour]
+    ys = [pose.y_m for _, pose in tour]
+    # The default room is 6 x 5 m: the lanes reach within the clearance of every wall.
+    assert min(xs) < 0.35 and max(xs) > 5.65 and min(ys) < 0.35 and max(ys) > 4.65

@@ -30,6 +30,7 @@
 #include "omninav/navigation/memory_places.hpp"
 #include "omninav/report/compass_figures.hpp"
 #include "omninav/report/lattice_figures.hpp"
+#include "omninav/sim/tour.hpp"
 #include "omninav/sim/trajectory.hpp"
 
 namespace omninav::evaluation {
@@ -94,6 +95,7 @@ class WorldRun {
     stage("compass", [this] { compass_routes(); });
     grid_map();
     zigzags();
+    stage("driven", [this] { driven_map(); });
     return {row_, commands_};
   }
 
@@ -165,10 +167,13 @@ class WorldRun {
     return spec + ",z_m=" + num(suite_world_.camera_height_m);
   }
 
-  // `omninav render`: the trajectory into a database <dir>/<name>.
-  fs::path render(const std::string& name, const std::string& spec) {
+  // `omninav render`: the trajectory into a database <dir>/<name> (its poses into `made` when
+  // given).
+  fs::path render(const std::string& name, const std::string& spec,
+                  sim::Trajectory* made = nullptr) {
     const fs::path folder = dir_ / name;
     const sim::Trajectory trajectory = sim::make_trajectory(spec, world_);
+    if (made != nullptr) *made = trajectory;
     if (spec.rfind("wander:", 0) == 0) {
       // A wander that cannot leave its start only turns on the spot: not the route measured.
       const double wanted_m = params_.wander_length_m * scale_;
@@ -274,8 +279,9 @@ class WorldRun {
   }
 
   // `omninav explore` of a database into a new map; every_m > 0: a place every every_m metres
-  // (and no other rule).
-  fs::path explore(const fs::path& input, const std::string& name, double every_m) {
+  // (and no other rule), travelled by the input's odometry when `odometry` is set.
+  fs::path explore(const fs::path& input, const std::string& name, double every_m,
+                   bool odometry = false) {
     memory::MemoryConfig memory_config = config_.memory;
     memory::ExplorationParams& params = memory_config.exploration;
     std::vector<std::string> args = {"explore", "--input", input.string()};
@@ -283,6 +289,10 @@ class WorldRun {
       params.every_m = every_m;
       params.new_place_dissimilarity = 0.0;
       args.insert(args.end(), {"--every-m", num(every_m), "--dissimilarity", "0"});
+    }
+    if (odometry) {
+      params.odometry = true;
+      args.emplace_back("--odometry");
     }
     use_compass_config(config_dir_, params);
     const fs::path map_file = dir_ / (name + ".vmem");
@@ -360,7 +370,7 @@ class WorldRun {
     });
     stage("memory", [&] { localise(map_file); });
     if (organised) {
-      stage("navigation", [&] { navigate(map_file); });
+      stage("navigation", [&] { navigate(map_file, "navigation", "trials"); });
     } else {
       fail_group("navigation", "the grid map could not be organised");
     }
@@ -411,8 +421,10 @@ class WorldRun {
               num(100.0 * score.within_spacing_share(), 1) + "% within one spacing");
   }
 
-  void navigate(const fs::path& map_file) {
-    comment("navigation: seeded random start and goal pairs on the organised grid map");
+  // `navigate --trials` on an organised map, scored into <prefix>_reached, _path_ratio,
+  // _outside_m and _outside_spacings (in the suite's spacing); trials in <dir>/<folder>.
+  void navigate(const fs::path& map_file, const std::string& prefix, const std::string& folder) {
+    comment("navigation: seeded random start and goal pairs on " + map_file.filename().string());
     const memory::VisualMemory memory = memory::load_map(map_file);
     const memory::Localiser localiser(memory, config_.memory.localisation);
     signature::SignatureExtractor extractor(memory.parameters().signature);
@@ -427,13 +439,15 @@ class WorldRun {
     NavigationConfig navigation = config_.navigation;
     navigation.trials.count = params_.trials;
     navigation.trials.seed = suite_world_.seed;
-    const fs::path out = dir_ / "trials";
+    navigation.trials.goal_radius_m = params_.goal_radius_m;
+    const fs::path out = dir_ / folder;
     command({"navigate", map_file.string(), "--world", suite_world_.spec, "--trials",
-             std::to_string(params_.trials), "--seed", std::to_string(suite_world_.seed), "--out",
-             out.string()});
-    log_stage("navigation: " + std::to_string(params_.trials) + " trials");
-    const MapTrials trials =
-        run_map_trials(memory, setup, {world_, renderer, navigation.robot}, navigation.trials);
+             std::to_string(params_.trials), "--seed", std::to_string(suite_world_.seed),
+             "--goal-radius-m", num(params_.goal_radius_m), "--out", out.string()});
+    log_stage(prefix + ": " + std::to_string(params_.trials) + " trials");
+    // The spacing is the world's (the map's own median would differ between map kinds).
+    const MapTrials trials = run_map_trials(memory, setup, {world_, renderer, navigation.robot},
+                                            navigation.trials, layout_.spacing_m);
     const TrialSummary summary = summarise(trials.outcomes);
     std::vector<Eigen::Vector2d> mapped;
     for (std::size_t i = 0; i < memory.place_count(); ++i) {
@@ -446,12 +460,47 @@ class WorldRun {
         outside_m = std::max(outside_m, distance_outside(hull, step.truth.floor_position()));
       }
     }
-    set("navigation_reached", summary.reached_share);
-    if (summary.reached > 0) set("navigation_path_ratio", summary.mean_path_ratio);
-    set("navigation_outside_m", outside_m);
-    set("navigation_outside_spacings", outside_m / trials.spacing_m);
-    log_stage("navigation: " + summary.text() + "; at most " + num(outside_m, 2) +
+    set(prefix + "_reached", summary.reached_share);
+    if (summary.reached > 0) set(prefix + "_path_ratio", summary.mean_path_ratio);
+    set(prefix + "_outside_m", outside_m);
+    set(prefix + "_outside_spacings", outside_m / trials.spacing_m);
+    log_stage(prefix + ": " + summary.text() + "; at most " + num(outside_m, 2) +
               " m outside the mapped area");
+  }
+
+  // The driven map: the `tour` a robot with a coverage planner drives over the grid's rectangle
+  // (lanes a spacing apart, the robot's radius kept from obstacles), with odometry beside the
+  // truth; explored with a place every spacing travelled by that odometry, organised, and
+  // navigated as the grid map is. tour_coverage: the share of the rectangle's free floor within
+  // one lane of the tour.
+  void driven_map() {
+    comment(
+        "driven map: a tour of the grid's rectangle explored by odometry, organised, navigated");
+    const Eigen::Vector2d low = layout_.first_point, high = grid_last_point();
+    const std::string spec = with_height(
+        "tour:x0=" + num(low.x()) + ",y0=" + num(low.y()) + ",x1=" + num(high.x()) +
+        ",y1=" + num(high.y()) + ",lane_m=" + num(layout_.spacing_m) +
+        ",clearance_m=" + num(clearance_m()) + ",speed_m_s=" + num(params_.speed_m_s * scale_) +
+        ",turn_rate_deg_s=" + num(params_.tour_turn_rate_deg_s) + ",fps=" + num(params_.tour_fps) +
+        ",seed=" + std::to_string(suite_world_.seed) + ",odometry_noise=" +
+        num(params_.odometry_noise) + ",odometry_seed=" + std::to_string(suite_world_.seed));
+    sim::Trajectory tour;
+    const fs::path folder = render("tour", spec, &tour);
+    std::vector<Eigen::Vector2d> route;
+    for (const sim::TimedPose& pose : tour.poses) route.push_back(pose.pose.floor_position());
+    const sim::Coverage coverage = sim::route_coverage(
+        world_, route, {low.x(), low.y(), high.x(), high.y()}, layout_.spacing_m);
+    set("tour_coverage", coverage.share);
+    std::string rooms;
+    for (const sim::Coverage::RegionShare& region : coverage.regions) {
+      rooms += ", " + region.name + " " + num(region.share, 3);
+    }
+    log_stage("tour: " + num(tour.length_m(), 1) + " m, " + std::to_string(tour.poses.size()) +
+              " frames; " + num(coverage.share, 3) + " of " + num(coverage.free_m2, 1) +
+              " m2 of free floor within one lane" + rooms);
+    const fs::path map_file = explore(folder, "driven", layout_.spacing_m, true);
+    organise(map_file, "driven", 0.0);
+    navigate(map_file, "navigation_driven", "driven_trials");
   }
 
   // Zig-zag streams over the grid's rectangle with rows as far apart as their places: every

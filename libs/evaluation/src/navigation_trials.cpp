@@ -32,7 +32,7 @@ double nearest_m(const std::vector<Eigen::Vector2d>& points, const Eigen::Vector
 
 void load_trial_params(const ConfigReader& section, TrialParams& params) {
   section.read("min_separation_spacings", params.min_separation_spacings, 0.0, 1000.0);
-  section.read("goal_radius_spacings", params.goal_radius_spacings, 0.1, 100.0);
+  section.read("goal_radius_m", params.goal_radius_m, 0.01, 100.0);
 }
 
 std::vector<Trial> random_trials(const sim::World& world,
@@ -108,7 +108,7 @@ std::vector<TrialOutcome> run_trials(const std::vector<Trial>& trials, const Tri
 
 MapTrials run_map_trials(const memory::VisualMemory& memory,
                          const navigation::GoalNavigationSetup& setup, const TrialScene& scene,
-                         const TrialParams& params) {
+                         const TrialParams& params, std::optional<double> spacing_m) {
   if (memory.place_count() == 0 || !memory.all_have_truth()) {
     throw UsageError("trials score against ground truth, and the map's places have none");
   }
@@ -117,8 +117,8 @@ MapTrials run_map_trials(const memory::VisualMemory& memory,
     mapped.emplace_back(memory.place(i).truth->x_m, memory.place(i).truth->y_m);
   }
   MapTrials result;
-  result.spacing_m = memory::typical_spacing(mapped);
-  result.goal_radius_m = params.goal_radius_spacings * result.spacing_m;
+  result.spacing_m = spacing_m ? *spacing_m : map_spacing_m(memory);
+  result.goal_radius_m = params.goal_radius_m;
   const std::vector<Trial> trials =
       random_trials(scene.world, mapped, result.spacing_m, scene.robot.radius_m,
                     memory.place(0).truth->z_m, params);
@@ -133,6 +133,16 @@ MapTrials run_map_trials(const memory::VisualMemory& memory,
     outcome.outside_m = std::max(outcome.outside_m, outcome.end_outside_m);
   }
   return result;
+}
+
+double map_spacing_m(const memory::VisualMemory& memory) {
+  if (memory.grid_spacing_m()) return *memory.grid_spacing_m();
+  if (memory.exploration_spacing_m()) return *memory.exploration_spacing_m();
+  std::vector<Eigen::Vector2d> mapped;
+  for (std::size_t i = 0; i < memory.place_count(); ++i) {
+    if (memory.place(i).truth) mapped.push_back(memory.place(i).truth->floor_position());
+  }
+  return memory::typical_spacing(mapped);
 }
 
 TrialSummary summarise(const std::vector<TrialOutcome>& outcomes) {

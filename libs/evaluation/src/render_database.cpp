@@ -80,6 +80,7 @@ std::vector<cv::Mat> render_database(const sim::Renderer& renderer,
       frame.time_s = poses[index].time_s;
       frame.image = batch[i];
       frame.truth = poses[index].pose;
+      frame.odometry = poses[index].odometry;
       frame.source = "pose " + std::to_string(index);
       writer.add(frame, poses[index].grid);
       if (index % preview_step == 0 && previews.size() < preview_frames)

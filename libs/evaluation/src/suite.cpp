@@ -48,7 +48,13 @@ void read_suite_params(const ConfigReader& top, SuiteParams& p) {
   memory.read("grid_ny", p.grid_ny, 2, 1000);
   memory.read("spacing_m", p.spacing_m, 0.001, 100.0);
   memory.read("queries", p.queries, 1, 1000000);
-  top.section("navigation").read("trials", p.trials, 1, 1000000);
+  const ConfigReader navigation = top.section("navigation");
+  navigation.read("trials", p.trials, 1, 1000000);
+  navigation.read("goal_radius_m", p.goal_radius_m, 0.01, 100.0);
+  const ConfigReader tour = top.section("tour");
+  tour.read("fps", p.tour_fps, 0.1, 1000.0);
+  tour.read("turn_rate_deg_s", p.tour_turn_rate_deg_s, 0.0, 3600.0);
+  tour.read("odometry_noise", p.odometry_noise, 0.0, 1.0);
 }
 
 // A suite's or a world's name becomes a folder and file names under evaluation/: letters,

@@ -84,6 +84,16 @@ const std::vector<Measure>& measures() {
     m.push_back({"navigation_path_ratio", "navigation", "path/line", Worse::kHigher, 2});
     m.push_back({"navigation_outside_m", "navigation", "out (m)", Worse::kHigher, 2});
     m.push_back({"navigation_outside_spacings", "navigation", "out (sp)", Worse::kHigher, 1});
+    // The driven map: a tour of the grid's rectangle, explored by odometry.
+    m.push_back({"tour_coverage", "driven", "coverage", Worse::kLower, 3});
+    m.push_back({"lattice_driven_rmse", "driven", "lat all", Worse::kHigher, 2});
+    m.push_back({"lattice_driven_rmse_interior", "driven", "lat int", Worse::kHigher, 2});
+    m.push_back({"lattice_driven_rmse_boundary", "driven", "lat bnd", Worse::kHigher, 2});
+    m.push_back({"lattice_driven_folds", "driven", "lat folds", Worse::kHigher, 0});
+    m.push_back({"navigation_driven_reached", "driven", "reached", Worse::kLower, 3});
+    m.push_back({"navigation_driven_path_ratio", "driven", "path/line", Worse::kHigher, 2});
+    m.push_back({"navigation_driven_outside_m", "driven", "out (m)", Worse::kHigher, 2});
+    m.push_back({"navigation_driven_outside_spacings", "driven", "out (sp)", Worse::kHigher, 1});
     return m;
   }();
   return all;

@@ -175,7 +175,10 @@ class BagSequence : public SequenceReader {
     frame.image = std::move(image->image);
     frame.source = path_.string() + "#" + printable_name(topic_.name) + " frame " +
                    std::to_string(next_index_);
-    if (!pose_topic_.empty()) frame.truth = interpolate_pose(poses_, image->stamp_s);
+    if (!pose_topic_.empty()) {
+      frame.truth = interpolate_pose(poses_, image->stamp_s);
+      frame.odometry = frame.truth;  // a robot's pose topic is its odometry
+    }
     size_check_.check(frame.image, frame.source);
     ++next_index_;
     return frame;

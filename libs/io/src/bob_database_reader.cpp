@@ -35,7 +35,16 @@ class EntryParser {
         pitch_(table.find_column(bob::kPitch)),
         roll_(table.find_column(bob::kRoll)),
         timestamp_(table.find_column(bob::kTimestamp)),
+        odometry_x_(table.find_column(bob::kOdometryX)),
+        odometry_y_(table.find_column(bob::kOdometryY)),
+        odometry_heading_(table.find_column(bob::kOdometryHeading)),
         frame_rate_hz_(frame_rate_hz) {
+    if ((odometry_x_ || odometry_y_ || odometry_heading_) &&
+        !(odometry_x_ && odometry_y_ && odometry_heading_)) {
+      throw InputError(table.file().string() + ": odometry needs all of the columns '" +
+                       std::string(bob::kOdometryX) + "', '" + std::string(bob::kOdometryY) +
+                       "' and '" + std::string(bob::kOdometryHeading) + "'");
+    }
     if (has_image_files) filename_ = table.require_column(bob::kFilename);
     if (is_grid) {
       grid_ = {table.require_column(bob::kGridX), table.require_column(bob::kGridY),
@@ -57,6 +66,19 @@ class EntryParser {
       entry.truth = CameraPose{position_m(row, x_, *x_mm), position_m(row, y_, *y_mm),
                                position_m(row, z_, *z_mm), deg_to_rad(*heading_deg),
                                deg_to_rad(pitch_deg),      deg_to_rad(roll_deg)};
+    }
+    if (odometry_x_) {
+      const std::optional<double> ox_mm = number(row, *odometry_x_);
+      const std::optional<double> oy_mm = number(row, *odometry_y_);
+      const std::optional<double> oheading_deg = number(row, *odometry_heading_);
+      if (ox_mm && oy_mm && oheading_deg) {
+        entry.odometry = CameraPose{position_m(row, *odometry_x_, *ox_mm),
+                                    position_m(row, *odometry_y_, *oy_mm),
+                                    entry.truth ? entry.truth->z_m : 0.0,
+                                    deg_to_rad(*oheading_deg),
+                                    0.0,
+                                    0.0};
+      }
     }
     if (grid_) {
       entry.grid = std::array{index_in(row, (*grid_)[0]), index_in(row, (*grid_)[1]),
@@ -108,6 +130,7 @@ class EntryParser {
   const CsvTable& table_;
   std::size_t x_, y_, z_, heading_;
   std::optional<std::size_t> pitch_, roll_, timestamp_, filename_;
+  std::optional<std::size_t> odometry_x_, odometry_y_, odometry_heading_;
   std::optional<std::array<std::size_t, 3>> grid_;
   std::optional<double> frame_rate_hz_;
 };
@@ -154,6 +177,7 @@ std::optional<Frame> BobDatabaseReader::next() {
   frame.index = static_cast<int>(next_index_);
   frame.time_s = entry.time_s;
   frame.truth = entry.truth;
+  frame.odometry = entry.odometry;
   if (video_) {
     std::optional<Frame> video_frame = video_->next();
     if (!video_frame) {

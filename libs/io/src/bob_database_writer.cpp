@@ -99,6 +99,9 @@ void DatabaseWriter::add(const Frame& frame, std::optional<std::array<int, 3>> g
   if (!entries_.empty() && entries_.front().time_s.has_value() != frame.time_s.has_value()) {
     throw UsageError(frame.source + ": every frame of a database needs a time, or none");
   }
+  if (!entries_.empty() && entries_.front().odometry.has_value() != frame.odometry.has_value()) {
+    throw UsageError(frame.source + ": every frame of a database needs odometry, or none");
+  }
   require_panorama(frame.image, frame.source);
   const cv::Size size = info_.image_size.empty() ? frame.image.size() : info_.image_size;
   if (frame.image.size() != size) {
@@ -106,7 +109,8 @@ void DatabaseWriter::add(const Frame& frame, std::optional<std::array<int, 3>> g
                      ", but the database's images are " + size_text(size));
   }
 
-  Entry entry{file_name_for(*frame.truth, grid, frame.source), *frame.truth, grid, frame.time_s};
+  Entry entry{file_name_for(*frame.truth, grid, frame.source), *frame.truth, grid, frame.time_s,
+              frame.odometry};
   const std::filesystem::path staged = staging_ / entry.file_name;
   bool written = false;
   try {
@@ -133,6 +137,11 @@ void DatabaseWriter::finish() {
       "Filename";
   if (info_.is_grid) csv += ", Grid X, Grid Y, Grid Z";
   if (has_times) csv += ", " + std::string(bob::kTimestamp);
+  const bool has_odometry = entries_.front().odometry.has_value();
+  if (has_odometry) {
+    csv += ", " + std::string(bob::kOdometryX) + ", " + std::string(bob::kOdometryY) + ", " +
+           std::string(bob::kOdometryHeading);
+  }
   csv += '\n';
   for (const Entry& entry : entries_) {
     const CameraPose& pose = entry.truth;
@@ -145,6 +154,11 @@ void DatabaseWriter::finish() {
              ", " + std::to_string((*entry.grid)[2]);
     }
     if (has_times) csv += ", " + shortest(*entry.time_s * 1000.0);
+    if (has_odometry) {
+      const CameraPose& odometry = *entry.odometry;
+      csv += ", " + shortest(odometry.x_m * 1000.0) + ", " + shortest(odometry.y_m * 1000.0) +
+             ", " + shortest(rad_to_deg(odometry.heading_rad));
+    }
     csv += '\n';
   }
   write_output_file(staging_ / kBobEntriesFile, csv);

@@ -23,6 +23,11 @@ inline constexpr std::string_view kGridY = "Grid Y";
 inline constexpr std::string_view kGridZ = "Grid Z";
 // Not a BoB column but the extra field its data-collection programs add for capture times.
 inline constexpr std::string_view kTimestamp = "Timestamp [ms]";
+// omninav's own columns: what the robot's wheel odometry measured (dead reckoning), beside the
+// truth; other readers ignore them.
+inline constexpr std::string_view kOdometryX = "Odometry X [mm]";
+inline constexpr std::string_view kOdometryY = "Odometry Y [mm]";
+inline constexpr std::string_view kOdometryHeading = "Odometry Heading [degrees]";
 
 struct Metadata {
   DatabaseInfo info;

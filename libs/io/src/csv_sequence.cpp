@@ -15,6 +15,15 @@ CsvSequence::CsvSequence(const std::filesystem::path& csv_file) : csv_file_(csv_
   const std::size_t heading_column = table.require_column("heading_deg");
   const std::optional<std::size_t> z_column = table.find_column("z_m");
   const std::optional<std::size_t> time_column = table.find_column("time_s");
+  // The robot's own odometry beside the truth (explore --odometry): all three columns or none.
+  const std::optional<std::size_t> odometry_x = table.find_column("odometry_x_m");
+  const std::optional<std::size_t> odometry_y = table.find_column("odometry_y_m");
+  const std::optional<std::size_t> odometry_heading = table.find_column("odometry_heading_deg");
+  if ((odometry_x || odometry_y || odometry_heading) &&
+      !(odometry_x && odometry_y && odometry_heading)) {
+    throw InputError(csv_file.string() +
+                     ": odometry needs all of odometry_x_m, odometry_y_m, odometry_heading_deg");
+  }
   if (table.rows().empty()) throw InputError(csv_file.string() + ": no rows after the header");
 
   const std::filesystem::path folder = csv_file.parent_path();
@@ -36,6 +45,14 @@ CsvSequence::CsvSequence(const std::filesystem::path& csv_file) : csv_file_(csv_
     if (z_column) parsed.truth.z_m = position_m(*z_column);
     parsed.truth.heading_rad = deg_to_rad(number(heading_column));
     if (time_column) parsed.time_s = number(*time_column);
+    if (odometry_x) {
+      parsed.odometry = CameraPose{position_m(*odometry_x),
+                                   position_m(*odometry_y),
+                                   parsed.truth.z_m,
+                                   deg_to_rad(number(*odometry_heading)),
+                                   0.0,
+                                   0.0};
+    }
     std::error_code error;
     if (!std::filesystem::is_regular_file(parsed.image_file, error)) {
       throw InputError(where + ": image file '" + row.fields[file_column] + "' not found (" +
@@ -53,6 +70,7 @@ std::optional<Frame> CsvSequence::next() {
   frame.time_s = row.time_s;
   frame.image = read_image(row.image_file);
   frame.truth = row.truth;
+  frame.odometry = row.odometry;
   frame.source = row.image_file.string();
   size_check_.check(frame.image, frame.source);
   ++next_index_;

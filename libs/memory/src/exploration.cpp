@@ -157,18 +157,20 @@ std::optional<PlaceIndex> Explorer::add(const io::Frame& frame) {
   ++frames_;
   memory_.record_run_progress(run_index_, frames_, places_);
   ++frames_since_place_;
-  if (frame.truth && previous_pose_) {
+  // The distance travelled as the input measures it: its poses, or its odometry.
+  const std::optional<CameraPose>& travelled = params_.odometry ? frame.odometry : frame.truth;
+  if (travelled && previous_pose_) {
     metres_since_place_ +=
-        std::hypot(frame.truth->x_m - previous_pose_->x_m, frame.truth->y_m - previous_pose_->y_m);
+        std::hypot(travelled->x_m - previous_pose_->x_m, travelled->y_m - previous_pose_->y_m);
   }
-  previous_pose_ = frame.truth;
+  previous_pose_ = travelled;
 
   bool new_place = !last_place_;
   if (!new_place && params_.every_n_frames > 0 && frames_since_place_ >= params_.every_n_frames) {
     new_place = true;
   }
   // Travelled distance: a hair of slack so that a 0.3 m grid step counts as 0.3 m.
-  if (!new_place && params_.every_m > 0.0 && frame.truth &&
+  if (!new_place && params_.every_m > 0.0 && travelled &&
       metres_since_place_ >= params_.every_m * (1.0 - 1e-9)) {
     new_place = true;
     // The map's scale, for the lattice (lattice/organise.hpp): consecutive places every_m apart.
@@ -192,7 +194,7 @@ PlaceIndex Explorer::add_place(const io::Frame& frame) {
   track_heading(frame, signature);
   ++frames_;
   memory_.record_run_progress(run_index_, frames_, places_);
-  previous_pose_ = frame.truth;
+  previous_pose_ = params_.odometry ? frame.odometry : frame.truth;
   return make_place(frame, signature);
 }
 
@@ -345,6 +347,7 @@ Run explore_frames(VisualMemory& memory, const ExplorationParams& params,
       description << "auto (" << params.new_place_plateau_share << " of the plateau)";
     }
     description << ", every_n_frames " << params.every_n_frames << ", every_m " << params.every_m;
+    if (params.odometry) description << " (by odometry)";
   }
   description << ", heading_source " << to_string(params.heading_source);
   Explorer explorer(memory, params, input.name, description.str(),
@@ -358,6 +361,13 @@ Run explore_frames(VisualMemory& memory, const ExplorationParams& params,
               << " m (--every-m, memory.yaml exploration.every_m) needs the input's poses; give "
                  "--every-n-frames or --dissimilarity instead";
       throw UsageError(message.str());
+    }
+    if (!every_frame && params.odometry && !frame->odometry) {
+      throw UsageError(
+          frame->source +
+          ": no odometry, which --odometry needs (a BoB database's 'Odometry X [mm]', "
+          "'Odometry Y [mm]', 'Odometry Heading [degrees]' columns, a CSV's "
+          "odometry_x_m, odometry_y_m, odometry_heading_deg, or a bag's --pose-topic)");
     }
     if (every_frame) {
       explorer.add_place(*frame);

@@ -12,6 +12,7 @@
 #include "omninav/core/errors.hpp"
 #include "omninav/core/log.hpp"
 #include "omninav/core/parse.hpp"
+#include "omninav/sim/tour.hpp"
 
 namespace omninav::sim {
 namespace {
@@ -196,6 +197,7 @@ struct KindContext {
   std::vector<TimedPose> walk_poses() const;
   std::vector<TimedPose> wander_poses() const;
   std::vector<TimedPose> grid_poses() const;
+  std::vector<TimedPose> tour_poses() const;
   std::vector<TimedPose> csv_poses() const;
 };
 
@@ -331,7 +333,8 @@ std::vector<TimedPose> KindContext::wander_poses() const {
     const double keep = world.is_free(x, y, clearance) ? clearance : 0.0;
     const bool moving = steer_clear(world, x, y, lookahead, keep, travel, turn_rate);
     // The body faces the direction it is about to travel in, give or take the wobble.
-    poses.push_back({time, {x, y, 0.0, wrap_angle(travel + wobble.offset_rad()), 0.0, 0.0}, {}});
+    poses.push_back(
+        {time, {x, y, 0.0, wrap_angle(travel + wobble.offset_rad()), 0.0, 0.0}, {}, {}});
     wobble.advance(fps, rng);
     if (moving) {
       x += step * std::cos(travel);
@@ -353,7 +356,7 @@ std::vector<TimedPose> KindContext::rotate_poses() const {
   if (rate == 0.0) throw UsageError("trajectory '" + spec + "': rate_deg_s must not be 0");
   const int frames = pose_count(std::floor(turns * kTwoPi / std::abs(rate) * fps + 1e-9) + 1, spec);
   for (int i = 0; i < frames; ++i) {
-    poses.push_back({i / fps, {x, y, 0.0, wrap_angle(start + rate * i / fps), 0.0, 0.0}, {}});
+    poses.push_back({i / fps, {x, y, 0.0, wrap_angle(start + rate * i / fps), 0.0, 0.0}, {}, {}});
   }
   return poses;
 }
@@ -408,6 +411,7 @@ std::vector<TimedPose> KindContext::circle_poses() const {
     poses.push_back({i / fps,
                      {cx + radius * std::cos(angle), cy + radius * std::sin(angle), 0.0,
                       wrap_angle(tangent), 0.0, 0.0},
+                     {},
                      {}});
   }
   return poses;
@@ -425,7 +429,7 @@ std::vector<TimedPose> KindContext::walk_poses() const {
   require_positive(step_m, "step_m", spec);
   constexpr double kClearance = 0.3;
   for (int i = 0; i < steps; ++i) {
-    poses.push_back({i / fps, {x, y, 0.0, heading, 0.0, 0.0}, {}});
+    poses.push_back({i / fps, {x, y, 0.0, heading, 0.0, 0.0}, {}, {}});
     double turn = rng.gaussian(turn_sd);
     // Turn further until the next step is free; give up after a full circle of tries.
     for (int attempt = 0; attempt < 36; ++attempt) {
@@ -457,9 +461,41 @@ std::vector<TimedPose> KindContext::grid_poses() const {
       const double x = x0 + ix * spacing, y = y0 + iy * spacing;
       if (!world.is_free(x, y, 0.05)) continue;
       poses.push_back(
-          {frame++ / fps, {x, y, 0.0, heading, 0.0, 0.0}, std::array<int, 3>{ix, iy, 0}});
+          {frame++ / fps, {x, y, 0.0, heading, 0.0, 0.0}, std::array<int, 3>{ix, iy, 0}, {}});
     }
   }
+  return poses;
+}
+
+// kind tour: a coverage planner's tour of the free space (tour.hpp), driven along its
+// waypoints at speed_m_s, turning on the spot at turn_rate_deg_s at every corner.
+std::vector<TimedPose> KindContext::tour_poses() const {
+  TourParams tour;
+  tour.spec = spec;
+  tour.area = {args.number("x0", world.floor.min_x_m), args.number("y0", world.floor.min_y_m),
+               args.number("x1", world.floor.max_x_m), args.number("y1", world.floor.max_y_m)};
+  if (!(tour.area.max_x_m > tour.area.min_x_m && tour.area.max_y_m > tour.area.min_y_m)) {
+    throw UsageError("trajectory '" + spec + "': x0, y0, x1, y1 must give x1 > x0 and y1 > y0");
+  }
+  tour.lane_m = args.number("lane_m", 0.3);
+  tour.clearance_m = args.number("clearance_m", 0.25);
+  tour.cell_m = std::min(0.05, tour.lane_m / 3.0);
+  const double speed = args.number("speed_m_s", 0.2);
+  require_positive(speed, "speed_m_s", spec);
+  const double turn_rate = deg_to_rad(args.number("turn_rate_deg_s", 45.0));
+  if (turn_rate < 0.0) {
+    throw UsageError("trajectory '" + spec + "': turn_rate_deg_s must not be negative");
+  }
+  const int seed = args.whole("seed", 1);
+  if (seed < 0) throw UsageError("trajectory '" + spec + "': seed must not be negative");
+  cv::RNG rng(static_cast<std::uint64_t>(seed) * 2654435761ULL + 11);
+  const double start_x = rng.uniform(tour.area.min_x_m, tour.area.max_x_m);
+  const double start_y = rng.uniform(tour.area.min_y_m, tour.area.max_y_m);
+  tour.start = {args.number("x", start_x), args.number("y", start_y)};
+  std::vector<Eigen::Vector2d> points = plan_tour(world, tour);
+  if (points.size() == 1) points.push_back(points.front());  // a single free cell: stand there
+  std::vector<TimedPose> poses;
+  walk_polyline(points, speed, fps, turn_rate, spec, poses);
   return poses;
 }
 
@@ -490,6 +526,8 @@ std::vector<TimedPose> kind_poses(TrajectoryKind kind, const KindContext& contex
       return context.wander_poses();
     case TrajectoryKind::kGrid:
       return context.grid_poses();
+    case TrajectoryKind::kTour:
+      return context.tour_poses();
     case TrajectoryKind::kCsv:
       return context.csv_poses();
   }
@@ -497,9 +535,10 @@ std::vector<TimedPose> kind_poses(TrajectoryKind kind, const KindContext& contex
 }
 
 // The kinds in the order the spec's help lists them.
-constexpr std::array<TrajectoryKind, 8> kKinds = {
-    TrajectoryKind::kRotate, TrajectoryKind::kLine, TrajectoryKind::kCircle, TrajectoryKind::kWalk,
-    TrajectoryKind::kWander, TrajectoryKind::kGrid, TrajectoryKind::kZigzag, TrajectoryKind::kCsv};
+constexpr std::array<TrajectoryKind, 9> kKinds = {
+    TrajectoryKind::kRotate, TrajectoryKind::kLine,   TrajectoryKind::kCircle,
+    TrajectoryKind::kWalk,   TrajectoryKind::kWander, TrajectoryKind::kGrid,
+    TrajectoryKind::kZigzag, TrajectoryKind::kTour,   TrajectoryKind::kCsv};
 
 }  // namespace
 
@@ -519,6 +558,8 @@ std::string to_string(TrajectoryKind kind) {
       return "grid";
     case TrajectoryKind::kZigzag:
       return "zigzag";
+    case TrajectoryKind::kTour:
+      return "tour";
     case TrajectoryKind::kCsv:
       return "csv";
   }
@@ -541,6 +582,45 @@ double Trajectory::length_m() const {
   return length;
 }
 
+void add_odometry(std::vector<TimedPose>& poses, double noise, std::uint64_t seed) {
+  if (poses.empty()) return;
+  // SplitMix64 (Steele et al. 2014) of the seed as the generator's state: neighbouring seeds
+  // give unrelated streams, which a plain multiple of the seed does not.
+  std::uint64_t state = seed + 0x9E3779B97F4A7C15ULL;
+  state = (state ^ (state >> 30)) * 0xBF58476D1CE4E5B9ULL;
+  state = (state ^ (state >> 27)) * 0x94D049BB133111EBULL;
+  cv::RNG rng(state ^ (state >> 31));
+  const auto draw = [&] { return noise > 0.0 ? rng.gaussian(noise) : 0.0; };
+  double distance_error = draw(), turn_error = draw();
+  double metres_to_redraw = 1.0;
+  CameraPose odometry = poses.front().pose;
+  poses.front().odometry = odometry;
+  for (std::size_t i = 1; i < poses.size(); ++i) {
+    const CameraPose& from = poses[i - 1].pose;
+    const CameraPose& to = poses[i].pose;
+    // The true step in the robot's frame at `from`: forward, left, turn.
+    const double dx = to.x_m - from.x_m, dy = to.y_m - from.y_m;
+    const double c = std::cos(from.heading_rad), s = std::sin(from.heading_rad);
+    const double forward = c * dx + s * dy, left = -s * dx + c * dy;
+    const double turn = signed_difference(to.heading_rad, from.heading_rad);
+    const double gain = 1.0 + distance_error;
+    const double oc = std::cos(odometry.heading_rad), os = std::sin(odometry.heading_rad);
+    odometry.x_m += gain * (oc * forward - os * left);
+    odometry.y_m += gain * (os * forward + oc * left);
+    odometry.heading_rad = wrap_angle(odometry.heading_rad + turn * (1.0 + turn_error));
+    odometry.z_m = to.z_m;
+    odometry.pitch_rad = to.pitch_rad;
+    odometry.roll_rad = to.roll_rad;
+    poses[i].odometry = odometry;
+    metres_to_redraw -= std::hypot(dx, dy);
+    if (metres_to_redraw <= 0.0) {
+      distance_error = draw();
+      turn_error = draw();
+      metres_to_redraw = 1.0;
+    }
+  }
+}
+
 Trajectory make_trajectory(const std::string& spec, const World& world) {
   const std::size_t colon = spec.find(':');
   const std::string kind_text(trim(spec.substr(0, colon)));
@@ -553,7 +633,7 @@ Trajectory make_trajectory(const std::string& spec, const World& world) {
   const std::optional<TrajectoryKind> kind = trajectory_kind_from_string(kind_text);
   if (!kind) {
     throw UsageError("trajectory '" + spec + "': unknown kind '" + kind_text +
-                     "' (rotate, line, circle, walk, wander, grid, zigzag, csv)");
+                     "' (rotate, line, circle, walk, wander, grid, zigzag, tour, csv)");
   }
   Trajectory trajectory;
   trajectory.kind = *kind;
@@ -563,12 +643,25 @@ Trajectory make_trajectory(const std::string& spec, const World& world) {
   const double pitch_sd = deg_to_rad(args.number("pitch_noise_deg", 0.0));
   const double roll_sd = deg_to_rad(args.number("roll_noise_deg", 0.0));
   const auto noise_seed = static_cast<std::uint64_t>(args.whole("noise_seed", 1));
+  const double odometry_noise = args.number("odometry_noise", -1.0);
+  const int odometry_seed = args.whole("odometry_seed", 1);
   args.require_all_known();
+  if (odometry_seed < 0) {
+    throw UsageError("trajectory '" + spec + "': odometry_seed must not be negative");
+  }
   for (TimedPose& pose : poses) {
     if (*kind != TrajectoryKind::kCsv || pose.pose.z_m == 0.0) pose.pose.z_m = z;
   }
   add_tilt_noise(poses, pitch_sd, roll_sd, noise_seed);
   if (poses.empty()) throw UsageError("trajectory '" + spec + "' has no poses");
+  if (odometry_noise != -1.0) {
+    if (!(odometry_noise >= 0.0 && odometry_noise <= 1.0)) {
+      throw UsageError("trajectory '" + spec +
+                       "': odometry_noise is out of range (valid: [0, 1], a relative standard "
+                       "deviation of distance and turn)");
+    }
+    add_odometry(poses, odometry_noise, static_cast<std::uint64_t>(odometry_seed));
+  }
 
   std::size_t blocked = 0;
   for (const TimedPose& pose : poses)

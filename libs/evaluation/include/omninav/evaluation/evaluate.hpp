@@ -17,10 +17,15 @@
 //     their places, explored with a place every 1 and every 2 spacings (--every-m,
 //     --dissimilarity 0), organised with the map's spacing: RMSE after Procrustes (all places,
 //     interior, boundary) in spacings (interior not applicable when no place is), and folds;
-//   navigation: `navigate --trials` on the organised grid map: share reached, mean path over
-//     straight line (reached trials), and how far the robot went outside the mapped area: the
-//     largest distance from a true position of the robot (at any step of any trial) to the
-//     convex hull of the places' true positions, in metres and in spacings.
+//   navigation: `navigate --trials` on the organised grid map: share reached (stopped within
+//     goal_radius_m of the goal's position), mean path over straight line (reached trials), and
+//     how far the robot went outside the mapped area: the largest distance from a true position
+//     of the robot (at any step of any trial) to the convex hull of the places' true positions,
+//     in metres and in the world's spacings;
+//   driven: a `tour` of the grid's rectangle (sim/tour.hpp) rendered with odometry, explored
+//     with a place every spacing by that odometry, organised and navigated as the grid map:
+//     the share of the free floor within one lane of the tour, the lattice and the navigation
+//     measures of that map.
 
 #include <Eigen/Core>
 #include <cstdint>

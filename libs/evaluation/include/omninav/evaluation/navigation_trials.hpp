@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -30,9 +31,11 @@ struct TrialParams {
   // Start and goal at least this many place spacings apart (a shorter straight line makes
   // the path ratio meaningless).
   double min_separation_spacings = 3.0;
-  // A trial reaches its goal when the navigator stops there and the robot truly stands
-  // within this many place spacings of the goal pose.
-  double goal_radius_spacings = 1.0;
+  // A trial reaches its goal when the navigator stops there and the robot truly stands within
+  // this distance of the goal's position, metres: the same on every map, however dense (a
+  // map's own spacing would make the same robot score differently on another map of the
+  // room). 0.3 m: one spacing of the suites' grids.
+  double goal_radius_m = 0.3;
 };
 
 // Reads the `trials:` section of navigation.yaml (count and seed are command-line values).
@@ -86,10 +89,11 @@ std::vector<TrialOutcome> run_trials(const std::vector<Trial>& trials, const Tri
                                      double goal_radius_m);
 
 // The evaluation of `navigate --trials` (and of `omninav evaluate`) on a map whose places have
-// ground truth: random_trials over the places' true positions (spacing: their typical
-// spacing; height: the first place's camera height) with `params`' count and seed, the robot's
-// radius as clearance, then run_trials with the goal radius of `params` in spacings. Throws
-// UsageError when the places lack ground truth.
+// ground truth: random_trials over the places' true positions (height: the first place's
+// camera height) with `params`' count and seed, the robot's radius as clearance, then
+// run_trials with the goal radius of `params` in metres. The spacing (trials near a place,
+// start and goal apart, outside the map in spacings) is `spacing_m` when given, else the map's
+// own (map_spacing_m). Throws UsageError when the places lack ground truth.
 struct MapTrials {
   double spacing_m = 0.0;
   double goal_radius_m = 0.0;
@@ -97,7 +101,12 @@ struct MapTrials {
 };
 MapTrials run_map_trials(const memory::VisualMemory& memory,
                          const navigation::GoalNavigationSetup& setup, const TrialScene& scene,
-                         const TrialParams& params);
+                         const TrialParams& params, std::optional<double> spacing_m = {});
+
+// The spacing a map was made at: a grid database's (VisualMemory::grid_spacing_m), else the
+// exploration's every_m (exploration_spacing_m), else the places' typical spacing (the median
+// distance from a place's true position to its nearest other).
+double map_spacing_m(const memory::VisualMemory& memory);
 
 struct TrialSummary {
   int trials = 0;

@@ -29,8 +29,14 @@ struct SuiteParams {
   int grid_ny = 8;
   double spacing_m = 0.3;
   int queries = 100;
-  // Navigation.
+  // Navigation, on the grid map and on the driven map.
   int trials = 50;
+  double goal_radius_m = 0.3;  // reached: the robot stops within this of the goal's position
+  // The driven map: a `tour` of the grid's rectangle (lanes a spacing apart, the robot's radius
+  // kept from obstacles, at speed_m_s), explored with a place every spacing by its odometry.
+  double tour_fps = 5.0;               // frames per second along the tour
+  double tour_turn_rate_deg_s = 45.0;  // turning on the spot at lane ends and corners
+  double odometry_noise = 0.05;        // relative error of odometry's distances and turns
 };
 
 // One row of the table.

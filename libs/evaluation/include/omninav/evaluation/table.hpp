@@ -18,7 +18,7 @@ enum class Worse {
 
 struct Measure {
   std::string key;    // CSV column, e.g. "compass_rotate_max_deg"
-  std::string group;  // compass, memory, lattice, navigation
+  std::string group;  // compass, memory, lattice, navigation, driven (the driven map's block)
   std::string title;  // short header of the printed table
   Worse worse = Worse::kHigher;
   int decimals = 2;

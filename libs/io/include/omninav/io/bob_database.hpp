@@ -77,6 +77,9 @@ struct DatabaseEntry {
                                            // NaN (how BoB's recorders write a tracking dropout)
   std::optional<std::array<int, 3>> grid;  // grid databases: the x, y, z grid indices
   std::optional<double> time_s;            // from "Timestamp [ms]", else row index / frameRate
+  // From omninav's "Odometry X [mm]", "Odometry Y [mm]", "Odometry Heading [degrees]" (the
+  // robot's wheel odometry beside the truth), when the database has them.
+  std::optional<CameraPose> odometry;
 };
 
 class BobDatabaseReader : public SequenceReader {
@@ -110,8 +113,9 @@ class BobDatabaseReader : public SequenceReader {
 
 // Writes a BoB database that BoB's ImageDatabase and BobDatabaseReader both read: PNG images,
 // database_entries.csv with "X [mm], Y [mm], Z [mm], Heading [degrees], Pitch [degrees],
-// Roll [degrees], Filename" (then "Grid X, Grid Y, Grid Z" for grids and "Timestamp [ms]" when
-// the frames have times), and database_metadata.yaml. Numbers are written in the shortest form
+// Roll [degrees], Filename" (then "Grid X, Grid Y, Grid Z" for grids, "Timestamp [ms]" when
+// the frames have times, and "Odometry X [mm], Odometry Y [mm], Odometry Heading [degrees]" when
+// they have odometry), and database_metadata.yaml. Numbers are written in the shortest form
 // that reads back to the same double, so poses survive the trip up to the mm/m conversion.
 //
 // Nothing is half-written: images go to a staging folder inside `folder`; finish() moves them
@@ -149,6 +153,7 @@ class DatabaseWriter {
     CameraPose truth;
     std::optional<std::array<int, 3>> grid;
     std::optional<double> time_s;
+    std::optional<CameraPose> odometry;
   };
 
   std::string file_name_for(const CameraPose& truth, const std::optional<std::array<int, 3>>& grid,

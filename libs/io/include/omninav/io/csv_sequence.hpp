@@ -3,7 +3,8 @@
 // row naming the columns, in any order, extra columns ignored.
 //   required: file (relative to the CSV's folder, or absolute), x_m, y_m, heading_deg
 //             (counter-clockwise from +x, REP 103)
-//   optional: z_m (else 0), time_s (else no capture time)
+//   optional: z_m (else 0), time_s (else no capture time), and the robot's own odometry
+//             odometry_x_m, odometry_y_m, odometry_heading_deg (all three, or none)
 
 #include <filesystem>
 #include <optional>
@@ -31,6 +32,7 @@ class CsvSequence : public SequenceReader {
     std::filesystem::path image_file;
     CameraPose truth;
     std::optional<double> time_s;
+    std::optional<CameraPose> odometry;
   };
 
   std::filesystem::path csv_file_;

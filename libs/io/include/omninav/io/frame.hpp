@@ -15,6 +15,10 @@ struct Frame {
   cv::Mat image;                    // 8-bit BGR (or grey), as OpenCV reads it
   std::optional<CameraPose> truth;  // ground-truth pose, when the source has one
   std::string source;               // file (or "video.mp4#frame 12") the image came from
+  // What the robot's own odometry measured (wheel odometry, dead reckoning), when the source
+  // records it: a BoB database's Odometry columns, a CSV's odometry_* columns, a bag's
+  // --pose-topic (a robot's pose topic is its odometry).
+  std::optional<CameraPose> odometry;
 };
 
 }  // namespace omninav::io

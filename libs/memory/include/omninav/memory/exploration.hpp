@@ -6,8 +6,9 @@
 //     new_place_dissimilarity (the view has changed enough; "auto": a share of the plateau,
 //     below), or
 //   - every_n_frames frames have passed since the last place, or
-//   - every_m metres were travelled since the last place (only when the input has poses; the
-//     map then records it, VisualMemory::exploration_spacing_m, the lattice's default scale);
+//   - every_m metres were travelled since the last place (only when the input has poses, or
+//     with `odometry` its odometry; the map then records it, VisualMemory::exploration_spacing_m,
+//     the lattice's default scale);
 // (each rule off when its value is 0). Each new place gets an edge from the previous place of
 // the run with their relative heading (phases, Eq. 1) and direction of motion (§3.4): of kind
 // sequence along a stream, listed for an unordered input (visual_memory.hpp).
@@ -88,8 +89,13 @@ struct ExplorationParams {
   // 1.85) localises the field's zig-zag maps 0.805.
   std::optional<double> new_place_dissimilarity = std::nullopt;
   double new_place_plateau_share = 0.25;
-  int every_n_frames = 0;        // a place at least every n frames; 0: off
-  double every_m = 0.0;          // a place every d metres travelled (poses needed); 0: off
+  int every_n_frames = 0;  // a place at least every n frames; 0: off
+  double every_m = 0.0;    // a place every d metres travelled (poses needed); 0: off
+  // Where the distance travelled comes from: false, the input's poses (Frame::truth); true, the
+  // robot's own odometry recorded beside them (Frame::odometry: a BoB database's Odometry
+  // columns, a CSV's odometry_* columns, a bag's --pose-topic), as a robot without ground truth
+  // measures it (explore --odometry).
+  bool odometry = false;
   int thumbnail_width_px = 180;  // thumbnails keep the panorama's aspect ratio
   // Where headings come from: auto (above), compass (the visual compass, above), truth (the
   // input's poses, required) or none.

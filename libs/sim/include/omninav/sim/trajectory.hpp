@@ -20,14 +20,23 @@
 //                           from x0 to x1 and back, joined at the ends
 //           line and zigzag also take turn_rate_deg_s (90): at a corner the robot turns on the
 //                           spot at this rate, frames still coming (0: turns between two frames)
+//   tour    coverage:       x0, y0, x1, y1 (the rectangle toured, default the floor), lane_m
+//                           (0.3), clearance_m (0.25), speed_m_s (0.2), turn_rate_deg_s (45),
+//                           x, y (start: default a seeded random point), seed (1): a robot's
+//                           coverage tour of the free space, every room through its doorways,
+//                           in lanes lane_m apart (tour.hpp)
 //   csv     from a file:    path; columns x_m, y_m, heading_deg (required), time_s, z_m,
 //                           pitch_deg, roll_deg (optional)
 //
 // Every kind also takes fps (10, frames per second), z_m (camera height, 1.0),
 // pitch_noise_deg and roll_noise_deg (standard deviation of a smooth random tilt, 0) and
-// noise_seed (1). Positions default to the centre of the world's floor (or a margin inside it).
+// noise_seed (1), and odometry_noise and odometry_seed (1): when odometry_noise is given (a
+// relative standard deviation, 0..1), every pose also gets what wheel odometry would have
+// measured (add_odometry). Positions default to the centre of the world's floor (or a margin inside
+// it).
 
 #include <array>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -42,10 +51,12 @@ struct TimedPose {
   double time_s = 0.0;
   CameraPose pose;
   std::optional<std::array<int, 3>> grid;  // for grid sweeps: (ix, iy, 0)
+  // What wheel odometry measured (dead reckoning from the first pose), when the spec asks for it.
+  std::optional<CameraPose> odometry;
 };
 
 // The kinds of trajectory a spec names (the list above).
-enum class TrajectoryKind { kRotate, kLine, kCircle, kWalk, kWander, kGrid, kZigzag, kCsv };
+enum class TrajectoryKind { kRotate, kLine, kCircle, kWalk, kWander, kGrid, kZigzag, kTour, kCsv };
 
 std::string to_string(TrajectoryKind kind);
 // The kind a spec's name gives, or nothing for an unknown name.
@@ -60,5 +71,13 @@ struct Trajectory {
 // Builds the trajectory a spec describes in `world`. Throws UsageError naming the bad key or
 // value (and listing the valid keys), InputError for a bad CSV file.
 Trajectory make_trajectory(const std::string& spec, const World& world);
+
+// Wheel odometry along `poses`: each step's motion in the robot's frame (forward and sideways
+// distance, turn) as measured, integrated from the first true pose (dead reckoning). The
+// measured distance and turn of a step are the true ones times (1 + e_d) and (1 + e_t), e_d and
+// e_t drawn from N(0, noise) afresh for every metre travelled (a wheel's slip and a tyre's
+// wear persist over a stretch; Menegatti et al. 2004 §3.4: the distance between images known
+// within 10 %). noise 0 gives the truth. Sets every pose's `odometry`.
+void add_odometry(std::vector<TimedPose>& poses, double noise, std::uint64_t seed);
 
 }  // namespace omninav::sim
