@@ -65,6 +65,10 @@ struct MinWarpingView::Data {
   std::vector<Eigen::RowVectorXf> norms;
 };
 
+double MinWarpingResult::travel_world_rad(double first_heading_rad) const {
+  return wrap_angle(first_heading_rad + travel_rad);
+}
+
 MinWarpingView::MinWarpingView() : data_(std::make_unique<Data>()) {}
 MinWarpingView::~MinWarpingView() = default;
 MinWarpingView::MinWarpingView(MinWarpingView&&) noexcept = default;

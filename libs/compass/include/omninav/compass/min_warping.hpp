@@ -100,6 +100,10 @@ struct MinWarpingResult {
   // Either panorama is featureless (MinWarpingParams::featureless_below_grey): no estimate;
   // the angles are 0.
   bool featureless = false;
+
+  // The direction from the first place to the second in the world, given the first
+  // panorama's heading (counter-clockwise from +x): the home vector's world direction, reversed.
+  double travel_world_rad(double first_heading_rad) const;
 };
 
 // One panorama reduced and magnified for the search: made once, matched against any number of
