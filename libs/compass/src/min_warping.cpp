@@ -206,21 +206,29 @@ MinWarpingView MinWarping::prepare(const cv::Mat& panorama, const std::string& n
 
 namespace {
 
-// The column distances of one plane, each row doubled (W × 2W) so that any W consecutive
-// current columns from any start are contiguous.
+// ψ is processed in blocks of this many lanes, the running minima held in registers.
+constexpr int kBlock = 16;
+
+int padded(int width) {
+  return (width + kBlock - 1) / kBlock * kBlock;
+}
+
+// The column distances of one plane, row i holding d(i, j mod W) for j in [0, 2W + kBlock) so
+// that the padded W consecutive current columns from any start are contiguous.
 void plane_distances(const ColumnMatrix& first, const Eigen::RowVectorXf& first_norms,
                      const ColumnMatrix& second, const Eigen::RowVectorXf& second_norms,
-                     Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>& out) {
+                     std::vector<float>& out) {
   const int width = static_cast<int>(first.cols());
+  const int stride = 2 * width + kBlock;
   const ColumnMatrix products = first.transpose() * second;  // (i, j) = x_i · y_j
-  out.resize(width, 2 * width);
+  out.resize(static_cast<std::size_t>(width) * stride);
   for (int i = 0; i < width; ++i) {
+    float* row = out.data() + static_cast<std::ptrdiff_t>(i) * stride;
     for (int j = 0; j < width; ++j) {
       const float total = first_norms(i) + second_norms(j);
-      const float d = total > 1e-6f ? 1.f - 2.f * products(i, j) / total : 1.f;
-      out(i, j) = d;
-      out(i, j + width) = d;
+      row[j] = total > 1e-6f ? 1.f - 2.f * products(i, j) / total : 1.f;
     }
+    for (int j = width; j < stride; ++j) row[j] = row[j % width];
   }
 }
 
@@ -243,8 +251,8 @@ cv::Mat MinWarping::cost_surface(const MinWarpingView& first, const MinWarpingVi
   const int width = impl.width;
   const int planes = static_cast<int>(impl.scales.size());
   const int unit = planes / 2;
-  using Table = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
-  std::vector<Table> tables(planes);
+  const int stride = 2 * width + kBlock;
+  std::vector<std::vector<float>> tables(planes);
   for (int k = 0; k < planes; ++k) {
     // σ ≥ 1: the snapshot magnified by σ against the current view; σ < 1: the snapshot against
     // the current view magnified by 1/σ.
@@ -255,21 +263,35 @@ cv::Mat MinWarping::cost_surface(const MinWarpingView& first, const MinWarpingVi
       plane_distances(a.magnified[0], a.norms[0], b.magnified[m], b.norms[m], tables[k]);
     }
   }
-  cv::Mat surface(width, width, CV_64F);
-  Eigen::ArrayXf sum(width), minimum(width);
-  for (int alpha = 0; alpha < width; ++alpha) {
-    sum.setZero();
-    for (int i = 0; i < width; ++i) {
-      minimum.setConstant(std::numeric_limits<float>::infinity());
+  // For each snapshot column i and travel direction α: ψ = p takes the current column
+  // i + p + δ of each candidate, so the candidate's distances for all ψ are W consecutive
+  // entries of row i of its plane. Snapshot column outermost: the rows it reads (one per plane)
+  // stay in the first-level cache; blocks of kBlock ψ keep their minima in registers.
+  const int columns = padded(width);
+  std::vector<float> sums(static_cast<std::size_t>(width) * columns, 0.f);
+  std::vector<const float*> rows;
+  for (int i = 0; i < width; ++i) {
+    for (int alpha = 0; alpha < width; ++alpha) {
+      rows.clear();
       for (const auto& [delta, plane] : impl.candidates[positive_mod(i - alpha, width)]) {
-        // ψ = p takes the current column i + p + δ: W consecutive entries of the doubled row.
-        const float* row = tables[plane].data() + static_cast<std::ptrdiff_t>(i) * 2 * width +
-                           positive_mod(i + delta, width);
-        minimum = minimum.min(Eigen::Map<const Eigen::ArrayXf>(row, width));
+        rows.push_back(tables[plane].data() + static_cast<std::ptrdiff_t>(i) * stride +
+                       positive_mod(i + delta, width));
       }
-      sum += minimum;
+      float* sum = sums.data() + static_cast<std::ptrdiff_t>(alpha) * columns;
+      for (int p0 = 0; p0 < columns; p0 += kBlock) {
+        // Eigen's fixed-size arrays: packet minima (std::min's scalar form is not vectorised).
+        using Block = Eigen::Array<float, kBlock, 1>;
+        Block minimum = Block::Constant(std::numeric_limits<float>::infinity());
+        for (const float* row : rows) minimum = minimum.min(Eigen::Map<const Block>(row + p0));
+        Eigen::Map<Block>(sum + p0) += minimum;
+      }
     }
-    for (int p = 0; p < width; ++p) surface.at<double>(alpha, p) = sum(p) / width;
+  }
+  cv::Mat surface(width, width, CV_64F);
+  for (int alpha = 0; alpha < width; ++alpha) {
+    for (int p = 0; p < width; ++p) {
+      surface.at<double>(alpha, p) = sums[static_cast<std::size_t>(alpha) * columns + p] / width;
+    }
   }
   return surface;
 }
