@@ -12,6 +12,7 @@
 #include "omninav/core/output_file.hpp"
 #include "omninav/core/parse.hpp"
 #include "omninav/eval/png.hpp"
+#include "omninav/evaluation/home_vectors.hpp"
 #include "omninav/evaluation/localisation_output.hpp"
 #include "omninav/memory/localisation.hpp"
 #include "omninav/memory/map_store.hpp"
@@ -30,6 +31,7 @@ struct LocaliseOptions {
   std::filesystem::path plot;
   bool exhaustive = false;
   bool unwrap = false;
+  bool home_vector = false;
   io::BagOptions bag;
 };
 
@@ -74,6 +76,12 @@ void run_localise(const GlobalOptions& global, const LocaliseOptions& options) {
                      "neither");
   }
 
+  std::optional<compass::MinWarping> warping;
+  if (options.home_vector) {
+    warping.emplace(load_compass_config(global.config_dir).min_warping,
+                    load_camera_config(global.config_dir).panorama);
+  }
+
   std::vector<evaluation::QueryLocalisation> results;
   cv::Mat first_figure;  // --plot: the first query's, written once the count is known
   for (const std::filesystem::path& query : options.queries) {
@@ -94,6 +102,12 @@ void run_localise(const GlobalOptions& global, const LocaliseOptions& options) {
         q.result.position.reset();
       }
       if (score && q.truth) q.score = score->add(q.result, *q.truth);
+      if (warping && !q.result.best.empty()) {
+        const int best = q.result.best.front().place;
+        q.home = evaluation::home_vector_to_place(*warping, map.place(best),
+                                                  "place " + std::to_string(best), frame->image,
+                                                  frame->source);
+      }
       if (!options.plot.empty()) {
         std::optional<Eigen::Vector2d> truth;
         if (q.truth && memory::place_positions(map)->first == memory::PositionFrame::kTruth) {
@@ -129,7 +143,7 @@ void run_localise(const GlobalOptions& global, const LocaliseOptions& options) {
 
   const std::vector<int>& levels = params.hierarchy.levels;
   if (options.format == OutputFormat::kCsv) {
-    evaluation::write_localisation_csv_header(std::cout, levels);
+    evaluation::write_localisation_csv_header(std::cout, levels, options.home_vector);
     for (const evaluation::QueryLocalisation& q : results) {
       evaluation::write_localisation_csv_row(std::cout, q);
     }
@@ -180,6 +194,10 @@ void add_localise_command(CLI::App& app, const GlobalOptions& global) {
                       "...); needs place positions");
   command->add_flag("--exhaustive", options->exhaustive,
                     "Compare every place at every level (no pruning; for comparison)");
+  command->add_flag("--home-vector", options->home_vector,
+                    "Also the direction from each query's place to its best place, and the "
+                    "rotation between them, by min-warping against the place's stored panorama "
+                    "(compass.yaml's min_warping section; docs/compass.md)");
   command->add_flag("--unwrap", options->unwrap,
                     "The queries are raw omnidirectional images: unwrap them with camera.yaml");
   add_bag_options(command, options->bag);

@@ -38,6 +38,8 @@ from ._omninav import (  # noqa: F401 (re-exported)
     NavigatorParams,
     MemoryConfig,
     MinimiserParams,
+    MinWarping,
+    MinWarpingResult,
     NavigationConfig,
     PairMatch,
     PairMatcher,

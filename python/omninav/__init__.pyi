@@ -232,6 +232,20 @@ class PairMatcher:
                  config_dir: Optional[PathArg] = None) -> None: ...
     def match(self, first: Image, second: Image, start_shift_px: int = 0) -> PairMatch: ...
 
+class MinWarpingResult:
+    rotation_rad: float
+    travel_rad: float
+    home_rad: float
+    cost: float
+    rotation_only_cost: float
+    rotation_only_rad: float
+    featureless: bool
+    def travel_world_rad(self, first_heading_rad: float) -> float: ...
+
+class MinWarping:
+    def __init__(self, config_dir: Optional[PathArg] = None) -> None: ...
+    def estimate(self, first: Image, second: Image) -> MinWarpingResult: ...
+
 class Compass:
     def __init__(self, config: Optional[CompassConfig] = None,
                  config_dir: Optional[PathArg] = None) -> None: ...

@@ -9,6 +9,7 @@
 
 #include "bind.hpp"
 #include "omninav/compass/compass_run.hpp"
+#include "omninav/compass/min_warping.hpp"
 #include "omninav/core/errors.hpp"
 #include "omninav/evaluation/config_folder.hpp"
 #include "omninav/io/frame.hpp"
@@ -131,6 +132,58 @@ void bind_compass(py::module_& m) {
           py::arg("first"), py::arg("second"), py::arg("start_shift_px") = 0,
           "Matches the second panorama against the first; a local minimiser starts at "
           "start_shift_px. Raises InputError when their shapes differ.");
+
+  using compass::MinWarpingResult;
+  py::class_<MinWarpingResult>(
+      m, "MinWarpingResult",
+      "The joint estimate of min-warping for a pair: rotation_rad (the counter-clockwise turn "
+      "from the first panorama to the second), travel_rad (the direction from the first place "
+      "to the second in the first panorama's frame), home_rad (from the second place back to "
+      "the first, in the second's frame), cost and rotation_only_cost (mean column distances), "
+      "featureless (no estimate: the angles are 0).")
+      .def_readonly("rotation_rad", &MinWarpingResult::rotation_rad)
+      .def_readonly("travel_rad", &MinWarpingResult::travel_rad)
+      .def_readonly("home_rad", &MinWarpingResult::home_rad)
+      .def_readonly("cost", &MinWarpingResult::cost)
+      .def_readonly("rotation_only_cost", &MinWarpingResult::rotation_only_cost)
+      .def_readonly("rotation_only_rad", &MinWarpingResult::rotation_only_rad)
+      .def_readonly("featureless", &MinWarpingResult::featureless)
+      .def("travel_world_rad", &MinWarpingResult::travel_world_rad, py::arg("first_heading_rad"),
+           "The direction from the first place to the second in the world, given the first "
+           "panorama's heading.")
+      .def("__repr__", [](const MinWarpingResult& r) {
+        return py::str(
+                   "MinWarpingResult(rotation_rad={}, travel_rad={}, home_rad={}, "
+                   "featureless={})")
+            .format(r.rotation_rad, r.travel_rad, r.home_rad, r.featureless);
+      });
+
+  py::class_<compass::MinWarping>(
+      m, "MinWarping",
+      "Min-warping (Möller 2009; Möller, Krzykawski & Gerstmayr 2010) with compass.yaml's "
+      "min_warping section and camera.yaml's row elevations (of config_dir):\n\n"
+      "    warping = omninav.MinWarping()\n"
+      "    result = warping.estimate(snapshot, current)\n"
+      "    print(result.home_rad, result.rotation_rad)")
+      .def(py::init([](std::optional<std::filesystem::path> config_dir) {
+             const std::filesystem::path dir = config_dir_or_default(config_dir);
+             return std::make_unique<compass::MinWarping>(
+                 evaluation::load_compass_config(dir).min_warping,
+                 evaluation::load_camera_config(dir).panorama);
+           }),
+           py::arg("config_dir") = py::none())
+      .def(
+          "estimate",
+          [](const compass::MinWarping& warping, const py::array& first, const py::array& second) {
+            py::object keep_first, keep_second;
+            const cv::Mat a = array_to_mat(first, "first panorama", keep_first);
+            const cv::Mat b = array_to_mat(second, "second panorama", keep_second);
+            py::gil_scoped_release release;
+            return warping.estimate(a, b);
+          },
+          py::arg("first"), py::arg("second"),
+          "The rotation and the travel direction from the first panorama's place to the "
+          "second's. Raises InputError when their sizes differ or a pixel is not finite.");
 
   py::class_<Compass>(
       m, "Compass",

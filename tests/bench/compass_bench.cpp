@@ -1,7 +1,8 @@
 // The visual compass's speed: pairs per second for the minimisers (a) exhaustive,
 // (b) local + scan and (c) FFT at 360×45 and 1080×135 RGB, with and without the field-of-view
-// mask, and frames per second for Algorithm 1 over a sequence. The ratios asked for are printed
-// at the end, from the times of this one run.
+// mask, frames per second for Algorithm 1 over a sequence, and pairs per second for min-warping
+// (min_warping.hpp). The ratios asked for are printed at the end, from the times of this one
+// run.
 //
 // Run on one core:  taskset -c 1 build/bin/compass_bench
 // The ratios printed at the end divide CPU times measured in this one run.
@@ -27,6 +28,7 @@
 #include <vector>
 
 #include "omninav/compass/heading_window.hpp"
+#include "omninav/compass/min_warping.hpp"
 #include "omninav/compass/pair_matcher.hpp"
 #include "omninav/compass/tilt.hpp"
 #include "omninav/compass/visual_compass.hpp"
@@ -176,6 +178,28 @@ void tilt(benchmark::State& state, int width, int height, bool estimate, bool le
   }
 }
 
+// Min-warping's joint estimate (compass.yaml's min_warping defaults) on consecutive frames of
+// the circle, in steady state: each pair brings one new frame to prepare (reduce, magnify) and
+// reuses the previous one's view, as along a sequence; "cold" prepares both.
+void min_warping(benchmark::State& state, int width, int height, bool cold) {
+  const std::vector<cv::Mat>& images = frames(width, height);
+  omninav::PanoramaGeometry geometry;
+  const omninav::compass::MinWarping warping({}, geometry);
+  omninav::compass::MinWarpingView previous = warping.prepare(images[0], "frame 0");
+  int next = 1;
+  for (auto _ : state) {
+    const cv::Mat& image = images[static_cast<std::size_t>(next)];
+    if (cold) previous = warping.prepare(images[static_cast<std::size_t>(next - 1)], "previous");
+    omninav::compass::MinWarpingView current = warping.prepare(image, "current");
+    benchmark::DoNotOptimize(warping.estimate(previous, current));
+    previous = std::move(current);
+    next = next % (kFrames - 1) + 1;
+    if (next == 1) previous = warping.prepare(images[0], "frame 0");
+  }
+  state.counters["pairs_per_s"] =
+      benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+}
+
 void register_all() {
   for (const auto& [width, height] : {std::make_pair(360, 45), std::make_pair(1080, 135)}) {
     const std::string size = std::to_string(width) + "x" + std::to_string(height);
@@ -191,6 +215,11 @@ void register_all() {
       add("local_scan", MinimiserKind::kLocalScan, false);
       add("fft", MinimiserKind::kFft, false);
       add("fft_measure", MinimiserKind::kFft, true);
+    }
+    for (const bool cold : {false, true}) {
+      benchmark::RegisterBenchmark(((cold ? "min_warping_cold/" : "min_warping/") + size).c_str(),
+                                   min_warping, width, height, cold)
+          ->Unit(benchmark::kMicrosecond);
     }
     for (const auto& [name, kind] : {std::make_pair("local_scan", MinimiserKind::kLocalScan),
                                      std::make_pair("fft", MinimiserKind::kFft)}) {
@@ -268,6 +297,16 @@ class RatioReporter : public benchmark::ConsoleReporter {
       if (alg1_local > 0 && alg1_fft > 0) {
         std::printf("  %-15s Algorithm 1: local_scan %8.0f frames/s, fft %8.0f frames/s\n", size,
                     kFrames / alg1_local, kFrames / alg1_fft);
+      }
+      const double warping = get(std::string("min_warping/") + size);
+      const double warping_cold = get(std::string("min_warping_cold/") + size);
+      if (warping > 0) {
+        std::printf("  %-15s min-warping %8.0f pairs/s (both frames prepared: %8.0f)", size,
+                    1.0 / warping, warping_cold > 0 ? 1.0 / warping_cold : 0.0);
+        if (alg1_local > 0) {
+          std::printf(" beside Algorithm 1 (local_scan) %8.0f frames/s", kFrames / alg1_local);
+        }
+        std::printf("\n");
       }
       const double no_fallback = get(std::string("algorithm1_no_fallback/local_scan/") + size);
       const double fast = get(std::string("algorithm1_fast/local_scan/") + size);

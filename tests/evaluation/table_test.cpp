@@ -121,7 +121,8 @@ TEST(EvaluationTable, EveryMeasureHasAUniqueKeyAndAKnownGroup) {
       EXPECT_EQ(m.key.rfind(m.group + "_", 0), 0u) << m.key;
     }
   }
-  EXPECT_EQ(measures().size(), 12u + 2u + 4u + 12u + 4u + 1u + 4u + 4u);
+  EXPECT_EQ(measures().size(),
+            12u + 2u + 6u + 12u + 4u + 1u + 4u + 4u);  // memory: 4 + home vectors
 }
 
 }  // namespace

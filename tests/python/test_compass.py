@@ -82,3 +82,20 @@ def test_the_heading_window_is_read_from_the_config_and_can_be_turned_on():
     config.window.gate_long_baselines = True
     assert config.window.enabled and config.window.keyframes == 3
     assert config.window.gate_long_baselines
+
+
+def test_min_warping_gives_the_home_direction_and_the_turn():
+    world = omninav.World("room", width_px=360, height_px=45, rays_per_pixel=1)
+    renderer = omninav.Renderer(world)
+    snapshot = renderer.render(omninav.CameraPose(2.0, 2.0, 1.0, heading_rad=0.4))
+    current = renderer.render(omninav.CameraPose(2.6, 2.3, 1.0, heading_rad=0.4 + math.radians(25)))
+    result = omninav.MinWarping().estimate(snapshot, current)
+    # Truth from the poses: the turn, and the direction from the current place back home in
+    # the current frame. Min-warping's own accuracy is tested in C++; a sign, frame or unit
+    # error would be tens of degrees.
+    home_truth = math.atan2(2.0 - 2.3, 2.0 - 2.6) - (0.4 + math.radians(25))
+    assert not result.featureless
+    assert abs(math.remainder(result.rotation_rad - math.radians(25), 2 * math.pi)) < math.radians(4)
+    assert abs(math.remainder(result.home_rad - home_truth, 2 * math.pi)) < math.radians(10)
+    travel_world = result.travel_world_rad(0.4)
+    assert abs(math.remainder(travel_world - math.atan2(0.3, 0.6), 2 * math.pi)) < math.radians(10)

@@ -94,6 +94,20 @@ void load_compass_config(const ConfigReader& config, CompassConfig& out) {
   window.read("loss_scale", window_params.loss_scale, 0.01, 1000.0);
   window.read("gate_long_baselines", window_params.gate_long_baselines);
 
+  const ConfigReader warping = config.section("min_warping");
+  MinWarpingParams& mw = out.min_warping;
+  warping.read("search_width_px", mw.search_width_px, 8, 4096);
+  warping.read("search_height_px", mw.search_height_px, 1, 4096);
+  warping.read("max_relative_distance", mw.max_relative_distance, 0.05, 0.99);
+  warping.read("max_scale", mw.max_scale, 1.0, 4.0);
+  warping.read("scale_planes", mw.scale_planes, 1, 33);
+  if (mw.scale_planes % 2 == 0) {
+    throw ConfigError(config.source_name() + ": key 'min_warping.scale_planes' = " +
+                      std::to_string(mw.scale_planes) + " must be odd (1 is a plane)");
+  }
+  warping.read("distance_samples", mw.distance_samples, 16, 4096);
+  warping.read("featureless_below_grey", mw.featureless_below_grey, 0.0, 255.0);
+
   const ConfigReader input = config.section("input");
   std::optional<double> width = out.width_px ? std::optional<double>(*out.width_px) : std::nullopt;
   input.read("width_px", width, 8, 16384);

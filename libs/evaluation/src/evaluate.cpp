@@ -18,6 +18,7 @@
 #include "omninav/core/log.hpp"
 #include "omninav/eval/png.hpp"
 #include "omninav/evaluation/compass_evaluation.hpp"
+#include "omninav/evaluation/home_vectors.hpp"
 #include "omninav/evaluation/localisation_score.hpp"
 #include "omninav/evaluation/navigation_trials.hpp"
 #include "omninav/evaluation/organised_map.hpp"
@@ -296,7 +297,7 @@ class WorldRun {
     }
     use_compass_config(config_dir_, params);
     const fs::path map_file = dir_ / (name + ".vmem");
-    args.insert(args.end(), {"--out", map_file.string(), "--overwrite"});
+    args.insert(args.end(), {"--out", map_file.string(), "--force"});
     memory::VisualMemory memory(memory_config.map);
     std::unique_ptr<io::SequenceReader> reader = io::open_sequence(input);
     const bool is_grid = reader->is_grid();
@@ -353,7 +354,16 @@ class WorldRun {
     comment("memory, lattice (grid) and navigation: a grid explored and organised");
     fs::path map_file;
     try {
-      map_file = explore(render("grid", grid_spec()), "grid", 0.0);
+      const fs::path grid = render("grid", grid_spec());
+      try {
+        home_vectors(grid);
+      } catch (const Error& error) {
+        set("memory_home_median_deg", Cell::failed());
+        set("memory_home_p90_deg", Cell::failed());
+        log_warning(row_.world + ": home vectors failed: " + error.what());
+        row_.notes.push_back(std::string("home vectors: ") + error.what());
+      }
+      map_file = explore(grid, "grid", 0.0);
     } catch (const Error& error) {
       for (const char* key : {"rmse", "rmse_interior", "rmse_boundary", "folds"}) {
         set(std::string("lattice_grid_") + key, Cell::failed());
@@ -374,6 +384,21 @@ class WorldRun {
     } else {
       fail_group("navigation", "the grid map could not be organised");
     }
+  }
+
+  // Min-warping's home vectors between the grid's places 1-3 spacings apart, against the truth
+  // (no command line: `localise --home-vector` gives them one query at a time).
+  void home_vectors(const fs::path& grid) {
+    std::vector<io::Frame> frames;
+    std::unique_ptr<io::SequenceReader> reader = io::open_sequence(grid);
+    while (std::optional<io::Frame> frame = reader->next()) frames.push_back(std::move(*frame));
+    const compass::MinWarping warping(config_.compass.min_warping, worlds_.render.geometry);
+    const HomeVectorErrors errors = grid_home_vector_errors(warping, frames, layout_.spacing_m);
+    set("memory_home_median_deg", errors.median_deg());
+    set("memory_home_p90_deg", errors.p90_deg());
+    log_stage("home vectors: " + std::to_string(errors.errors_rad.size()) + " pairs 1-3 spacings " +
+              "apart (" + std::to_string(errors.featureless) + " featureless), |error| median " +
+              num(errors.median_deg(), 1) + ", p90 " + num(errors.p90_deg(), 1) + " deg");
   }
 
   void localise(const fs::path& map_file) {

@@ -65,9 +65,23 @@ void write_localisation_text(std::ostream& out, const QueryLocalisation& q,
     }
     out << "\n";
   }
+  if (q.home) {
+    if (q.home->featureless) {
+      out << "  home vector: none (featureless pair)\n";
+    } else {
+      out << "  home vector to place " << best.place << ": "
+          << signed_fixed(rad_to_deg(q.home->direction_rad), 1) << " deg from the query's front";
+      if (q.home->world_direction_rad) {
+        out << " = " << fixed(rad_to_deg(*q.home->world_direction_rad), 1) << " deg in the world";
+      }
+      out << ", rotation " << signed_fixed(rad_to_deg(q.home->rotation_rad), 1)
+          << " deg from the place's (min-warping)\n";
+    }
+  }
 }
 
-void write_localisation_csv_header(std::ostream& out, const std::vector<int>& levels) {
+void write_localisation_csv_header(std::ostream& out, const std::vector<int>& levels,
+                                   bool home_vector) {
   std::vector<std::string> columns{"query",          "best_place",           "similarity",
                                    "dissimilarity",  "relative_heading_deg", "heading_deg",
                                    "position_frame", "position_x",           "position_y",
@@ -76,6 +90,12 @@ void write_localisation_csv_header(std::ostream& out, const std::vector<int>& le
   for (const char* column : {"truth_x_m", "truth_y_m", "truth_heading_deg", "nearest_place",
                              "error_m", "heading_error_deg"}) {
     columns.emplace_back(column);
+  }
+  if (home_vector) {
+    for (const char* column :
+         {"home_deg", "home_world_deg", "home_rotation_deg", "home_featureless"}) {
+      columns.emplace_back(column);
+    }
   }
   write_csv_line(out, columns);
 }
@@ -113,6 +133,13 @@ void write_localisation_csv_row(std::ostream& out, const QueryLocalisation& q) {
                            fixed_or_empty(degrees(q.score->heading_error_rad), 3)});
   } else {
     row.resize(row.size() + 3);
+  }
+  if (q.home) {
+    const bool none = q.home->featureless;
+    row.insert(row.end(),
+               {none ? "" : fixed(rad_to_deg(q.home->direction_rad), 3),
+                none ? "" : fixed_or_empty(degrees(q.home->world_direction_rad), 3),
+                none ? "" : fixed(rad_to_deg(q.home->rotation_rad), 3), none ? "1" : "0"});
   }
   write_csv_line(out, row);
 }
@@ -158,11 +185,21 @@ Json localisation_json(const QueryLocalisation& q) {
              {"error_m", json_number(q.score->error_m, 4)},
              {"heading_error_deg", json_number(degrees(q.score->heading_error_rad), 3)}};
   }
-  return {{"query", q.source},
-          {"levels", std::move(levels)},
-          {"best", std::move(best)},
-          {"position", std::move(position)},
-          {"truth", std::move(truth)}};
+  Json document = {{"query", q.source},
+                   {"levels", std::move(levels)},
+                   {"best", std::move(best)},
+                   {"position", std::move(position)},
+                   {"truth", std::move(truth)}};
+  if (q.home) {
+    const bool none = q.home->featureless;
+    document["home_vector"] = {
+        {"featureless", none},
+        {"direction_deg", none ? Json(nullptr) : json_number(rad_to_deg(q.home->direction_rad), 3)},
+        {"world_direction_deg",
+         none ? Json(nullptr) : json_number(degrees(q.home->world_direction_rad), 3)},
+        {"rotation_deg", none ? Json(nullptr) : json_number(rad_to_deg(q.home->rotation_rad), 3)}};
+  }
+  return document;
 }
 
 Json localisation_json(const std::filesystem::path& map, const std::vector<int>& levels,

@@ -71,6 +71,9 @@ const std::vector<Measure>& measures() {
     m.push_back({"memory_at_nearest", "memory", "at nearest", Worse::kLower, 3});
     m.push_back({"memory_heading_error_deg", "memory", "heading err", Worse::kHigher, 1});
     m.push_back({"memory_right_room", "memory", "right room", Worse::kLower, 3});
+    // Min-warping's home vectors between grid places 1-3 spacings apart: |error| in degrees.
+    m.push_back({"memory_home_median_deg", "memory", "home med", Worse::kHigher, 1});
+    m.push_back({"memory_home_p90_deg", "memory", "home p90", Worse::kHigher, 1});
     for (const auto& [map, title] : std::vector<std::pair<std::string, std::string>>{
              {"grid", "grid"}, {"zigzag30", "zz30"}, {"zigzag60", "zz60"}}) {
       m.push_back({"lattice_" + map + "_rmse", "lattice", title + " all", Worse::kHigher, 2});

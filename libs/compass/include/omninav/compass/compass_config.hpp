@@ -5,6 +5,7 @@
 
 #include <optional>
 
+#include "omninav/compass/min_warping.hpp"
 #include "omninav/compass/visual_compass.hpp"
 
 namespace omninav {
@@ -18,12 +19,15 @@ struct CompassConfig {
   // Resample every input panorama to this many columns first (resample.hpp); absent: use the
   // input's own width. Table 2 used 360 (one pixel per degree).
   std::optional<int> width_px;
+  // Min-warping (min_warping.hpp): home vectors and the joint turn-and-travel estimate.
+  MinWarpingParams min_warping;
 };
 
 // Reads the sections distance, minimiser, phase, subpixel, sampling, confidence, tilt,
-// travel_fit, uncertainty, window and input (the tilt's elevations come from camera.yaml, set by
-// the caller). Throws ConfigError naming the key, the file and the valid range or choices, and
-// UsageError for a combination that cannot work (the fft minimiser with the l1 metric).
+// travel_fit, uncertainty, window, min_warping and input (the tilt's elevations come from
+// camera.yaml, set by the caller). Throws ConfigError naming the key, the file and the valid range
+// or choices, and UsageError for a combination that cannot work (the fft minimiser with the l1
+// metric).
 void load_compass_config(const ConfigReader& config, CompassConfig& out);
 
 }  // namespace omninav::compass
