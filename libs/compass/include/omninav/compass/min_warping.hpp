@@ -3,7 +3,7 @@
 // the rotation ψ between two panoramas, estimated together by a search over (α, ψ) in which
 // every column of the first panorama finds its own best partner in the second.
 //
-// GEOMETRY (Möller 2009, §2; docs/compass.md "Min-warping"). The first panorama (the snapshot,
+// GEOMETRY (Möller 2009; docs/compass.md "Min-warping"). The first panorama (the snapshot,
 // Möller's S) is taken at place A, the second (the current view, C) at place B. In A's frame
 // the robot travelled a distance d towards azimuth α and turned counter-clockwise by ψ. A point
 // at azimuth x and distance r from A is seen from B at azimuth x' and distance r'. With
@@ -12,7 +12,7 @@
 //                                                       expansion as ν grows (ν = 0: at infinity)
 //     σ = r/r' = 1 / sqrt(1 − 2ν·cos u + ν²)            the column's vertical scale
 // The equal-distance assumption applies within a column: every point of a column is taken to
-// be at the same distance, so the whole column scales by σ (Möller 2009, §2.2). Distances
+// be at the same distance, so the whole column scales by σ (Möller 2009). Distances
 // differ from column to column: each column of the snapshot takes the minimum over ν of its
 // column distance ("min"-warping), and the (α, ψ) with the smallest sum of those minima wins.
 //
@@ -27,8 +27,8 @@
 // evenly in log σ over [1/max_scale, max_scale] (1 included); a column pair takes the plane
 // nearest its σ, the end planes beyond them.
 //
-// COLUMN DISTANCE: the normalised sum of squared differences of the zero-mean columns (the
-// NSSD of Möller, Krzykawski & Gerstmayr 2010, on mean-free columns):
+// COLUMN DISTANCE: the normalised sum of squared differences of the zero-mean columns (our
+// reading of the papers' normalised measures; docs/compass.md "Readings and choices"):
 //     d(x, y) = Σ (x − x̄ − y + ȳ)² / (Σ (x − x̄)² + Σ (y − ȳ)²)  ∈ [0, 2]
 // 1 for unrelated columns, 0 for equal ones; 1 when both are constant (no evidence either way).
 // The images are matched in grey (the channels' mean), as the papers' were.
@@ -57,8 +57,7 @@ namespace omninav::compass {
 struct MinWarpingParams {
   // Columns of the search: α and ψ step by 360°/search_width_px (4° at 90). The panoramas are
   // reduced to it by area averaging (whole blocks when their width is a multiple). Ours: the
-  // resolution at which the search meets the robot's speed target (tests/bench); Möller, Krzykawski
-  // & Gerstmayr 2010 search at similar coarse steps.
+  // resolution at which the search meets the robot's speed target (tests/bench).
   int search_width_px = 90;
   // Rows of the search (the panoramas' rows are averaged, or interpolated when fewer).
   int search_height_px = 45;
