@@ -528,21 +528,29 @@ TEST_F(MapStoreTest, AReaderOnReadOnlyStorageReadsAMapAnotherWriterLeftAJournalI
   }
 }
 
-TEST_F(MapStoreTest, APlaceWithAPoseNoMapCanHoldIsRefusedNamingItsSource) {
-  VisualMemory memory = synthetic_memory(1);
-  Place place = memory.place(0);
-  place.source = "run.bag#/camera frame 3";
-  place.truth = CameraPose{std::nan(""), 0.0, 0.0, 0.0, 0.0, 0.0};
-  try {
-    memory.add_place(place);
-    ADD_FAILURE() << "a NaN position joined the map";
-  } catch (const InputError& error) {
-    EXPECT_STREQ(error.what(),
-                 "run.bag#/camera frame 3: x: nan m is not a position (not a finite number)");
+TEST_F(MapStoreTest, APlaceWithATruePoseThatIsNotFiniteIsRefusedInWords) {
+  // The explorer refuses such a frame (check_pose); a memory built by hand is refused on saving,
+  // naming the map and the place, where SQLite said "NOT NULL constraint failed".
+  const fs::path file = dir_ / "nan.vmem";
+  VisualMemory memory = synthetic_memory(3);
+  VisualMemory copy(memory.parameters());
+  copy.add_run(memory.runs()[0]);
+  for (PlaceIndex i = 0; i < memory.place_count(); ++i) {
+    Place place = memory.place(i);
+    place.source = "run.bag#/camera frame " + std::to_string(i);
+    if (i == 2) place.truth = CameraPose{std::nan(""), 0.0, 0.0, 0.0, 0.0, 0.0};
+    copy.add_place(std::move(place));
   }
-  place.truth = CameraPose{1e300, 0.0, 0.0, 0.0, 0.0, 0.0};
-  EXPECT_THROW(memory.add_place(place), InputError);
-  EXPECT_EQ(memory.place_count(), 1u);
+  try {
+    MapStore(file).save(copy);
+    ADD_FAILURE() << "a NaN position was written";
+  } catch (const InputError& error) {
+    EXPECT_EQ(std::string(error.what()),
+              file.string() +
+                  ": cannot write the map (place 2, run.bag#/camera frame 2, has a "
+                  "true pose that is not finite)");
+  }
+  EXPECT_TRUE(folder_entries(dir_).empty());
 }
 
 TEST_F(MapStoreTest, AWriterKilledWhileCreatingLeavesNoMapOrTheOldOne) {
