@@ -14,6 +14,7 @@
 #include <cmath>
 #include <fstream>
 #include <functional>
+#include <memory>
 #include <random>
 
 #include "omninav/core/errors.hpp"
@@ -503,6 +504,16 @@ TEST_F(MapStoreTest, AReaderOnReadOnlyStorageReadsAMapAnotherWriterLeftAJournalI
       ::geteuid() == 0 && ::mount("tmpfs", folder.c_str(), "tmpfs", 0, "size=64m") == 0;
   if (::geteuid() == 0 && !mounted)
     GTEST_SKIP() << "root without a mount: cannot make storage read-only";
+  // Unmounted (or writable again) however the test ends, so that TearDown can remove it.
+  const std::unique_ptr<const fs::path, std::function<void(const fs::path*)>> restore(
+      &folder, [mounted](const fs::path* storage) {
+        if (mounted) {
+          ::umount2(storage->c_str(), MNT_DETACH);
+        } else {
+          std::error_code ignored;
+          fs::permissions(*storage, fs::perms::owner_all, ignored);
+        }
+      });
   const fs::path file = folder / "killed.vmem";
   fs::path journal = file;
   journal += "-journal";
@@ -521,11 +532,6 @@ TEST_F(MapStoreTest, AReaderOnReadOnlyStorageReadsAMapAnotherWriterLeftAJournalI
   EXPECT_NO_THROW(after = load_map(file));
   expect_same(before, after);
   EXPECT_TRUE(fs::exists(journal)) << "the reader changed nothing where it may not write";
-  if (mounted) {
-    ::umount(folder.c_str());
-  } else {
-    fs::permissions(folder, fs::perms::owner_all);
-  }
 }
 
 TEST_F(MapStoreTest, APlaceWithATruePoseThatIsNotFiniteIsRefusedInWords) {
