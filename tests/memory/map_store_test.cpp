@@ -520,7 +520,10 @@ TEST_F(MapStoreTest, AReaderOnReadOnlyStorageReadsAMapAnotherWriterLeftAJournalI
   VisualMemory before = synthetic_memory(20, 100);
   MapStore(file).save(before);
   MapStore store(file);
-  kill_writer_midway(store, synthetic_memory(1500, 8000, 2, store.load()), 1000, false);
+  // Loaded before `store` is copied into the call (argument order is unspecified: clang copies
+  // first, and the copy would not know what the file holds).
+  VisualMemory bigger = synthetic_memory(1500, 8000, 2, store.load());
+  kill_writer_midway(store, std::move(bigger), 1000, false);
   ASSERT_TRUE(fs::exists(journal)) << "the kill should leave a hot journal";
   if (mounted) {
     ASSERT_EQ(::mount(nullptr, folder.c_str(), nullptr, MS_REMOUNT | MS_RDONLY, nullptr), 0);
@@ -584,7 +587,10 @@ TEST_F(MapStoreTest, ANewMapIsNeverRolledBackByTheOldMapsJournal) {
     VisualMemory before = synthetic_memory(20, 100);
     MapStore(file).save(before, {.overwrite = true, .after_place = {}});
     MapStore store(file);
-    kill_writer_midway(store, synthetic_memory(1500, 8000, 2, store.load()), 1000, false);
+    // Loaded before `store` is copied into the call (argument order is unspecified: clang copies
+    // first, and the copy would not know what the file holds).
+    VisualMemory bigger = synthetic_memory(1500, 8000, 2, store.load());
+    kill_writer_midway(store, std::move(bigger), 1000, false);
     ASSERT_TRUE(fs::exists(journal)) << "the kill should leave a hot journal";
     if (deleted_first) fs::remove(file);  // the user deletes the map, not its journal
     VisualMemory fresh = synthetic_memory(7, 10, 11);
