@@ -18,6 +18,7 @@ namespace omninav::io {
 namespace {
 
 using testing::expect_route;
+using testing::kBagData;
 using testing::Pixels;
 using testing::read_bag;
 using testing::TempDir;
@@ -135,6 +136,16 @@ TEST(Ros1Bag, ARecordDeclaringMoreBytesThanTheFileIsDamageNotAnAllocation) {
   std::ofstream(bag, std::ios::binary | std::ios::trunc) << bytes;
   EXPECT_INPUT_ERROR(read_bag(bag, {}), "run.bag: damaged ROS 1 bag: the record at byte",
                      "declares a header of 4294967295 bytes");
+}
+
+TEST(Ros1Bag, AChunkWhoseRecordRunsPastItsEndIsDamageNotACrash) {
+  // The fuzzer's second finding (its input is in the corpus): librosbag read a message record
+  // of an uncompressed chunk past the chunk's end (SEGV in readHeaderFromBuffer).
+  const std::filesystem::path bag =
+      kBagData / ".." / ".." / "fuzz" / "corpus" / "ros1_bag" / "regression-segv-chunk-record.bag";
+  for (const std::string pose_topic : {"", "/odom"}) {
+    EXPECT_INPUT_ERROR(read_bag(bag, {.topic = "", .pose_topic = pose_topic}), "damaged ROS 1 bag");
+  }
 }
 
 TEST(Ros1Bag, TwoImageTopicsNeedTopicAndTheErrorNamesBoth) {

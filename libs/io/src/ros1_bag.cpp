@@ -94,6 +94,7 @@ void check_record_lengths(const std::filesystem::path& file) {
       const std::string name = text.substr(0, equals);
       const std::string value = equals == std::string::npos ? "" : text.substr(equals + 1);
       if (name == "op" && value.size() == 1) op = value;
+      if (name == "compression") compression = value;
       if (name == "size" && value.size() == 4) chunk_size = u32(value, 0);
       if (name == "index_pos" && value.size() == 8) {
         field_u64 = std::uint64_t{u32(value, 4)} << 32 | u32(value, 0);
@@ -112,6 +113,23 @@ void check_record_lengths(const std::filesystem::path& file) {
     if (data_bytes > size - at - 4) {
       return damaged("declares " + std::to_string(data_bytes) +
                      " bytes of data, beyond the end of the file");
+    }
+    if (op == "\x05" && compression == "none") {
+      // An uncompressed chunk's records (messages, connections) are read from memory by
+      // librosbag without bounds: their lengths must fit in the chunk. (Compressed chunks are
+      // checked only by their declared size.)
+      std::string chunk(data_bytes, '\0');
+      stream.seekg(static_cast<std::streamoff>(at + 4));
+      stream.read(chunk.data(), data_bytes);
+      for (std::size_t inner = 0; inner < chunk.size();) {
+        for (int part = 0; part < 2; ++part) {  // header, then data
+          if (chunk.size() - inner < 4 || u32(chunk, inner) > chunk.size() - inner - 4) {
+            return damaged("is a chunk whose record at its byte " + std::to_string(inner) +
+                           " runs past its end");
+          }
+          inner += 4 + u32(chunk, inner);
+        }
+      }
     }
     at += 4 + data_bytes;
     stream.seekg(static_cast<std::streamoff>(at));

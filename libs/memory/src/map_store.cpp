@@ -266,6 +266,17 @@ void insert_places(Database& db, const VisualMemory& memory, std::size_t first,
     }
     insert.run();
     if (p.truth) {
+      // SQLite stores NaN as NULL, which the schema refuses with a message in SQL: said in
+      // words here. (Finite values beyond the bound are stored: readers refuse them, and the
+      // explorer never makes them, check_pose on every frame.)
+      for (const double value : {p.truth->x_m, p.truth->y_m, p.truth->z_m, p.truth->heading_rad,
+                                 p.truth->pitch_rad, p.truth->roll_rad}) {
+        if (!std::isfinite(value)) {
+          throw InputError(db.file().string() + ": cannot write the map (place " +
+                           std::to_string(i) + ", " + p.source + ", has a true pose that is " +
+                           "not finite)");
+        }
+      }
       truth.bind(1, id)
           .bind(2, p.truth->x_m)
           .bind(3, p.truth->y_m)

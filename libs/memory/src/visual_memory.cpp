@@ -3,7 +3,6 @@
 #include <cmath>
 
 #include "omninav/core/errors.hpp"
-#include "omninav/core/parse.hpp"
 
 namespace omninav::memory {
 
@@ -120,8 +119,6 @@ PlaceIndex VisualMemory::add_place(Place place) {
   if (s.magnitude.size() != s.size() || s.phase_rad.size() != s.size()) {
     throw UsageError("a place's signature holds the wrong number of values");
   }
-  // A pose no map can store (NaN) or no reader accepts (1e300 m) never enters a memory.
-  if (place.truth) check_pose(*place.truth, place.source);
   return boost::add_vertex(std::move(place), graph_);
 }
 
