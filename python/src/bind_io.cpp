@@ -43,8 +43,12 @@ void bind_frame(py::module_& m) {
                        std::optional<double> time_s, std::string source) {
              py::object keep;
              if (truth) check_pose(*truth, source.empty() ? "Frame truth" : source);
-             return io::Frame{index, time_s, array_to_mat(image, "Frame image", keep).clone(),
-                              truth, std::move(source)};
+             return io::Frame{index,
+                              time_s,
+                              array_to_mat(image, "Frame image", keep).clone(),
+                              truth,
+                              std::move(source),
+                              std::nullopt};
            }),
            py::arg("image"), py::arg("index") = 0, py::arg("truth") = py::none(),
            py::arg("time_s") = py::none(), py::arg("source") = "",

@@ -301,8 +301,12 @@ void bind_memory(py::module_& m) {
                    py::handle item = *frames;
                    io::Frame frame = py::isinstance<io::Frame>(item)
                                          ? item.cast<io::Frame>()
-                                         : io::Frame{count, std::nullopt, cv::Mat(), std::nullopt,
-                                                     "frame " + std::to_string(count)};
+                                         : io::Frame{count,
+                                                     std::nullopt,
+                                                     cv::Mat(),
+                                                     std::nullopt,
+                                                     "frame " + std::to_string(count),
+                                                     std::nullopt};
                    if (frame.image.empty()) {
                      py::object keep;
                      frame.image = array_to_mat(item.cast<py::array>(), frame.source, keep).clone();
