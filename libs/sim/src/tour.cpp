@@ -74,7 +74,9 @@ class Raster {
 };
 
 // Breadth-first search over the free cells from `source`: steps to every cell (-1 where none
-// leads) and the cell each was reached from.
+// leads) and the cell each was reached from. Written here rather than with Boost.Graph's
+// breadth_first_search: the raster is an implicit 4-neighbour grid that this walks without
+// building a graph of its cells, and libs/sim sits on core alone (docs: the layers).
 struct Search {
   std::vector<int> steps;
   std::vector<int> parent;

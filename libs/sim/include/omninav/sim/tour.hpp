@@ -1,6 +1,6 @@
 #pragma once
 // A coverage tour (trajectory kind `tour`): the route a robot with a coverage planner drives to
-// explore a world's free space, as Menegatti et al. 2004 (001_5bb151a4e28490b4.txt §3.4) explore
+// explore a world's free space, as Menegatti et al. 2004 (§3.4) explore
 // by driving a zig-zag. The free space of a rectangle of the floor (the whole floor by default)
 // is rasterised at cell_m: a cell is free when World::is_free holds at its centre with
 // clearance_m. The free cells joined by 4-neighbour steps are the parts of the free space; every
