@@ -271,9 +271,9 @@ TEST_F(ExploreLocaliseExport, ExploringByOdometrySpacesPlacesByWhatTheWheelsMeas
   ASSERT_GT(std::abs(odometry_m - true_m), 0.3) << "the seed's odometry is too close to the truth";
   const auto places = [&](const std::vector<std::string>& extra) {
     const std::filesystem::path map = folder_ / "drive.vmem";
-    std::vector<std::string> args = {
-        "explore",     "--input",   drive.string(), "--out",           map.string(),
-        "--force", "--every-m", "0.3",          "--dissimilarity", "0"};
+    std::vector<std::string> args = {"explore",         "--input", drive.string(), "--out",
+                                     map.string(),      "--force", "--every-m",    "0.3",
+                                     "--dissimilarity", "0"};
     args.insert(args.end(), extra.begin(), extra.end());
     EXPECT_EQ(run_omninav(args), 0) << errors_;
     return static_cast<double>(memory::load_map(map).place_count());
