@@ -137,8 +137,7 @@ std::optional<MapRealignment> load_map_realignment(const GlobalOptions& global,
   MapRealignment result;
   result.memory = std::make_unique<memory::VisualMemory>(memory::load_map(map));
   result.headings = std::make_unique<navigation::MapHeadings>(
-      *result.memory, load_memory_config(global.config_dir).localisation,
-      load_navigation_config(global.config_dir).navigator);
+      *result.memory, load_memory_config(global.config_dir).localisation);
   return result;
 }
 

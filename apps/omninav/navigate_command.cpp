@@ -135,7 +135,8 @@ void run_navigate(const GlobalOptions& global, const NavigateOptions& options) {
   signature::SignatureExtractor extractor(memory.parameters().signature);
   const navigation::GoalNavigationSetup setup =
       navigation::goal_navigation_setup(memory, navigation::memory_localiser(localiser, extractor),
-                                        navigation.route, navigation.navigator);
+                                        navigation.route, navigation.navigator, navigation.links,
+                                        navigation.belief);
 
   // The robot in a rendered world, or on a grid of stored images.
   std::optional<sim::World> world;
@@ -187,8 +188,8 @@ void run_navigate(const GlobalOptions& global, const NavigateOptions& options) {
   summary(global) << (result.reached ? "reached" : "did not reach") << " the goal (place "
                   << run.goal.place << ") in " << result.steps.size() << " steps, "
                   << fixed(result.path_length_m, 2) << " m driven, " << result.jumps
-                  << " localisation jumps, lost " << result.lost_events << " times"
-                  << (result.gave_up ? " (gave up)" : "")
+                  << " jumps of the belief's place, its belief spread (lost) "
+                  << result.lost_events << " times"
                   << "; steps: " << (options.out / "steps.csv").string()
                   << ", picture: " << (options.out / "path.png").string() << "\n";
 }

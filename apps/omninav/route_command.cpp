@@ -52,16 +52,12 @@ void run_route(const GlobalOptions& global, const RouteOptions& options) {
       navigation::match_image(localise, io::read_image(options.to), limit, options.to.string());
 
   // §3.5: the search tree grows from the goal, so every place gets its direction at once.
-  const bool over_motions = navigation::plans_over_motions(memory, navigation.route);
   const navigation::RoutePlan plan =
-      navigation::plan_route(memory, places, navigation.route, static_cast<int>(to.place));
+      navigation::plan_route(memory, places, navigation.links, static_cast<int>(to.place));
   if (!plan.reaches_goal(from.place)) {
     throw InputError(options.map.string() + ": no route from place " + std::to_string(from.place) +
                      " to place " + std::to_string(to.place) +
-                     (over_motions
-                          ? std::string(" over the motions measured between places")
-                          : " over the lattice neighbours (within " +
-                                fixed(navigation.route.neighbour_spacings, 1) + " spacings)"));
+                     " over the map's confirmed links (travelled, grid neighbours, revisits)");
   }
   report::Route route = report::make_route(memory, places, plan, from, to);
   route.map = options.map.string();

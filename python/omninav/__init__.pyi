@@ -110,39 +110,40 @@ class MemoryConfig:
     localisation: LocalisationParams
 
 class RouteParams:
-    neighbour_spacings: float
     match_dissimilarity_ratio: float
-    links: str  # "lattice" | "motions" | "auto"
-    motion_neighbours: int
-    motion_residual_ratio: float
-    motion_parallax_ratio: float
-    motion_disagreement_deg: float
+
+class LinkParams:
+    grid_agreement_ratio: float
+    grid_direction_deg: float
+    revisit_run: int
+    revisit_ratio: float
+    revisit_disagreement_deg: float
+    revisits_per_place: int
+    odometry_drift: float
+
+class BeliefParams:
+    view_scale: float
+    direction_sigma_deg: float
+    uniform_share: float
+    confident_share: float
 
 class NavigatorParams:
     step_m: float
     max_steps: int
-    goal_similarity: float
-    goal_confirmations: int
-    unstick_turn_deg: float
-    look_ahead_links: int
-    look_ahead_tolerance_spacings: float
-    sidesteps: int
-    sidestep_deg: float
-    loop_entries: int
     home_on_goal_image: bool
     homing_step_m: float
     homing_stop_m: float
     homing_step_spacings: float
     homing_stop_spacings: float
     homing_max_steps: int
-    stall_spacings: float
-    stall_other_links: bool
 
 class NavigationConfig:
     def __init__(self) -> None: ...
     @staticmethod
     def load(config_dir: Optional[PathArg] = None) -> NavigationConfig: ...
     route: RouteParams
+    links: LinkParams
+    belief: BeliefParams
     navigator: NavigatorParams
 
 # Reading sequences.
@@ -387,10 +388,8 @@ class GoalRun:
     jumps: int
     sidesteps: int
     replans: int
-    loops: int
     homing_steps: int
-    stalls: int
-    link_switches: int
+    lost_events: int
 
 class Localiser:
     def __init__(self, map: Map, config: Optional[MemoryConfig] = None,

@@ -189,45 +189,41 @@ void bind_memory_config(py::module_& m) {
 void bind_navigation_config(py::module_& m) {
   using navigation::RouteParams;
   py::class_<RouteParams>(m, "RouteParams", "navigation.yaml's route section.")
-      .def_readwrite("neighbour_spacings", &RouteParams::neighbour_spacings)
-      .def_readwrite("match_dissimilarity_ratio", &RouteParams::match_dissimilarity_ratio)
-      .def_property(
-          "links", [](const RouteParams& p) { return navigation::to_string(p.links); },
-          [](RouteParams& p, const std::string& links) {
-            p.links = navigation::route_links_from_string(links);
-          },
-          "lattice, motions or auto: what plans run over.")
-      .def_readwrite("motion_neighbours", &RouteParams::motion_neighbours)
-      .def_readwrite("motion_residual_ratio", &RouteParams::motion_residual_ratio)
-      .def_readwrite("motion_parallax_ratio", &RouteParams::motion_parallax_ratio)
-      .def_readwrite("motion_disagreement_deg", &RouteParams::motion_disagreement_deg);
+      .def_readwrite("match_dissimilarity_ratio", &RouteParams::match_dissimilarity_ratio);
+
+  using navigation::LinkParams;
+  py::class_<LinkParams>(m, "LinkParams", "navigation.yaml's links section (confirmed links).")
+      .def_readwrite("grid_agreement_ratio", &LinkParams::grid_agreement_ratio)
+      .def_readwrite("grid_direction_deg", &LinkParams::grid_direction_deg)
+      .def_readwrite("revisit_run", &LinkParams::revisit_run)
+      .def_readwrite("revisit_ratio", &LinkParams::revisit_ratio)
+      .def_readwrite("revisit_disagreement_deg", &LinkParams::revisit_disagreement_deg)
+      .def_readwrite("revisits_per_place", &LinkParams::revisits_per_place)
+      .def_readwrite("odometry_drift", &LinkParams::odometry_drift);
+
+  using navigation::BeliefParams;
+  py::class_<BeliefParams>(m, "BeliefParams", "navigation.yaml's belief section.")
+      .def_readwrite("view_scale", &BeliefParams::view_scale)
+      .def_readwrite("direction_sigma_deg", &BeliefParams::direction_sigma_deg)
+      .def_readwrite("uniform_share", &BeliefParams::uniform_share)
+      .def_readwrite("confident_share", &BeliefParams::confident_share);
 
   using navigation::NavigatorParams;
   py::class_<NavigatorParams>(m, "NavigatorParams", "navigation.yaml's navigator section.")
       .def_readwrite("step_m", &NavigatorParams::step_m)
       .def_readwrite("max_steps", &NavigatorParams::max_steps)
-      .def_readwrite("goal_similarity", &NavigatorParams::goal_similarity)
-      .def_readwrite("goal_confirmations", &NavigatorParams::goal_confirmations)
-      .def_readwrite("unstick_turn_deg", &NavigatorParams::unstick_turn_deg)
-      .def_readwrite("look_ahead_links", &NavigatorParams::look_ahead_links)
-      .def_readwrite("look_ahead_tolerance_spacings",
-                     &NavigatorParams::look_ahead_tolerance_spacings)
-      .def_readwrite("sidesteps", &NavigatorParams::sidesteps)
-      .def_readwrite("sidestep_deg", &NavigatorParams::sidestep_deg)
-      .def_readwrite("loop_entries", &NavigatorParams::loop_entries)
       .def_readwrite("home_on_goal_image", &NavigatorParams::home_on_goal_image)
       .def_readwrite("homing_step_m", &NavigatorParams::homing_step_m)
       .def_readwrite("homing_stop_m", &NavigatorParams::homing_stop_m)
       .def_readwrite("homing_step_spacings", &NavigatorParams::homing_step_spacings)
       .def_readwrite("homing_stop_spacings", &NavigatorParams::homing_stop_spacings)
-      .def_readwrite("homing_max_steps", &NavigatorParams::homing_max_steps)
-      .def_readwrite("stall_spacings", &NavigatorParams::stall_spacings)
-      .def_readwrite("stall_other_links", &NavigatorParams::stall_other_links);
+      .def_readwrite("homing_max_steps", &NavigatorParams::homing_max_steps);
 
   using evaluation::NavigationConfig;
   py::class_<NavigationConfig>(
       m, "NavigationConfig",
-      "config/navigation.yaml's route and navigator sections, read as `omninav route` and "
+      "config/navigation.yaml's route, links, belief and navigator sections, read as `omninav "
+      "route` and "
       "`omninav navigate` read them (its robot and trials sections are the simulator's).")
       .def(py::init<>())
       .def_static(
@@ -238,6 +234,8 @@ void bind_navigation_config(py::module_& m) {
           py::arg("config_dir") = py::none(),
           "Reads <config_dir>/navigation.yaml. Raises ConfigError naming the file and key.")
       .def_readwrite("route", &NavigationConfig::route)
+      .def_readwrite("links", &NavigationConfig::links)
+      .def_readwrite("belief", &NavigationConfig::belief)
       .def_readwrite("navigator", &NavigationConfig::navigator);
 }
 

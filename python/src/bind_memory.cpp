@@ -343,13 +343,13 @@ void bind_memory(py::module_& m) {
           [](const Map& map, int goal, std::optional<evaluation::NavigationConfig> config,
              std::optional<fs::path> config_dir) {
             const Busy busy(&map, "this Map");
-            const navigation::RouteParams params = navigation_config(config, config_dir).route;
+            const navigation::LinkParams params = navigation_config(config, config_dir).links;
             return navigation::plan_route(map.memory, navigation::places_from_memory(map.memory),
                                           params, goal);
           },
           py::arg("goal"), py::arg("config") = py::none(), py::arg("config_dir") = py::none(),
-          "Directions from every place to place `goal`, over the links route.links chooses: the "
-          "lattice's neighbours (needs organise()) or the motions measured between places.")
+          "Directions from every place to place `goal`, over the map's confirmed links "
+          "(travelled, grid neighbours, revisits; navigation.yaml's links section).")
       .def("__len__",
            [](const Map& map) {
              const Busy busy(&map, "this Map");

@@ -67,8 +67,8 @@ void bind_navigation(py::module_& m, py::class_<Map>& map) {
   using navigation::GoalRun;
   py::class_<GoalRun>(m, "GoalRun",
                       "A navigation to a goal image: the goal's place, the route plan, and the "
-                      "run (reached, steps, path_length_m, jumps, sidesteps, replans, loops, "
-                      "homing_steps, stalls, link_switches).")
+                      "run (reached, steps, path_length_m, jumps, sidesteps, replans, "
+                      "homing_steps, lost_events).")
       .def_readonly("goal", &GoalRun::goal)
       .def_readonly("plan", &GoalRun::plan)
       .def_property_readonly("reached", [](const GoalRun& r) { return r.result.reached; })
@@ -78,11 +78,8 @@ void bind_navigation(py::module_& m, py::class_<Map>& map) {
       .def_property_readonly("jumps", [](const GoalRun& r) { return r.result.jumps; })
       .def_property_readonly("sidesteps", [](const GoalRun& r) { return r.result.sidesteps; })
       .def_property_readonly("replans", [](const GoalRun& r) { return r.result.replans; })
-      .def_property_readonly("loops", [](const GoalRun& r) { return r.result.loops; })
       .def_property_readonly("homing_steps", [](const GoalRun& r) { return r.result.homing_steps; })
-      .def_property_readonly("stalls", [](const GoalRun& r) { return r.result.stalls; })
-      .def_property_readonly("link_switches",
-                             [](const GoalRun& r) { return r.result.link_switches; });
+      .def_property_readonly("lost_events", [](const GoalRun& r) { return r.result.lost_events; });
 
   map.def(
       "navigate_to_image",
@@ -103,7 +100,7 @@ void bind_navigation(py::module_& m, py::class_<Map>& map) {
         signature::SignatureExtractor extractor(memory.parameters().signature);
         const navigation::GoalNavigationSetup setup = navigation::goal_navigation_setup(
             memory, navigation::memory_localiser(localiser, extractor), navigation.route,
-            navigation.navigator);
+            navigation.navigator, navigation.links, navigation.belief);
         return navigation::navigate_to_image(body, goal, "goal image", setup);
       },
       py::arg("robot"), py::arg("goal_image"), py::arg("config") = py::none(),

@@ -27,11 +27,8 @@ std::vector<TrialOutcome> two_trials() {
   first.result.path_length_m = 3.0;
   first.result.jumps = 1;
   first.result.homing_steps = 2;
-  first.result.lost_events = 2;  // lost twice, found again once, then gave up
-  first.result.recoveries = 1;
-  first.result.gave_up = true;
-  first.result.stalls = 3;  // stalled three times, two of which switched the link set
-  first.result.link_switches = 2;
+  first.result.lost_events = 2;  // the belief spread twice
+  first.result.replans = 3;      // links dropped three times
   first.outside_m = 0.5;
   first.end_outside_m = 0.25;
   first.step_outside_m = {0.5, 0.0};
@@ -57,15 +54,15 @@ TEST(TrialsOutput, OneRowPerTrial) {
   write_trials_csv(csv, two_trials());
   const auto rows = csv_text_rows(csv.str());
   ASSERT_EQ(rows.size(), 3u);
-  ASSERT_EQ(rows[0].size(), 27u);
+  ASSERT_EQ(rows[0].size(), 22u);
   EXPECT_EQ(rows[0][13], "path_ratio");
-  EXPECT_EQ(std::vector<std::string>(rows[0].begin() + 20, rows[0].end()),
-            (std::vector<std::string>{"lost_events", "recoveries", "gave_up", "outside_m",
-                                      "end_outside_m", "stalls", "link_switches"}));
+  EXPECT_EQ(std::vector<std::string>(rows[0].begin() + 15, rows[0].end()),
+            (std::vector<std::string>{"jumps", "sidesteps", "replans", "homing_steps",
+                                      "lost_events", "outside_m", "end_outside_m"}));
   EXPECT_EQ(rows[1],
-            (std::vector<std::string>{"0", "1",     "2", "90", "3",   "2",   "-90",  "6", "1",
-                                      "1", "0.125", "3", "2",  "1.5", "2",   "1",    "0", "0",
-                                      "0", "2",     "2", "1",  "1",   "0.5", "0.25", "3", "2"}));
+            (std::vector<std::string>{"0", "1", "2", "90", "3", "2", "-90", "6", "1", "1", "0.125",
+                                      "3", "2", "1.5", "2", "1", "0", "3", "2", "2", "0.5",
+                                      "0.25"}));
   EXPECT_EQ(rows[2][7], "-1");
   EXPECT_EQ(rows[2][9], "0");
   EXPECT_EQ(rows[2][14], "0");
@@ -80,10 +77,10 @@ TEST(TrialsOutput, StepsCarryTheTrialAndTheWorldHeadingError) {
             (std::vector<std::string>{
                 "trial", "step", "x_m", "y_m", "heading_deg", "place", "similarity",
                 "dissimilarity_per_value", "heading_estimate_deg", "heading_error_deg", "turn_deg",
-                "jump", "recognised", "phase", "lost", "stalled", "outside_m"}));
+                "jump", "recognised", "phase", "lost", "outside_m"}));
   // 45° + 30° against a true 90°: -15°; half a metre outside the mapped area.
   EXPECT_EQ(rows[1], (std::vector<std::string>{"0", "0", "1", "2", "90", "-1", "0", "0", "45",
-                                               "-15", "-90", "0", "0", "route", "0", "0", "0.5"}));
+                                               "-15", "-90", "0", "0", "route", "0", "0.5"}));
   EXPECT_EQ(rows[2][5], "6");
   EXPECT_EQ(rows[2][6], "900");
   EXPECT_EQ(rows[2][7], "1.5");

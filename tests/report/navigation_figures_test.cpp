@@ -40,11 +40,11 @@ ColourPixels pixels_of(const cv::Mat& panel, const cv::Scalar& colour) {
 TEST(NavigationFigures, RoutePictureDrawsTheRouteOnTheLatticeAndOverTheTruth) {
   std::vector<navigation::PlaceNode> places;
   std::vector<Eigen::Vector2d> truth;
-  std::vector<navigation::Edge> chain;
+  std::vector<navigation::MeasuredLink> chain;
   for (int x = 0; x < 6; ++x) {
     places.push_back({Eigen::Vector2d(x, 0.0), 0.0});
     truth.emplace_back(-x, 0.0);
-    if (x > 0 && x < 5) chain.emplace_back(x - 1, x);
+    if (x > 0 && x < 5) chain.push_back({{x - 1, x}, 1.0, 0.0, M_PI});
   }
   const navigation::RoutePlan plan = navigation::plan_to_goal(places, chain, 4);
   const cv::Mat lattice_only = route_figure(places, plan, 0, std::nullopt);

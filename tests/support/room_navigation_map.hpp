@@ -72,6 +72,8 @@ inline RoomMap* build_room_map() {
       map->grid.push_back({frame.image, *frame.truth});
     }
   }
+  // A grid database states its spacing: the navigator links grid neighbours by it.
+  map->memory.set_grid_spacing_m(kRoomGridSpacing_m);
   // Lattice from the truth, in the lattice frame: origin at the first place, its heading +x.
   set_truth_lattice(map->memory);
   map->places = navigation::places_from_memory(map->memory);
@@ -94,16 +96,9 @@ class RoomNavigation : public ::testing::Test {
   }
   // Navigation to goal images on the map with the default settings.
   static navigation::GoalNavigationSetup setup() {
-    return {map().places,
-            map().localise,
-            limit(),
-            homing(),
-            navigation::RouteParams{},
-            navigation::NavigatorParams{},
-            navigation::recognition_limit(map().memory, navigation::NavigatorParams{}),
-            {},
-            navigation::place_recognition_limits(map().memory, navigation::NavigatorParams{}),
-            {}};
+    return navigation::goal_navigation_setup(map().memory, map().localise, navigation::RouteParams{},
+                                             navigation::NavigatorParams{},
+                                             navigation::LinkParams{}, navigation::BeliefParams{});
   }
   // The place nearest to (x, y) by truth.
   static int nearest_place(double x_m, double y_m) {

@@ -63,6 +63,8 @@ NavigationConfig load_navigation_config(const std::filesystem::path& config_dir)
   const ConfigReader config = ConfigReader::from_file(config_dir / "navigation.yaml");
   NavigationConfig navigation;
   navigation::load_route_params(config.section("route"), navigation.route);
+  navigation::load_link_params(config.section("links"), navigation.links);
+  navigation::load_belief_params(config.section("belief"), navigation.belief);
   navigation::load_navigator_params(config.section("navigator"), navigation.navigator);
   sim::load_robot_params(config.section("robot"), navigation.robot);
   load_trial_params(config.section("trials"), navigation.trials);

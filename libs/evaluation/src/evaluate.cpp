@@ -455,7 +455,7 @@ class WorldRun {
     signature::SignatureExtractor extractor(memory.parameters().signature);
     const navigation::GoalNavigationSetup setup = navigation::goal_navigation_setup(
         memory, navigation::memory_localiser(localiser, extractor), config_.navigation.route,
-        config_.navigation.navigator);
+        config_.navigation.navigator, config_.navigation.links, config_.navigation.belief);
     // As navigate: the robot's camera makes panoramas of the size the map was built from.
     sim::RenderParams render = worlds_.render;
     render.geometry.width_px = memory.place(0).signature.width_px;

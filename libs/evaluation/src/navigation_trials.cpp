@@ -152,7 +152,6 @@ TrialSummary summarise(const std::vector<TrialOutcome>& outcomes) {
   double steps = 0.0;
   for (const TrialOutcome& outcome : outcomes) {
     summary.lost += outcome.result.lost_events > 0 ? 1 : 0;
-    summary.gave_up += outcome.result.gave_up ? 1 : 0;
     summary.outside_m = std::max(summary.outside_m, outcome.outside_m);
     if (!outcome.reached) continue;
     ++summary.reached;
@@ -172,8 +171,8 @@ std::string TrialSummary::text() const {
   return "reached " + std::to_string(reached) + " of " + std::to_string(trials) + " goals (" +
          fixed(100.0 * reached_share, 1) + "%); path / straight line over those reached: mean " +
          fixed(mean_path_ratio, 2) + ", median " + fixed(median_path_ratio, 2) + "; mean " +
-         fixed(mean_steps, 1) + " steps; lost in " + std::to_string(lost) + " trials (" +
-         std::to_string(gave_up) + " gave up); at most " + fixed(outside_m, 2) +
+         fixed(mean_steps, 1) + " steps; the belief spread (lost) in " + std::to_string(lost) +
+         " trials; at most " + fixed(outside_m, 2) +
          " m outside the mapped area";
 }
 

@@ -10,8 +10,7 @@ namespace omninav::evaluation {
 void write_trials_csv(std::ostream& out, const std::vector<TrialOutcome>& outcomes) {
   out << "trial,start_x_m,start_y_m,start_heading_deg,goal_x_m,goal_y_m,goal_heading_deg,"
          "goal_place,stopped_at_goal,reached,final_error_m,path_m,straight_m,path_ratio,steps,"
-         "jumps,sidesteps,replans,loops,homing_steps,lost_events,recoveries,gave_up,outside_m,"
-         "end_outside_m,stalls,link_switches\n";
+         "jumps,sidesteps,replans,homing_steps,lost_events,outside_m,end_outside_m\n";
   for (std::size_t i = 0; i < outcomes.size(); ++i) {
     const TrialOutcome& o = outcomes[i];
     const navigation::NavigationResult& r = o.result;
@@ -33,15 +32,10 @@ void write_trials_csv(std::ostream& out, const std::vector<TrialOutcome>& outcom
                          std::to_string(r.jumps),
                          std::to_string(r.sidesteps),
                          std::to_string(r.replans),
-                         std::to_string(r.loops),
                          std::to_string(r.homing_steps),
                          std::to_string(r.lost_events),
-                         std::to_string(r.recoveries),
-                         r.gave_up ? "1" : "0",
                          general(o.outside_m),
-                         general(o.end_outside_m),
-                         std::to_string(r.stalls),
-                         std::to_string(r.link_switches)});
+                         general(o.end_outside_m)});
   }
 }
 

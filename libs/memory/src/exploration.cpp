@@ -151,6 +151,7 @@ const Run& Explorer::run() const {
 
 std::optional<PlaceIndex> Explorer::add(const io::Frame& frame) {
   if (frame.truth) check_pose(*frame.truth, frame.source);  // every source's, before any use
+  if (frame.odometry) check_pose(*frame.odometry, frame.source);
   const signature::Signature signature = extractor_.compute(frame.image, frame.source);
   track_heading(frame, signature);
   if (plateau_) plateau_->add(signature);
@@ -190,6 +191,7 @@ std::optional<PlaceIndex> Explorer::add(const io::Frame& frame) {
 
 PlaceIndex Explorer::add_place(const io::Frame& frame) {
   if (frame.truth) check_pose(*frame.truth, frame.source);
+  if (frame.odometry) check_pose(*frame.odometry, frame.source);
   const signature::Signature signature = extractor_.compute(frame.image, frame.source);
   track_heading(frame, signature);
   ++frames_;
@@ -289,6 +291,7 @@ PlaceIndex Explorer::make_place(const io::Frame& frame, const signature::Signatu
   place.run = run().id;
   place.time_s = frame.time_s;
   place.truth = frame.truth;
+  if (params_.odometry) place.odometry = frame.odometry;
   if (heading_source_ == HeadingSource::kTruth && !frame.truth) {
     throw UsageError(frame.source + ": headings come from the input's poses (heading_source " +
                      to_string(params_.heading_source) + ") but this frame has none");

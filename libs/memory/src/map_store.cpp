@@ -57,7 +57,7 @@ std::vector<float> floats_from_le_bytes(const void* data, std::size_t bytes) {
 
 namespace {
 
-// Schema version 2 (kMapSchemaVersion). maps/README.md documents every table and column; keep
+// Schema version 3 (kMapSchemaVersion). maps/README.md documents every table and column; keep
 // the two in step.
 constexpr const char* kSchema = R"sql(
 CREATE TABLE schema_version (
@@ -101,6 +101,12 @@ CREATE TABLE place_truth (
   heading_rad REAL NOT NULL,
   pitch_rad REAL NOT NULL,
   roll_rad REAL NOT NULL
+);
+CREATE TABLE place_odometry (
+  place_id INTEGER PRIMARY KEY REFERENCES places(id),
+  x_m REAL NOT NULL,
+  y_m REAL NOT NULL,
+  heading_rad REAL NOT NULL
 );
 CREATE TABLE edges (
   id INTEGER PRIMARY KEY,
@@ -241,6 +247,8 @@ void insert_places(Database& db, const VisualMemory& memory, std::size_t first,
   Statement truth = db.prepare(
       "INSERT INTO place_truth (place_id, x_m, y_m, z_m, heading_rad, pitch_rad, roll_rad) "
       "VALUES (?, ?, ?, ?, ?, ?, ?)");
+  Statement odometry = db.prepare(
+      "INSERT INTO place_odometry (place_id, x_m, y_m, heading_rad) VALUES (?, ?, ?, ?)");
   for (std::size_t i = first; i < memory.place_count(); ++i) {
     const Place& p = memory.place(i);
     const auto magnitude = floats_to_le_bytes(p.signature.magnitude);
@@ -284,6 +292,20 @@ void insert_places(Database& db, const VisualMemory& memory, std::size_t first,
           .bind(5, p.truth->heading_rad)
           .bind(6, p.truth->pitch_rad)
           .bind(7, p.truth->roll_rad)
+          .run();
+    }
+    if (p.odometry) {
+      for (const double value : {p.odometry->x_m, p.odometry->y_m, p.odometry->heading_rad}) {
+        if (!std::isfinite(value)) {
+          throw InputError(db.file().string() + ": cannot write the map (place " +
+                           std::to_string(i) + ", " + p.source + ", has odometry that is " +
+                           "not finite)");
+        }
+      }
+      odometry.bind(1, id)
+          .bind(2, p.odometry->x_m)
+          .bind(3, p.odometry->y_m)
+          .bind(4, p.odometry->heading_rad)
           .run();
     }
     if (options.after_place) options.after_place(i + 1 - first);
@@ -501,8 +523,12 @@ void append(const VisualMemory& memory, const std::filesystem::path& file,
     write_parameters(db, memory);
     // Version 1 to 2: the old edges become what load_map reads them as, and the new edges may
     // be of a kind a version-1 reader does not know.
-    if (version < 2) {
-      db.exec("UPDATE edges SET kind = 'listed'");
+    if (version < 2) db.exec("UPDATE edges SET kind = 'listed'");
+    // Version 2 to 3: the places' odometry, none for the places already there.
+    if (version < 3) {
+      db.exec(
+          "CREATE TABLE place_odometry (place_id INTEGER PRIMARY KEY REFERENCES places(id), "
+          "x_m REAL NOT NULL, y_m REAL NOT NULL, heading_rad REAL NOT NULL)");
       db.prepare("UPDATE schema_version SET version = ?, written_by = ?")
           .bind(1, kMapSchemaVersion)
           .bind(2, std::string(OMNINAV_VERSION_STRING))
@@ -757,6 +783,21 @@ void read_truth(Database& db, std::vector<Place>& places) {
   }
 }
 
+void read_odometry(Database& db, std::vector<Place>& places) {
+  const std::filesystem::path& file = db.file();
+  Statement rows = db.prepare("SELECT place_id, x_m, y_m, heading_rad FROM place_odometry");
+  while (rows.step()) {
+    const PlaceIndex place = place_of(rows.integer(0), places.size(), file, "place_odometry");
+    const std::string what = "place_odometry of place " + std::to_string(place);
+    places[place].odometry = CameraPose{position(rows.real(1), file, what + ": x_m"),
+                                        position(rows.real(2), file, what + ": y_m"),
+                                        0.0,
+                                        finite(rows.real(3), file, what + ": heading_rad"),
+                                        0.0,
+                                        0.0};
+  }
+}
+
 void read_lattice_positions(Database& db, std::vector<Place>& places) {
   const std::filesystem::path& file = db.file();
   Statement rows = db.prepare("SELECT place_id, x, y FROM lattice_positions");
@@ -823,6 +864,7 @@ VisualMemory MapStore::load() {
   for (Run& run : read_runs(db)) memory.add_run(std::move(run));
   std::vector<Place> places = read_places(db);
   read_truth(db, places);
+  if (version >= 3) read_odometry(db, places);
   read_lattice_positions(db, places);
   for (Place& place : places) {
     try {

@@ -9,24 +9,22 @@
 namespace omninav::navigation {
 
 MapHeadings::MapHeadings(const memory::VisualMemory& memory,
-                         const memory::LocalisationParams& localisation,
-                         const NavigatorParams& navigator)
+                         const memory::LocalisationParams& localisation)
     : localiser_(memory, localisation),
       extractor_(memory.parameters().signature),
-      limit_(recognition_limit(memory, navigator)),
-      place_limits_(place_recognition_limits(memory, navigator)) {}
+      limit_(recognition_limit(memory)) {}
 
 std::optional<MapHeading> MapHeadings::measure(const cv::Mat& panorama) {
   const memory::Localisation localisation = memory_localiser(localiser_, extractor_)(panorama);
   if (localisation.best.empty()) return std::nullopt;
   const memory::PlaceMatch& best = localisation.best.front();
-  if (!best.heading_rad || !is_recognised(best, limit_, place_limits_)) return std::nullopt;
+  if (!best.heading_rad || !(best.dissimilarity_per_value <= limit_)) return std::nullopt;
   MapHeading heading{best.place, *best.heading_rad, 0.0, best.dissimilarity_per_value};
   double squares = 0.0;
   int others = 0;
   for (std::size_t i = 1; i < localisation.best.size(); ++i) {
     const memory::PlaceMatch& other = localisation.best[i];
-    if (!other.heading_rad || !is_recognised(other, limit_, place_limits_)) continue;
+    if (!other.heading_rad || !(other.dissimilarity_per_value <= limit_)) continue;
     const double difference = signed_difference(*other.heading_rad, heading.heading_rad);
     squares += difference * difference;
     ++others;

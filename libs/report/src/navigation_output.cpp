@@ -12,7 +12,7 @@ namespace omninav::report {
 void write_navigation_steps_header(std::ostream& out, bool with_trial, bool with_outside) {
   out << (with_trial ? "trial," : "")
       << "step,x_m,y_m,heading_deg,place,similarity,dissimilarity_per_value,heading_estimate_deg,"
-         "heading_error_deg,turn_deg,jump,recognised,phase,lost,stalled"
+         "heading_error_deg,turn_deg,jump,recognised,phase,lost"
       << (with_outside ? ",outside_m" : "") << "\n";
 }
 
@@ -34,7 +34,7 @@ void write_navigation_steps(std::ostream& out, const navigation::NavigationResul
          general(rad_to_deg(signed_difference(step.heading_estimate_rad + lattice_to_world_rad,
                                               step.truth.heading_rad))),
          general(rad_to_deg(step.turn_rad)), step.jump ? "1" : "0", step.recognised ? "1" : "0",
-         navigation::phase_name(step.phase), step.lost ? "1" : "0", step.stalled ? "1" : "0"});
+         navigation::phase_name(step.phase), step.lost ? "1" : "0"});
     if (!outside_m.empty()) row.push_back(general(outside_m.at(i)));
     write_csv_line(out, row);
   }

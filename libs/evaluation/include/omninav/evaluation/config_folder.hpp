@@ -10,7 +10,9 @@
 #include "omninav/evaluation/navigation_trials.hpp"
 #include "omninav/lattice/organise.hpp"
 #include "omninav/memory/memory_config.hpp"
+#include "omninav/navigation/confirmed_links.hpp"
 #include "omninav/navigation/navigator.hpp"
+#include "omninav/navigation/place_belief.hpp"
 #include "omninav/omni/unwrap.hpp"
 #include "omninav/sim/virtual_robot.hpp"
 #include "omninav/sim/world_loader.hpp"
@@ -49,12 +51,14 @@ lattice::OrganiseParams load_lattice_config(const std::filesystem::path& config_
 
 struct NavigationConfig {
   navigation::RouteParams route;
+  navigation::LinkParams links;
+  navigation::BeliefParams belief;
   navigation::NavigatorParams navigator;
   sim::RobotParams robot;
   TrialParams trials;
 };
 
-// <config_dir>/navigation.yaml: sections route, navigator, robot and trials.
+// <config_dir>/navigation.yaml: sections route, links, belief, navigator, robot and trials.
 NavigationConfig load_navigation_config(const std::filesystem::path& config_dir);
 
 }  // namespace omninav::evaluation

@@ -116,11 +116,10 @@ struct TrialSummary {
   double median_path_ratio = 0.0;  // the same, median
   double mean_steps = 0.0;         // over reached trials
   int lost = 0;                    // trials whose robot found itself lost at least once
-  int gave_up = 0;                 // ... and went back and stopped
   double outside_m = 0.0;          // the farthest any robot stood outside the mapped area
 
-  // "reached 96 of 100 goals (96.0%); path / straight line: mean 1.31, median 1.22; ...; lost
-  // in 3 trials (1 gave up); at most 0.12 m outside the mapped area".
+  // "reached 96 of 100 goals (96.0%); path / straight line: mean 1.31, median 1.22; ...; the
+  // belief spread (lost) in 3 trials; at most 0.12 m outside the mapped area".
   std::string text() const;
 };
 

@@ -11,10 +11,9 @@ namespace omninav::evaluation {
 
 // trials.csv: trial, start_x_m, start_y_m, start_heading_deg, goal_x_m, goal_y_m,
 // goal_heading_deg, goal_place, stopped_at_goal, reached, final_error_m, path_m, straight_m,
-// path_ratio, steps, jumps, sidesteps, replans, loops, homing_steps, lost_events, recoveries,
-// gave_up, outside_m (the farthest the robot stood outside the mapped area), end_outside_m
-// (where it stopped), stalls (times it got no nearer the goal for too long) and link_switches
-// (... that switched it to the plan over the other link set; navigation::NavigatorParams).
+// path_ratio, steps, jumps, sidesteps, replans, homing_steps, lost_events (times the belief
+// spread), outside_m (the farthest the robot stood outside the mapped area) and end_outside_m
+// (where it stopped); navigation::NavigationResult.
 void write_trials_csv(std::ostream& out, const std::vector<TrialOutcome>& outcomes);
 
 // steps.csv of the trials: report::write_navigation_steps's columns after the trial's index,

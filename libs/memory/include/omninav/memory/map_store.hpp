@@ -35,7 +35,7 @@ namespace omninav::memory {
 // The schema this build writes and the newest it reads (maps/README.md). Version 2 added the edge
 // kind `listed`; a version 1 map's edges, all called `sequence` then, read as `listed`, and
 // exploring into one rewrites them so and marks it version 2.
-inline constexpr int kMapSchemaVersion = 2;
+inline constexpr int kMapSchemaVersion = 3;
 // SQLite's application_id of every omninav map: "OMNV" in ASCII.
 inline constexpr int kMapApplicationId = 0x4F4D4E56;
 

@@ -36,6 +36,9 @@ struct Place {
   int run = 0;                              // the exploration run that added it (Run::id)
   std::optional<double> time_s;             // capture time, when the input knows it
   std::optional<CameraPose> truth;          // ground truth: for evaluation only, never used to map
+  // Where the robot's own odometry put it (explore --odometry), in the odometry's frame: x, y
+  // and heading (z, pitch and roll 0). Navigation measures the travelled links with it.
+  std::optional<CameraPose> odometry;
   // Where the lattice (spring model, §3.2-3.4, libs/lattice) put the place: metres, in the
   // lattice's frame (place 0 at the origin, its heading along +x).
   std::optional<Eigen::Vector2d> lattice_position;

@@ -1,41 +1,53 @@
 #pragma once
 // Navigating to a goal image: the goal image matched to a place, the route planned to it over
-// the lattice, the robot driven there and homing on the goal image at the end. The same for a
-// robot in a rendered world, on a grid of stored images or in an evaluation's trials.
+// the confirmed links, the robot driven there by the belief over places and homing on the goal
+// image at the end. The same for a robot in a rendered world, on a grid of stored images or in
+// an evaluation's trials.
 
+#include <functional>
 #include <limits>
 #include <opencv2/core.hpp>
 #include <string>
 #include <vector>
 
+#include "omninav/navigation/confirmed_links.hpp"
 #include "omninav/navigation/homing.hpp"
 #include "omninav/navigation/navigator.hpp"
+#include "omninav/navigation/place_belief.hpp"
 #include "omninav/navigation/route_planner.hpp"
+#include "omninav/signature/dissimilarity.hpp"
+#include "omninav/signature/signature.hpp"
 
 namespace omninav::navigation {
 
+// How the goal image is localised: the memory's hierarchical localisation of the panorama
+// (memory_localiser, memory_places.hpp) or a stand-in.
+using PanoramaLocaliser = std::function<memory::Localisation(const cv::Mat& panorama)>;
+
 // What navigating to a goal image needs besides the world and the goal, the same for every goal
-// on one map (memory_places.hpp makes each from the map).
+// on one map (memory_places.hpp, goal_navigation_setup, makes each from the map).
 struct GoalNavigationSetup {
-  std::vector<PlaceNode> places;  // places_from_memory
-  PanoramaLocaliser localise;     // memory_localiser, or a stand-in
+  std::vector<PlaceNode> places;  // places_from_memory: each place's heading
+  PanoramaLocaliser localise;     // matches the goal image (memory_localiser)
   // The goal image must match a place within this mean dissimilarity per value (match_limit).
   double match_limit = std::numeric_limits<double>::infinity();
   HomingScale homing;  // homing_scale
-  RouteParams route;
   NavigatorParams navigator;
-  // The robot's views must match a place within this, or it finds itself lost
-  // (recognition_limit, NavigatorParams::lost_views).
-  double recognition_limit = std::numeric_limits<double>::infinity();
-  // The links plans run over (motion_links) when they do not rest on the lattice; empty: the
-  // lattice neighbours (RouteParams::links).
-  std::vector<MeasuredLink> links;
-  // Each place's own limit instead (place_recognition_limits); empty: recognition_limit.
-  std::vector<double> place_recognition_limits;
-  // The motions when plans run over the lattice, for a stalled robot to switch to
-  // (NavigatorParams::stall_other_links; plan_over_other_links); empty: none.
-  std::vector<MeasuredLink> other_links;
+  std::vector<MeasuredLink> links;  // confirmed_links: what the plan and the belief run over
+  // Every place's signature, how a view's is made and how the two are compared (Eq. 6's
+  // weights), and τ's unit: the median dissimilarity per value over the links.
+  std::vector<signature::Signature> signatures;
+  signature::ComponentWeights weights;
+  std::function<signature::Signature(const cv::Mat&)> signature_of;
+  double link_dissimilarity = 1.0;
+  BeliefParams belief;
 };
+
+// Drives `world`'s robot to place `goal` (navigator.hpp), then homes on the goal image with
+// `homing` (none: stops on reaching the goal's place). Throws UsageError for a goal that names
+// no place or a setup without places.
+NavigationResult navigate(NavigationWorld& world, const GoalNavigationSetup& setup, int goal,
+                          const GoalHoming& homing = {});
 
 // One navigation: the goal image's place, the plan to it and the run.
 struct GoalRun {
@@ -45,7 +57,7 @@ struct GoalRun {
 };
 
 // Matches `goal_image` (named `what` in messages) to a place (match_image with
-// setup.match_limit: InputError when it matches none), plans to it (plan_route) and drives
+// setup.match_limit: InputError when it matches none), plans to it over setup.links and drives
 // `world`'s robot there, homing on the goal image at the end.
 GoalRun navigate_to_image(NavigationWorld& world, const cv::Mat& goal_image,
                           const std::string& what, const GoalNavigationSetup& setup);

@@ -1,10 +1,9 @@
 #pragma once
-// The heading a view measures against a map: its best place recognised by the navigator's rule
-// (is_recognised, memory_places.hpp), and that place's heading plus the turn between the place's
-// signature and the view from the phases (memory::PlaceMatch::heading_rad, Eq. 1 of
-// 001_5bb151a4e28490b4.txt). What a visual compass re-aligns on: "only requiring infrequent
-// re-alignment, for example when re-localising in a topological map" (000_9e80abd5855643af.txt,
-// abstract).
+// The heading a view measures against a map: its best place, when recognised (recognition_limit,
+// memory_places.hpp), and that place's heading plus the turn between the place's signature and
+// the view from the phases (memory::PlaceMatch::heading_rad; Menegatti et al. 2004, Eq. 1). What
+// a visual compass re-aligns on: "only requiring infrequent re-alignment, for example when
+// re-localising in a topological map" (Labrosse 2006, abstract).
 
 #include <opencv2/core.hpp>
 #include <optional>
@@ -51,12 +50,10 @@ bool realigns(const MapHeading& reading, double heading_rad, double sigma_rad, b
 
 // The headings of views measured against `memory` (which must outlive it): each view localised
 // by memory::Localiser, its best place recognised when its dissimilarity per value is within
-// the navigator's limit (recognition_limit, or place_recognition_limits when
-// navigator.recognition_place_link_ratio > 0).
+// recognition_limit (memory_places.hpp).
 class MapHeadings {
  public:
-  MapHeadings(const memory::VisualMemory& memory, const memory::LocalisationParams& localisation,
-              const NavigatorParams& navigator);
+  MapHeadings(const memory::VisualMemory& memory, const memory::LocalisationParams& localisation);
 
   // None when the view's best place is not recognised or has no heading. Throws InputError for
   // a panorama of another height than the map's.
@@ -68,7 +65,6 @@ class MapHeadings {
   memory::Localiser localiser_;
   signature::SignatureExtractor extractor_;
   double limit_;
-  std::vector<double> place_limits_;
 };
 
 }  // namespace omninav::navigation

@@ -10,11 +10,10 @@
 
 namespace omninav::report {
 
-// The header: step, x_m, y_m, heading_deg (the true pose), place, similarity,
-// dissimilarity_per_value (the match; place -1 when none), heading_estimate_deg,
-// heading_error_deg, turn_deg, jump, recognised (within the map's match limit), phase (route,
-// homing, returning: navigation::phase_name), lost (the robot found itself lost there), stalled
-// (it got no nearer the goal for too long: NavigatorParams::stall_spacings); after a
+// The header: step, x_m, y_m, heading_deg (the true pose), place (the place the robot acted
+// on), similarity (its probability in the belief × 1000), dissimilarity_per_value (of the view
+// to it), heading_estimate_deg, heading_error_deg, turn_deg, jump, recognised (the belief
+// confident), phase (route, homing: navigation::phase_name), lost (the belief spread); after a
 // first column `trial` when `with_trial`, and with a last column outside_m (how far the robot
 // stood outside the mapped area, from the evaluation's truth) when `with_outside`.
 void write_navigation_steps_header(std::ostream& out, bool with_trial, bool with_outside = false);

@@ -1,0 +1,69 @@
+#pragma once
+// The memory graph the plan and the belief run over: links between places that the map itself
+// confirms, never a pair that merely looks alike. Three kinds:
+//   - travelled: consecutive places of a stream (the robot drove from one to the next; a
+//     travelled link is never dropped). Its length is the distance the input's poses or odometry
+//     put between the two places when the exploration recorded it (explore --every-m), else the
+//     map's spacing; its direction is the direction of motion from the phases (Menegatti et al.
+//     2004, §3.4: signature/motion.hpp), fitted from both ends with the turn held at the
+//     headings' difference (the compass's).
+//   - grid: places of a grid database (whose images carry the database's own positions and
+//     headings, heading_source "truth") within one grid step of each other, 8-neighbourhood,
+//     whose images agree: a pair whose dissimilarity is far above the map's typical grid step
+//     stands either side of a wall or furniture, and is left out. Direction and length from
+//     the database's positions.
+//   - revisit: a place of a stream seen again later in the stream (a loop closure, a lane driven
+//     beside an earlier one), accepted only when a run of consecutive views matches a run of
+//     consecutive places (sequence matching, Milford & Wyeth 2012, SeqSLAM: forwards or
+//     backwards along the earlier stretch) about as well as consecutive places match each
+//     other, and the motion fitted between the two places agrees from both ends. Direction from
+//     that fit, length one spacing.
+
+#include <string>
+#include <vector>
+
+#include "omninav/memory/visual_memory.hpp"
+#include "omninav/navigation/route_planner.hpp"
+
+namespace omninav {
+class ConfigReader;
+}
+
+namespace omninav::navigation {
+
+struct LinkParams {
+  // A grid link is kept when its images' mean dissimilarity per value is at most this many
+  // times the median over the map's grid links: chosen across the zoo (navigation.yaml).
+  double grid_agreement_ratio = 2.0;
+  // ... and when the direction of motion the phases fit from either end lies within this many
+  // degrees of the database's.
+  double grid_direction_deg = 45.0;
+  // Sequence matching: views in a run (odd; the place and (run − 1) / 2 either side).
+  int revisit_run = 5;
+  // A revisit's run must match within this many times the median dissimilarity per value of the
+  // map's travelled links (places one spacing apart).
+  double revisit_ratio = 1.0;
+  // The two fits of a revisit's motion (from each end) must agree within this (degrees).
+  double revisit_disagreement_deg = 20.0;
+  // At most this many revisits per place (its best runs).
+  int revisits_per_place = 2;
+  // How far the odometry may drift, as a share of the distance travelled: a revisit's places
+  // must lie within 1.5 spacings plus that share of the way between them by their odometry
+  // (when both have it; Menegatti et al. 2004, §3.4, know the distance "within 10 %").
+  double odometry_drift = 0.02;
+};
+
+// Reads the `links:` section of navigation.yaml.
+void load_link_params(const ConfigReader& section, LinkParams& params);
+
+// The confirmed links of `memory`; `places` gives each place's heading (places_from_memory).
+// Logs how many of each kind. Empty for a map without any (one place, or an unordered input
+// without positions): the caller says so.
+std::vector<MeasuredLink> confirmed_links(const memory::VisualMemory& memory,
+                                          const std::vector<PlaceNode>& places,
+                                          const LinkParams& params);
+
+// "travelled", "grid", "revisit".
+std::string to_string(LinkKind kind);
+
+}  // namespace omninav::navigation

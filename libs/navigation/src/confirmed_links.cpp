@@ -1,0 +1,322 @@
+#include "omninav/navigation/confirmed_links.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <optional>
+#include <set>
+#include <utility>
+
+#include "omninav/core/angles.hpp"
+#include "omninav/core/config.hpp"
+#include "omninav/core/log.hpp"
+#include "omninav/core/statistics.hpp"
+#include "omninav/navigation/memory_places.hpp"
+#include "omninav/signature/dissimilarity.hpp"
+#include "two_way_fit.hpp"
+
+namespace omninav::navigation {
+
+void load_link_params(const ConfigReader& section, LinkParams& params) {
+  section.read("grid_agreement_ratio", params.grid_agreement_ratio, 1.0, 100.0);
+  section.read("grid_direction_deg", params.grid_direction_deg, 0.0, 180.0);
+  section.read("revisit_run", params.revisit_run, 3, 101);
+  if (params.revisit_run % 2 == 0) ++params.revisit_run;
+  section.read("revisit_ratio", params.revisit_ratio, 0.1, 100.0);
+  section.read("revisit_disagreement_deg", params.revisit_disagreement_deg, 0.0, 180.0);
+  section.read("revisits_per_place", params.revisits_per_place, 0, 100);
+  section.read("odometry_drift", params.odometry_drift, 0.0, 10.0);
+}
+
+std::string to_string(LinkKind kind) {
+  switch (kind) {
+    case LinkKind::kTravelled:
+      return "travelled";
+    case LinkKind::kGrid:
+      return "grid";
+    case LinkKind::kRevisit:
+      return "revisit";
+  }
+  return "?";
+}
+
+namespace {
+
+using Pair = std::pair<int, int>;
+
+// A step the odometry measures shorter than this is a turn on the spot: its direction is noise.
+constexpr double kLeastOdometryStepM = 0.01;
+
+Pair ordered(int a, int b) {
+  return {std::min(a, b), std::max(a, b)};
+}
+
+// Eq. 6 between two places, per compared value.
+double per_value(const memory::VisualMemory& memory, int a, int b) {
+  const signature::Signature& first = memory.place(a).signature;
+  return signature::dissimilarity(first, memory.place(b).signature, -1,
+                                  memory.parameters().weights) /
+         static_cast<double>(first.size());
+}
+
+// The link from a to b as the two places' odometry measures it (length, and the direction seen
+// from each end's front: the place's heading is the robot's); false when either place has no
+// odometry or the step is too short to have a direction.
+bool measure_by_odometry(const memory::VisualMemory& memory, MeasuredLink& link) {
+  const auto [a, b] = link.places;
+  const std::optional<CameraPose>& from = memory.place(a).odometry;
+  const std::optional<CameraPose>& to = memory.place(b).odometry;
+  if (!from || !to) return false;
+  const double dx = to->x_m - from->x_m, dy = to->y_m - from->y_m;
+  if (std::hypot(dx, dy) < kLeastOdometryStepM) return false;
+  const double direction = std::atan2(dy, dx);
+  link.length_m = std::hypot(dx, dy);
+  link.direction_at_first_rad = signed_difference(direction, from->heading_rad);
+  link.direction_at_second_rad = signed_difference(wrap_angle(direction + kPi), to->heading_rad);
+  return true;
+}
+
+// Consecutive places of a stream, the robot's own path: always links.
+std::vector<MeasuredLink> travelled_links(const memory::VisualMemory& memory,
+                                          const std::vector<PlaceNode>& places, double spacing_m) {
+  std::vector<MeasuredLink> links;
+  for (const memory::VisualMemory::EdgeRef& edge : memory.edges()) {
+    if (edge.edge->kind != memory::EdgeKind::kSequence) continue;
+    const int a = static_cast<int>(edge.from), b = static_cast<int>(edge.to);
+    MeasuredLink link;
+    link.places = {a, b};
+    link.kind = LinkKind::kTravelled;
+    link.length_m = spacing_m;
+    if (measure_by_odometry(memory, link)) {
+      // The odometry's step.
+    } else if (const std::optional<TwoWayFit> fit = fit_two_way(memory, places, a, b)) {
+      link.direction_at_first_rad = fit->direction_at_a_rad;
+      link.direction_at_second_rad = fit->direction_at_b_rad;
+    } else {
+      // No displacement the phases can see: the robot drove forwards, as streams mostly do.
+      const double turn = signed_difference(places[b].heading_rad, places[a].heading_rad);
+      link.direction_at_first_rad = 0.0;
+      link.direction_at_second_rad = wrap_angle(kPi - turn);
+    }
+    links.push_back(link);
+  }
+  return links;
+}
+
+// Places of a grid database: the database's positions say which are neighbours.
+std::vector<MeasuredLink> grid_links(const memory::VisualMemory& memory,
+                                     const std::vector<PlaceNode>& places,
+                                     const LinkParams& params) {
+  const std::optional<double> spacing = memory.grid_spacing_m();
+  if (!spacing) return {};
+  std::map<Pair, std::vector<int>> cells;
+  for (std::size_t i = 0; i < memory.place_count(); ++i) {
+    const memory::Place& place = memory.place(i);
+    if (place.heading_source != memory::HeadingSource::kTruth || !place.truth) continue;
+    cells[{static_cast<int>(std::floor(place.truth->x_m / *spacing)),
+           static_cast<int>(std::floor(place.truth->y_m / *spacing))}]
+        .push_back(static_cast<int>(i));
+  }
+  const auto position = [&](int i) {
+    const CameraPose& pose = *memory.place(i).truth;
+    return Eigen::Vector2d(pose.x_m, pose.y_m);
+  };
+  struct Candidate {
+    MeasuredLink link;
+    double dissimilarity;
+  };
+  const double direction_limit = deg_to_rad(params.grid_direction_deg);
+  std::vector<Candidate> candidates;
+  for (const auto& [cell, members] : cells) {
+    for (int a : members) {
+      for (int dx = -1; dx <= 1; ++dx) {
+        for (int dy = -1; dy <= 1; ++dy) {
+          const auto found = cells.find({cell.first + dx, cell.second + dy});
+          if (found == cells.end()) continue;
+          for (int b : found->second) {
+            if (b <= a) continue;
+            const Eigen::Vector2d step = position(b) - position(a);
+            // The 8-neighbourhood of a square grid: up to a diagonal step.
+            if (step.norm() > 1.5 * *spacing || step.norm() <= 0.0) continue;
+            const double direction = std::atan2(step.y(), step.x());
+            MeasuredLink link;
+            link.places = {a, b};
+            link.kind = LinkKind::kGrid;
+            link.length_m = step.norm();
+            link.direction_at_first_rad = signed_difference(direction, places[a].heading_rad);
+            link.direction_at_second_rad =
+                signed_difference(wrap_angle(direction + kPi), places[b].heading_rad);
+            // The phases must see the step the database states: across a wall or round
+            // furniture the two views are not one scene moved, and the fit points elsewhere.
+            const std::optional<TwoWayFit> fit = fit_two_way(memory, places, a, b);
+            if (!fit ||
+                std::abs(signed_difference(fit->direction_at_a_rad, link.direction_at_first_rad)) >
+                    direction_limit ||
+                std::abs(signed_difference(fit->direction_at_b_rad, link.direction_at_second_rad)) >
+                    direction_limit) {
+              continue;
+            }
+            candidates.push_back({link, per_value(memory, a, b)});
+          }
+        }
+      }
+    }
+  }
+  if (candidates.empty()) return {};
+  std::vector<double> dissimilarities;
+  for (const Candidate& candidate : candidates) dissimilarities.push_back(candidate.dissimilarity);
+  const double limit = params.grid_agreement_ratio * median(dissimilarities);
+  std::vector<MeasuredLink> links;
+  for (const Candidate& candidate : candidates) {
+    if (candidate.dissimilarity <= limit) links.push_back(candidate.link);
+  }
+  return links;
+}
+
+// The streams of the map: each a chain of places joined by travelled links, in order.
+std::vector<std::vector<int>> streams(const memory::VisualMemory& memory) {
+  const std::size_t count = memory.place_count();
+  std::vector<int> next(count, -1), previous(count, -1);
+  for (const memory::VisualMemory::EdgeRef& edge : memory.edges()) {
+    if (edge.edge->kind != memory::EdgeKind::kSequence) continue;
+    next[edge.from] = static_cast<int>(edge.to);
+    previous[edge.to] = static_cast<int>(edge.from);
+  }
+  std::vector<std::vector<int>> chains;
+  for (std::size_t i = 0; i < count; ++i) {
+    if (previous[i] >= 0 || next[i] < 0) continue;
+    std::vector<int> chain;
+    for (int place = static_cast<int>(i); place >= 0; place = next[place]) chain.push_back(place);
+    chains.push_back(std::move(chain));
+  }
+  return chains;
+}
+
+// Sequence matching over the streams: for each place with a full run of views round it, the
+// places whose runs (forwards or backwards) match it best.
+std::vector<MeasuredLink> revisit_links(const memory::VisualMemory& memory,
+                                        const std::vector<PlaceNode>& places,
+                                        const std::vector<MeasuredLink>& travelled,
+                                        double spacing_m, const LinkParams& params) {
+  if (params.revisits_per_place <= 0 || travelled.empty()) return {};
+  const std::vector<std::vector<int>> chains = streams(memory);
+  // Every place of a stream with its stream and position there.
+  struct At {
+    int chain;
+    int position;
+  };
+  std::vector<int> members;
+  std::vector<At> at;
+  for (std::size_t c = 0; c < chains.size(); ++c) {
+    for (std::size_t k = 0; k < chains[c].size(); ++k) {
+      members.push_back(chains[c][k]);
+      at.push_back({static_cast<int>(c), static_cast<int>(k)});
+    }
+  }
+  const std::size_t n = members.size();
+  // Every pair's dissimilarity per value, indexed by stream order (members).
+  std::vector<std::vector<float>> d(n, std::vector<float>(n, 0.0f));
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t j = i + 1; j < n; ++j) {
+      d[i][j] = d[j][i] = static_cast<float>(per_value(memory, members[i], members[j]));
+    }
+  }
+  std::vector<double> steps;
+  for (const MeasuredLink& link : travelled) {
+    steps.push_back(per_value(memory, link.places.first, link.places.second));
+  }
+  const double limit = params.revisit_ratio * median(steps);
+  const int half = params.revisit_run / 2;
+  // The index in `members` of stream c's place k: streams are stored one after the other.
+  std::vector<int> first_of(chains.size(), 0);
+  for (std::size_t c = 1; c < chains.size(); ++c) {
+    first_of[c] = first_of[c - 1] + static_cast<int>(chains[c - 1].size());
+  }
+  const auto full_run = [&](const At& where) {
+    return where.position - half >= 0 &&
+           where.position + half < static_cast<int>(chains[where.chain].size());
+  };
+  // The mean over the run of d between i's views and j's, j's stretch forwards (+1) or back (−1).
+  const auto run_score = [&](std::size_t i, std::size_t j, int direction) {
+    double sum = 0.0;
+    for (int t = -half; t <= half; ++t) sum += d[i + t][j + direction * t];
+    return sum / static_cast<double>(params.revisit_run);
+  };
+  // With odometry, two places of one stream can only be neighbours when the odometry puts them
+  // within a spacing and a half, give or take its drift over the way between them.
+  const auto odometry_allows = [&](std::size_t i, std::size_t j) {
+    const std::optional<CameraPose>& a = memory.place(members[i]).odometry;
+    const std::optional<CameraPose>& b = memory.place(members[j]).odometry;
+    if (!a || !b || at[i].chain != at[j].chain) return true;
+    const double between_m = spacing_m * std::abs(at[i].position - at[j].position);
+    return std::hypot(a->x_m - b->x_m, a->y_m - b->y_m) <=
+           1.5 * spacing_m + params.odometry_drift * between_m;
+  };
+  std::set<Pair> seen;
+  for (const MeasuredLink& link : travelled)
+    seen.insert(ordered(link.places.first, link.places.second));
+  const double disagreement_limit = deg_to_rad(params.revisit_disagreement_deg);
+  std::vector<MeasuredLink> links;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!full_run(at[i])) continue;
+    // The run's score against every other place with a full run, not within the same stretch.
+    std::vector<std::pair<double, std::size_t>> scores(
+        n, {std::numeric_limits<double>::infinity(), 0});
+    for (std::size_t j = 0; j < n; ++j) {
+      if (!full_run(at[j])) continue;
+      if (at[j].chain == at[i].chain && std::abs(at[j].position - at[i].position) <= 2 * half) {
+        continue;
+      }
+      if (!odometry_allows(i, j)) continue;
+      scores[j] = {std::min(run_score(i, j, 1), run_score(i, j, -1)), j};
+    }
+    // Local minima along the other stream that match within the limit, best first.
+    std::vector<std::pair<double, std::size_t>> found;
+    for (std::size_t j = 0; j < n; ++j) {
+      const double s = scores[j].first;
+      if (!(s <= limit)) continue;
+      const bool before = j > 0 && at[j - 1].chain == at[j].chain && scores[j - 1].first < s;
+      const bool after = j + 1 < n && at[j + 1].chain == at[j].chain && scores[j + 1].first < s;
+      if (!before && !after) found.push_back(scores[j]);
+    }
+    std::sort(found.begin(), found.end());
+    int kept = 0;
+    for (const auto& [score, j] : found) {
+      if (kept >= params.revisits_per_place) break;
+      const int a = members[i], b = members[j];
+      if (!seen.insert(ordered(a, b)).second) continue;
+      const std::optional<TwoWayFit> fit = fit_two_way(memory, places, a, b);
+      if (!fit || fit->disagreement_rad > disagreement_limit) continue;
+      MeasuredLink link;
+      link.places = {a, b};
+      link.kind = LinkKind::kRevisit;
+      link.length_m = spacing_m;
+      link.direction_at_first_rad = fit->direction_at_a_rad;
+      link.direction_at_second_rad = fit->direction_at_b_rad;
+      links.push_back(link);
+      ++kept;
+    }
+  }
+  return links;
+}
+
+}  // namespace
+
+std::vector<MeasuredLink> confirmed_links(const memory::VisualMemory& memory,
+                                          const std::vector<PlaceNode>& places,
+                                          const LinkParams& params) {
+  const double spacing_m = map_spacing(memory, places);
+  std::vector<MeasuredLink> links = travelled_links(memory, places, spacing_m);
+  const std::size_t travelled = links.size();
+  std::vector<MeasuredLink> revisits = revisit_links(memory, places, links, spacing_m, params);
+  std::vector<MeasuredLink> grid = grid_links(memory, places, params);
+  log_info("the plan runs over " + std::to_string(travelled + revisits.size() + grid.size()) +
+           " confirmed links: " + std::to_string(travelled) + " travelled, " +
+           std::to_string(revisits.size()) + " revisits, " + std::to_string(grid.size()) +
+           " between grid neighbours");
+  links.insert(links.end(), revisits.begin(), revisits.end());
+  links.insert(links.end(), grid.begin(), grid.end());
+  return links;
+}
+
+}  // namespace omninav::navigation
