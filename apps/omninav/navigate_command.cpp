@@ -133,10 +133,9 @@ void run_navigate(const GlobalOptions& global, const NavigateOptions& options) {
   const memory::VisualMemory memory = memory::load_map(options.map);
   const memory::Localiser localiser(memory, memory_config.localisation);
   signature::SignatureExtractor extractor(memory.parameters().signature);
-  const navigation::GoalNavigationSetup setup =
-      navigation::goal_navigation_setup(memory, navigation::memory_localiser(localiser, extractor),
-                                        navigation.route, navigation.navigator, navigation.links,
-                                        navigation.belief);
+  const navigation::GoalNavigationSetup setup = navigation::goal_navigation_setup(
+      memory, navigation::memory_localiser(localiser, extractor), navigation.route,
+      navigation.navigator, navigation.links, navigation.belief);
 
   // The robot in a rendered world, or on a grid of stored images.
   std::optional<sim::World> world;
@@ -188,8 +187,8 @@ void run_navigate(const GlobalOptions& global, const NavigateOptions& options) {
   summary(global) << (result.reached ? "reached" : "did not reach") << " the goal (place "
                   << run.goal.place << ") in " << result.steps.size() << " steps, "
                   << fixed(result.path_length_m, 2) << " m driven, " << result.jumps
-                  << " jumps of the belief's place, its belief spread (lost) "
-                  << result.lost_events << " times"
+                  << " jumps of the belief's place, its belief spread (lost) " << result.lost_events
+                  << " times"
                   << "; steps: " << (options.out / "steps.csv").string()
                   << ", picture: " << (options.out / "path.png").string() << "\n";
 }

@@ -50,6 +50,8 @@ from ._omninav import (  # noqa: F401 (re-exported)
     Renderer,
     RouteParams,
     RoutePlan,
+    LinkParams,
+    BeliefParams,
     Run,
     SamplingParams,
     Sequence,
@@ -100,7 +102,8 @@ def _fields_repr(value):
 
 # The result and parameter types print their fields (the others keep their own __repr__).
 for _type in (SamplingParams, MinimiserParams, WindowParams, CompassConfig, SignatureParams,
-              ExplorationParams, LocalisationParams, MemoryConfig, RouteParams, NavigatorParams,
+              ExplorationParams, LocalisationParams, MemoryConfig, RouteParams, LinkParams,
+              BeliefParams, NavigatorParams,
               NavigationConfig, Place, Edge, Localisation, RoutePlan, Run, NavigationStep, GoalRun):
     _type.__repr__ = _fields_repr
 del _type

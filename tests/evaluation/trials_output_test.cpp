@@ -59,10 +59,9 @@ TEST(TrialsOutput, OneRowPerTrial) {
   EXPECT_EQ(std::vector<std::string>(rows[0].begin() + 15, rows[0].end()),
             (std::vector<std::string>{"jumps", "sidesteps", "replans", "homing_steps",
                                       "lost_events", "outside_m", "end_outside_m"}));
-  EXPECT_EQ(rows[1],
-            (std::vector<std::string>{"0", "1", "2", "90", "3", "2", "-90", "6", "1", "1", "0.125",
-                                      "3", "2", "1.5", "2", "1", "0", "3", "2", "2", "0.5",
-                                      "0.25"}));
+  EXPECT_EQ(rows[1], (std::vector<std::string>{"0", "1", "2",     "90", "3",   "2",   "-90", "6",
+                                               "1", "1", "0.125", "3",  "2",   "1.5", "2",   "1",
+                                               "0", "3", "2",     "2",  "0.5", "0.25"}));
   EXPECT_EQ(rows[2][7], "-1");
   EXPECT_EQ(rows[2][9], "0");
   EXPECT_EQ(rows[2][14], "0");
@@ -73,11 +72,10 @@ TEST(TrialsOutput, StepsCarryTheTrialAndTheWorldHeadingError) {
   write_trial_steps_csv(csv, two_trials(), 30.0 * M_PI / 180.0);
   const auto rows = csv_text_rows(csv.str());
   ASSERT_EQ(rows.size(), 3u);  // the second trial has no steps
-  EXPECT_EQ(rows[0],
-            (std::vector<std::string>{
-                "trial", "step", "x_m", "y_m", "heading_deg", "place", "similarity",
-                "dissimilarity_per_value", "heading_estimate_deg", "heading_error_deg", "turn_deg",
-                "jump", "recognised", "phase", "lost", "outside_m"}));
+  EXPECT_EQ(rows[0], (std::vector<std::string>{
+                         "trial", "step", "x_m", "y_m", "heading_deg", "place", "similarity",
+                         "dissimilarity_per_value", "heading_estimate_deg", "heading_error_deg",
+                         "turn_deg", "jump", "recognised", "phase", "lost", "outside_m"}));
   // 45° + 30° against a true 90°: -15°; half a metre outside the mapped area.
   EXPECT_EQ(rows[1], (std::vector<std::string>{"0", "0", "1", "2", "90", "-1", "0", "0", "45",
                                                "-15", "-90", "0", "0", "route", "0", "0.5"}));

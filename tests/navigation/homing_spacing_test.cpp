@@ -61,9 +61,9 @@ TEST_P(HomingSpacing, TheDerivedStopLiesBetweenTheGoalAndOneSpacingFromIt) {
   testing::set_truth_lattice(memory);
   const memory::Localiser localiser(memory, memory::LocalisationParams{});
   signature::SignatureExtractor extractor(memory.parameters().signature);
-  const GoalNavigationSetup setup = goal_navigation_setup(
-      memory, memory_localiser(localiser, extractor), RouteParams{}, NavigatorParams{},
-      LinkParams{}, BeliefParams{});
+  const GoalNavigationSetup setup =
+      goal_navigation_setup(memory, memory_localiser(localiser, extractor), RouteParams{},
+                            NavigatorParams{}, LinkParams{}, BeliefParams{});
   const NavigatorParams defaults;
   // The metres follow the rendered grid's spacing.
   EXPECT_NEAR(setup.navigator.homing_stop_m, defaults.homing_stop_spacings * spacing_m,

@@ -79,11 +79,15 @@ def test_routes_follow_the_links_section_of_the_config(organised_grid):
     places = organised_grid.places()
     goal = len(places) - 1
     config = omninav.NavigationConfig.load()
-    config.links.grid_direction_deg = 0.0  # no grid pair's fitted motion agrees that well
-    with_none = organised_grid.plan_route(goal, config=config)
-    assert with_none.route_from(0) == []
-    config.links.grid_direction_deg = 45.0
-    assert organised_grid.plan_route(goal, config=config).route_from(0)[-1] == goal
+    assert config.links.revisit_run == 5 and config.belief.confident_share == 0.5
+    # No grid pair passes a check this strict: the grid still hangs together by its nearest
+    # pairs (confirmed_links joins the pieces), so the route still goes from neighbour to
+    # neighbour.
+    config.links.grid_direction_deg = 0.0
+    route = organised_grid.plan_route(goal, config=config).route_from(0)
+    assert route[0] == 0 and route[-1] == goal
+    for a, b in zip(route, route[1:]):
+        assert distance_m(places[a].truth, places[b].truth) < 0.3 * 1.6
 
 
 def test_the_navigator_drives_a_python_robot_to_the_goal_image(organised_grid):

@@ -96,9 +96,9 @@ class RoomNavigation : public ::testing::Test {
   }
   // Navigation to goal images on the map with the default settings.
   static navigation::GoalNavigationSetup setup() {
-    return navigation::goal_navigation_setup(map().memory, map().localise, navigation::RouteParams{},
-                                             navigation::NavigatorParams{},
-                                             navigation::LinkParams{}, navigation::BeliefParams{});
+    return navigation::goal_navigation_setup(
+        map().memory, map().localise, navigation::RouteParams{}, navigation::NavigatorParams{},
+        navigation::LinkParams{}, navigation::BeliefParams{});
   }
   // The place nearest to (x, y) by truth.
   static int nearest_place(double x_m, double y_m) {

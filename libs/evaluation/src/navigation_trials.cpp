@@ -172,8 +172,7 @@ std::string TrialSummary::text() const {
          fixed(100.0 * reached_share, 1) + "%); path / straight line over those reached: mean " +
          fixed(mean_path_ratio, 2) + ", median " + fixed(median_path_ratio, 2) + "; mean " +
          fixed(mean_steps, 1) + " steps; the belief spread (lost) in " + std::to_string(lost) +
-         " trials; at most " + fixed(outside_m, 2) +
-         " m outside the mapped area";
+         " trials; at most " + fixed(outside_m, 2) + " m outside the mapped area";
 }
 
 }  // namespace omninav::evaluation

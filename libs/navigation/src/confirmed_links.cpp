@@ -1,10 +1,12 @@
 #include "omninav/navigation/confirmed_links.hpp"
 
 #include <algorithm>
+#include <boost/pending/disjoint_sets.hpp>
 #include <cmath>
 #include <map>
 #include <optional>
 #include <set>
+#include <tuple>
 #include <utility>
 
 #include "omninav/core/angles.hpp"
@@ -113,8 +115,9 @@ std::vector<MeasuredLink> grid_links(const memory::VisualMemory& memory,
   for (std::size_t i = 0; i < memory.place_count(); ++i) {
     const memory::Place& place = memory.place(i);
     if (place.heading_source != memory::HeadingSource::kTruth || !place.truth) continue;
-    cells[{static_cast<int>(std::floor(place.truth->x_m / *spacing)),
-           static_cast<int>(std::floor(place.truth->y_m / *spacing))}]
+    // Rounded: a grid's points lie on whole multiples of its spacing, give or take a float.
+    cells[{static_cast<int>(std::lround(place.truth->x_m / *spacing)),
+           static_cast<int>(std::lround(place.truth->y_m / *spacing))}]
         .push_back(static_cast<int>(i));
   }
   const auto position = [&](int i) {
@@ -124,6 +127,7 @@ std::vector<MeasuredLink> grid_links(const memory::VisualMemory& memory,
   struct Candidate {
     MeasuredLink link;
     double dissimilarity;
+    bool agrees;  // the phases' fit agrees with the database's direction
   };
   const double direction_limit = deg_to_rad(params.grid_direction_deg);
   std::vector<Candidate> candidates;
@@ -149,14 +153,13 @@ std::vector<MeasuredLink> grid_links(const memory::VisualMemory& memory,
             // The phases must see the step the database states: across a wall or round
             // furniture the two views are not one scene moved, and the fit points elsewhere.
             const std::optional<TwoWayFit> fit = fit_two_way(memory, places, a, b);
-            if (!fit ||
-                std::abs(signed_difference(fit->direction_at_a_rad, link.direction_at_first_rad)) >
-                    direction_limit ||
-                std::abs(signed_difference(fit->direction_at_b_rad, link.direction_at_second_rad)) >
-                    direction_limit) {
-              continue;
-            }
-            candidates.push_back({link, per_value(memory, a, b)});
+            const bool agrees =
+                fit &&
+                std::abs(signed_difference(fit->direction_at_a_rad, link.direction_at_first_rad)) <=
+                    direction_limit &&
+                std::abs(signed_difference(fit->direction_at_b_rad,
+                                           link.direction_at_second_rad)) <= direction_limit;
+            candidates.push_back({link, per_value(memory, a, b), agrees});
           }
         }
       }
@@ -166,9 +169,56 @@ std::vector<MeasuredLink> grid_links(const memory::VisualMemory& memory,
   std::vector<double> dissimilarities;
   for (const Candidate& candidate : candidates) dissimilarities.push_back(candidate.dissimilarity);
   const double limit = params.grid_agreement_ratio * median(dissimilarities);
+  // The grid's pieces: a neighbour pair that fails the checks still joins, most alike first,
+  // places the others leave apart (a grid round furniture hangs together by a few pairs).
+  const std::size_t count = memory.place_count();
+  std::vector<std::size_t> rank(count, 0), parent(count, 0);
+  boost::disjoint_sets<std::size_t*, std::size_t*> pieces(rank.data(), parent.data());
+  for (std::size_t place = 0; place < count; ++place) pieces.make_set(place);
   std::vector<MeasuredLink> links;
+  std::vector<const Candidate*> failed;
   for (const Candidate& candidate : candidates) {
-    if (candidate.dissimilarity <= limit) links.push_back(candidate.link);
+    if (candidate.agrees && candidate.dissimilarity <= limit) {
+      links.push_back(candidate.link);
+      pieces.union_set(candidate.link.places.first, candidate.link.places.second);
+    } else {
+      failed.push_back(&candidate);
+    }
+  }
+  std::sort(failed.begin(), failed.end(), [](const Candidate* x, const Candidate* y) {
+    return std::tie(x->dissimilarity, x->link.places) < std::tie(y->dissimilarity, y->link.places);
+  });
+  for (const Candidate* candidate : failed) {
+    const auto [a, b] = candidate->link.places;
+    if (pieces.find_set(a) == pieces.find_set(b)) continue;
+    links.push_back(candidate->link);
+    pieces.union_set(a, b);
+  }
+  // Pieces no neighbours join (a gap of grid points left out in furniture): the nearest pair
+  // of places between them, by the database's positions, joins them; the robot finds its way
+  // round what lies between (navigator.hpp, recovery).
+  std::vector<int> gridded;
+  for (const auto& [cell, members] : cells)
+    gridded.insert(gridded.end(), members.begin(), members.end());
+  std::vector<std::tuple<double, int, int>> gaps;
+  for (std::size_t i = 0; i < gridded.size(); ++i) {
+    for (std::size_t j = i + 1; j < gridded.size(); ++j) {
+      if (pieces.find_set(gridded[i]) == pieces.find_set(gridded[j])) continue;
+      gaps.emplace_back((position(gridded[j]) - position(gridded[i])).norm(), gridded[i],
+                        gridded[j]);
+    }
+  }
+  std::sort(gaps.begin(), gaps.end());
+  for (const auto& [distance, a, b] : gaps) {
+    if (pieces.find_set(a) == pieces.find_set(b)) continue;
+    const Eigen::Vector2d step = position(b) - position(a);
+    const double direction = std::atan2(step.y(), step.x());
+    links.push_back({{a, b},
+                     distance,
+                     signed_difference(direction, places[a].heading_rad),
+                     signed_difference(wrap_angle(direction + kPi), places[b].heading_rad),
+                     LinkKind::kGrid});
+    pieces.union_set(a, b);
   }
   return links;
 }

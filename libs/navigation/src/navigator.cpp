@@ -44,10 +44,11 @@ constexpr double kNegligibleShare = 1e-4;
 // times, before it drops the link it was following.
 constexpr double kSidestepDeg = 30.0;
 constexpr int kSidesteps = 4;
-// A blocked move drops the links within this of its direction, from every place that holds at
-// least this share of the most probable place's probability.
-constexpr double kBlockedSpreadDeg = 45.0;
-constexpr double kBlockedShare = 0.1;
+// The goal's place must hold at least this much of the belief for the robot to home.
+constexpr double kArrivalShare = 0.25;
+// The robot changes the place it acts on when another is this many times as probable (or is
+// the one it was heading for).
+constexpr double kSwitchRatio = 2.0;
 // A link the robot drove this many times its length along without arriving is dropped.
 constexpr double kUnfollowedLinks = 3.0;
 
@@ -70,6 +71,7 @@ class NavigationRun {
         belief_(setup.places.size(), links_, setup.belief.view_scale * setup.link_dissimilarity,
                 setup.belief),
         motion_(setup.places.size(), std::numeric_limits<double>::quiet_NaN()),
+        in_place_(setup.places.size(), std::numeric_limits<double>::quiet_NaN()),
         dissimilarity_(setup.places.size(), 0.0) {}
 
   NavigationResult run() {
@@ -95,8 +97,8 @@ class NavigationRun {
     // (counted twice, a view's look-alike would win by repetition).
     if (index == 0 || driven_ > 0.0) belief_.update(dissimilarity_);
     const int place = acting_place();
-    const double in_place =
-        signature::relative_heading(setup_.signatures[place], signature).turn_rad;
+    measure_headings(signature, place);
+    const double in_place = in_place_[place];
     memory::PlaceMatch match;
     match.place = static_cast<memory::PlaceIndex>(place);
     match.dissimilarity_per_value = dissimilarity_[place];
@@ -114,7 +116,12 @@ class NavigationRun {
     }
     previous_place_ = place;
 
-    if (!homing_started_ && place == plan_.goal && !step.lost) {
+    // Arrived at the goal's place: the belief is on it (the most probable place, holding at
+    // least the confident share of the belief with its linked places, and at least
+    // kArrivalShare itself: on a small map a place's linked places are much of the map).
+    const bool at_goal = belief_.most_likely() == plan_.goal && !step.lost &&
+                         belief_.probability(plan_.goal) >= kArrivalShare;
+    if (!homing_started_ && at_goal) {
       if (!homing_ || !params_.home_on_goal_image || params_.homing_max_steps == 0) {
         result_.steps.push_back(step);
         arrived_ = true;
@@ -126,17 +133,37 @@ class NavigationRun {
     }
     if (homing_started_) {
       step.phase = NavigationPhase::kHoming;
-      home(step, view, signature);
+      home(step, view);
       return;
     }
-    follow_route(step, place, in_place, signature);
+    follow_route(step, place, in_place);
+  }
+
+  // The view's heading relative to every place that holds some of the belief (and to `place`),
+  // from the phases; NaN for the others.
+  void measure_headings(const signature::Signature& signature, int place) {
+    const std::vector<double>& probability = belief_.probabilities();
+    const double most = *std::max_element(probability.begin(), probability.end());
+    for (std::size_t p = 0; p < in_place_.size(); ++p) {
+      in_place_[p] = probability[p] >= kNegligibleShare * most || static_cast<int>(p) == place
+                         ? signature::relative_heading(setup_.signatures[p], signature).turn_rad
+                         : std::numeric_limits<double>::quiet_NaN();
+    }
   }
 
   // The place the robot acts on: the most probable place that has a route to the goal (the
   // most probable of all when none has).
+  // A robot between two places keeps acting on the one it acted on (and so drives on along its
+  // link) until the belief reaches that link's far end or clearly prefers another place: the
+  // most probable place changing back and forth would turn it to and fro.
   int acting_place() const {
     const std::vector<double>& probability = belief_.probabilities();
     int best = belief_.most_likely();
+    const int kept = previous_place_;
+    if (kept >= 0 && best != kept && plan_.reaches_goal(kept) && best != plan_.next[kept] &&
+        probability[best] < kSwitchRatio * probability[kept]) {
+      return kept;
+    }
     if (plan_.reaches_goal(best)) return best;
     double best_probability = -1.0;
     for (std::size_t p = 0; p < probability.size(); ++p) {
@@ -152,22 +179,35 @@ class NavigationRun {
   // what the map's links do not show (furniture, a wall between grid neighbours): the links
   // that lead the way it tried, from every place the belief holds, are dropped and the plan is
   // made again without them.
-  void follow_route(NavigationStep& step, int place, double in_place,
-                    const signature::Signature& signature) {
+  void follow_route(NavigationStep& step, int place, double in_place) {
     const double direction =
         plan_.reaches_goal(place) ? plan_.direction_in_place_rad[place] : in_place;
     step.turn_rad = signed_difference(direction + sidestep_turn(sidestep_), in_place);
     check_progress(place);
-    drive(step.turn_rad, params_.step_m, signature);
+    drive(step.turn_rad, params_.step_m);
     since_progress_m_ += driven_;
     if (driven_ >= 0.5 * params_.step_m) {
       sidestep_ = 0;
-    } else if (belief_.lost() || !drop_blocked_links()) {
-      // Nothing left to drop that way: turn aside, wider each time, round to the first.
-      sidestep_ = sidestep_ < 2 * kSidesteps ? sidestep_ + 1 : 1;
+    } else if (sidestep_ < kSidesteps) {
+      // Most blocks graze furniture beside the link: turning a little aside slides past it.
+      ++sidestep_;
       ++result_.sidesteps;
+    } else {
+      sidestep_ = 0;
+      if (!belief_.lost()) drop_link(place, plan_.next[place]);
     }
     result_.steps.push_back(step);
+  }
+
+  // The link between a and b cannot be driven: the plan is made again without it.
+  void drop_link(int a, int b) {
+    if (a < 0 || b < 0) return;
+    std::erase_if(links_, [&](const MeasuredLink& link) {
+      return link.places == Edge(a, b) || link.places == Edge(b, a);
+    });
+    belief_.remove_link(a, b);
+    plan_ = plan_to_goal(setup_.places, links_, plan_.goal);
+    ++result_.replans;
   }
 
   // A link the robot cannot follow: it drove kUnfollowedLinks times the link's length (and a
@@ -186,46 +226,15 @@ class NavigationRun {
     const int next = plan_.next[progress_place_];
     const double length = plan_.cost_m[progress_place_] - plan_.cost_m[next];
     if (since_progress_m_ <= kUnfollowedLinks * length + params_.step_m) return;
-    std::erase_if(links_, [&](const MeasuredLink& link) {
-      return link.places == Edge(progress_place_, next) ||
-             link.places == Edge(next, progress_place_);
-    });
-    belief_.remove_link(progress_place_, next);
-    plan_ = plan_to_goal(setup_.places, links_, plan_.goal);
-    ++result_.replans;
+    drop_link(progress_place_, next);
     progress_cost_ = plan_.cost_m[place];
     progress_place_ = place;
     since_progress_m_ = 0.0;
   }
 
-  // Returns whether any link was dropped.
-  bool drop_blocked_links() {
-    const std::vector<double>& probability = belief_.probabilities();
-    const double most = *std::max_element(probability.begin(), probability.end());
-    const double limit = deg_to_rad(kBlockedSpreadDeg);
-    std::vector<Edge> blocked;
-    std::erase_if(links_, [&](const MeasuredLink& link) {
-      for (const bool first : {true, false}) {
-        const int from = first ? link.places.first : link.places.second;
-        const double direction = first ? link.direction_at_first_rad : link.direction_at_second_rad;
-        if (probability[from] >= kBlockedShare * most && std::isfinite(motion_[from]) &&
-            std::abs(signed_difference(direction, motion_[from])) <= limit) {
-          blocked.push_back(link.places);
-          return true;
-        }
-      }
-      return false;
-    });
-    for (const auto& [a, b] : blocked) belief_.remove_link(a, b);
-    if (blocked.empty()) return false;
-    plan_ = plan_to_goal(setup_.places, links_, plan_.goal);
-    ++result_.replans;
-    return true;
-  }
-
   // Homing on the goal image (homing.hpp): step towards it while it seems nearer than at the
   // last view and farther than homing_stop_m.
-  void home(NavigationStep& step, const cv::Mat& view, const signature::Signature& signature) {
+  void home(NavigationStep& step, const cv::Mat& view) {
     const GoalCue cue = homing_(view);
     if (cue.distance_m <= params_.homing_stop_m || cue.distance_m >= homing_from_ || !cue.valid ||
         result_.homing_steps >= params_.homing_max_steps) {
@@ -235,7 +244,7 @@ class NavigationRun {
     }
     step.turn_rad = cue.bearing_rad + sidestep_turn(sidestep_);
     const double distance_m = std::min(cue.distance_m, params_.homing_step_m);
-    drive(step.turn_rad, distance_m, signature);
+    drive(step.turn_rad, distance_m);
     ++result_.homing_steps;
     result_.steps.push_back(step);
     if (driven_ >= 0.5 * distance_m) {
@@ -251,15 +260,13 @@ class NavigationRun {
 
   // Turns and drives; records, for the next prediction, the direction of the motion seen from
   // every place that holds some of the belief.
-  void drive(double turn_rad, double distance_m, const signature::Signature& signature) {
+  void drive(double turn_rad, double distance_m) {
     const std::vector<double>& probability = belief_.probabilities();
     const double most = *std::max_element(probability.begin(), probability.end());
     for (std::size_t p = 0; p < motion_.size(); ++p) {
-      motion_[p] =
-          probability[p] >= kNegligibleShare * most
-              ? wrap_angle(signature::relative_heading(setup_.signatures[p], signature).turn_rad +
-                           turn_rad)
-              : std::numeric_limits<double>::quiet_NaN();
+      motion_[p] = probability[p] >= kNegligibleShare * most && std::isfinite(in_place_[p])
+                       ? wrap_angle(in_place_[p] + turn_rad)
+                       : std::numeric_limits<double>::quiet_NaN();
     }
     driven_ = world_.move(turn_rad, distance_m);
     result_.path_length_m += driven_;
@@ -278,7 +285,8 @@ class NavigationRun {
   std::vector<MeasuredLink> links_;  // without the links found blocked
   RoutePlan plan_;
   PlaceBelief belief_;
-  std::vector<double> motion_;  // the last motion, seen from each place (NaN: not computed)
+  std::vector<double> motion_;    // the last motion, seen from each place (NaN: not computed)
+  std::vector<double> in_place_;  // the view's heading relative to each place (NaN: not measured)
   std::vector<double> dissimilarity_;
   NavigationResult result_;
   double driven_ = 0.0;
