@@ -349,7 +349,7 @@ void add_compass_command(CLI::App& app, const GlobalOptions& global) {
   command
       ->add_option("-i,--input", options->input,
                    "Panoramas: a folder of images, a video, a BoB image database folder, a CSV "
-                   "of file,x_m,y_m,heading_deg (DESIGN.md, Data formats), a ROS bag (.bag, "
+                   "of file,x_m,y_m,heading_deg (docs/design.md, Data formats), a ROS bag (.bag, "
                    ".mcap, .db3; docs/bags.md); or a camera, camera:0 (V4L2), read until Ctrl-C")
       ->type_name("PATH")
       ->required();

@@ -1,5 +1,6 @@
 // The minimisers of the distance function: (a) exhaustive (the oracle), (b) descent + regular
-// scan (000 §3.3.4), (c) FFT masked cross-correlation, (d) Fourier phase (001 §2.1, Eq. 1).
+// scan (Labrosse 2006, §3.3.4), (c) FFT masked cross-correlation, (d) Fourier phase (Menegatti et
+// al. 2004, §2.1, Eq. 1).
 #include "omninav/compass/minimiser.hpp"
 
 #include <gtest/gtest.h>

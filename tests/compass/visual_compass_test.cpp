@@ -1,4 +1,4 @@
-// Algorithm 1 of 000_9e80abd5855643af.txt (§3.5) and "Fx n", against rendered ground truth.
+// Algorithm 1 of Labrosse 2006 (§3.5) and "Fx n", against rendered ground truth.
 #include "omninav/compass/visual_compass.hpp"
 
 #include <fmt/format.h>

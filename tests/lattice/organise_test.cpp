@@ -19,9 +19,9 @@
 namespace omninav::lattice {
 namespace {
 
-// A map of a 30 cm grid of the built-in room rendered at 360×45 (the grid of 001 §3.3, Fig. 14;
-// points inside furniture are left out, as a robot could not stand there), every image a place,
-// headings from the truth, in the order a grid database lists them.
+// A map of a 30 cm grid of the built-in room rendered at 360×45 (the grid of Menegatti et al. 2004,
+// §3.3, Fig. 14; points inside furniture are left out, as a robot could not stand there), every
+// image a place, headings from the truth, in the order a grid database lists them.
 memory::VisualMemory grid_map(const sim::RoomParams& room_params, const std::string& grid) {
   const sim::World room = sim::make_room(room_params);
   sim::RenderParams render;

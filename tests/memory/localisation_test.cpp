@@ -87,7 +87,7 @@ GridScores score(signature::ColourMode colour, std::size_t query_count) {
 
 TEST(GridLocalisation, RandomPosesBetweenGridPointsLocaliseWithinOneSpacing) {
   const GridScores s = score(signature::ColourMode::kLuminance, 120);
-  // At least 95% of queries at the finest level (DESIGN.md, Evaluation: Localisation).
+  // At least 95% of queries at the finest level (docs/design.md, Evaluation: Localisation).
   EXPECT_GE(s.within_spacing, 0.95 * s.queries);
   // The best place of the pruned search is the exhaustive search's in ≥ 99% of queries.
   EXPECT_GE(s.pruned_equals_exhaustive, 0.99 * s.queries);

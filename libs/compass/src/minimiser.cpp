@@ -14,7 +14,7 @@ bool before(CostTable& table, int a, int b) {
   return shift_before(a, table.at(a), b, table.at(b), table.width_px());
 }
 
-// (a) Every shift (Fig. 3 of 004_5a2a3172f8969a85.txt), best in the order of cost_table.hpp.
+// (a) Every shift (Fig. 3 of Labrosse 2004), best in the order of cost_table.hpp.
 class ExhaustiveMinimiser : public Minimiser {
  public:
   explicit ExhaustiveMinimiser(bool fast_kernel) : fast_kernel_(fast_kernel) {}
@@ -37,7 +37,7 @@ class ExhaustiveMinimiser : public Minimiser {
 };
 
 // (b) Descent, then the regular scan around the local minimum, restarting from any scan value
-// that is lower (000 §3.3.4).
+// that is lower (Labrosse 2006, §3.3.4).
 class LocalScanMinimiser : public Minimiser {
  public:
   explicit LocalScanMinimiser(const MinimiserParams& params) : params_(params) {}

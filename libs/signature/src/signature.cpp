@@ -156,7 +156,7 @@ void SignatureExtractor::run_fft() {
   if (work.fft_width != work.width || work.fft_lines != work.lines) {
     // `lines` real transforms of `width` points, line after line, from the process-wide cache.
     // FFTW_ESTIMATE: the plan depends on the sizes only, never on timing, so the same input
-    // gives bit-identical signatures in every run (DESIGN.md, Determinism).
+    // gives bit-identical signatures in every run (docs/design.md, Determinism).
     work.plan = fftw::lines_r2c_float({work.width, work.lines, 0, fftw::Planning::kEstimate});
     work.out =
         fftw::Buffer<fftwf_complex>(static_cast<std::size_t>(work.width / 2 + 1) * work.lines);

@@ -1,7 +1,7 @@
 #pragma once
 // Reading config/compass.yaml into the compass's parameters. Every key is optional (absent keys
 // keep the defaults of the Params structs, which are those of Table 2 of
-// 000_9e80abd5855643af.txt); unknown keys are the caller's ConfigReader::require_all_known().
+// Labrosse 2006); unknown keys are the caller's ConfigReader::require_all_known().
 
 #include <optional>
 

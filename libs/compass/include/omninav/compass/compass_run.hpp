@@ -2,7 +2,7 @@
 // The visual compass over a sequence of panoramas as `omninav compass` runs it, and
 // `omninav evaluate` with it: every panorama resampled to `width_px` columns first when a width
 // is given (all of the sequence must share one width), the compass started at the first frame's
-// true heading when it has one (000_9e80abd5855643af.txt §4.1), else at 0. With
+// true heading when it has one (Labrosse 2006, §4.1), else at 0. With
 // compass.yaml's window on, the headings are the multi-baseline window's (heading_window.hpp).
 
 #include <memory>

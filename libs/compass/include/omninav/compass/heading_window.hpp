@@ -2,7 +2,7 @@
 // The multi-baseline window (ours; docs/compass.md "Many baselines"): less drift, and wrong
 // matches outvoted, by measuring each frame against several earlier frames and solving the
 // headings of a sliding window together, instead of chaining one reference (Algorithm 1 of
-// 000_9e80abd5855643af.txt §3.5).
+// Labrosse 2006, §3.5).
 //
 // Measurements. Algorithm 1 (visual_compass.hpp) gives each frame one: r_rc, the rotation from
 // its reference (CompassEstimate::reference_rotation_rad). The window adds the frame matched

@@ -2,7 +2,7 @@
 // The rotation between two panoramas, with the sub-pixel minimum, the amplitudes and a
 // confidence: everything Algorithm 1 (visual_compass.hpp) needs from one pair I_i, I_j.
 //
-// Amplitudes (000_9e80abd5855643af.txt §3.4.2):
+// Amplitudes (Labrosse 2006, §3.4.2):
 //   A(I_i, I_j)  = d(a_m + W/2) − d(a_m)                 pixel resolution, Eq. 9
 //   𝒜(I_i, I_j)  = d(α_m + W/2) − d_m                    sub-pixel, Eq. 12; d at the fractional
 //                                                        shift α_m + W/2 is interpolated linearly

@@ -1,13 +1,13 @@
 #pragma once
 // Tilt between two panoramas, and levelling a panorama (docs/compass.md, "Tilt").
 //
-// A camera pitched p and rolled r (DESIGN.md: positive pitch is nose down, positive roll is
+// A camera pitched p and rolled r (docs/design.md: positive pitch is nose down, positive roll is
 // left side up) casts, through the pixel at azimuth φ (relative to the robot) and elevation e,
 // the ray of the level camera's elevation e + δ(φ), to first order in the tilt:
 //     δ(φ) = −p·cos φ + r·sin φ                       (independent of e)
 // so, rows growing as the elevation falls, the tilted panorama is the level one with column φ
 // moved down by δ(φ)/rad_per_row rows: the horizon becomes one period of a sinusoid across the
-// columns (000_9e80abd5855643af.txt §3.3.3 and §5 name tilt as one of the two causes of the
+// columns (Labrosse 2006, §3.3.3 and §5 name tilt as one of the two causes of the
 // compass's error, the other being parallax).
 //
 // The relative tilt of a second panorama against a first needs no horizon: it is the tilt that,

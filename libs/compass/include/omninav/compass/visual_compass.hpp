@@ -1,5 +1,5 @@
 #pragma once
-// The visual compass: Algorithm 1 of 000_9e80abd5855643af.txt §3.5, and its fixed-skip variant
+// The visual compass: Algorithm 1 of Labrosse 2006, §3.5, and its fixed-skip variant
 // "Fx n" (§4.3), over a sequence of panoramas pushed one at a time.
 //
 // Algorithm 1, as implemented (ω: orientations, r: rotations, all counter-clockwise positive):
@@ -37,7 +37,7 @@
 // replaced by "I_c is more than n + 1 frames after I_r". The reference frames are then frames
 // 0, n+1, 2(n+1), ...; each is measured against the one before it, and every frame in between
 // against the latest reference. Fx 0 compares successive frames: the 2004 compass (Fig. 3 of
-// 004_5a2a3172f8969a85.txt) when used with the exhaustive minimiser and no sub-pixel fit.
+// Labrosse 2004) when used with the exhaustive minimiser and no sub-pixel fit.
 
 #include <memory>
 #include <optional>
@@ -58,7 +58,7 @@ enum class SamplingPolicy {
 struct SamplingParams {
   SamplingPolicy policy = SamplingPolicy::kThreshold;
   // t, Algorithm 1 line 1 and Table 2: the median normalised amplitude at the best skip + 1 on
-  // CIRCLE1 (Table 1 of 000_9e80abd5855643af.txt).
+  // CIRCLE1 (Table 1 of Labrosse 2006).
   double threshold_norm_amp = 0.6055;
   // n of "Fx n": frames skipped between references.
   int fixed_skip_frames = 3;
@@ -209,7 +209,7 @@ class VisualCompass {
   CompassEstimate push(const CompassFrame& frame);
 
   // Re-aligns the last frame pushed on a heading measured otherwise (a place of a map recognised
-  // in it, 000_9e80abd5855643af.txt's abstract: "only requiring infrequent re-alignment, for
+  // in it, Labrosse 2006's abstract: "only requiring infrequent re-alignment, for
   // example when re-localising in a topological map"), with that measure's standard deviation.
   // ω_r moves so that ω_c = heading_rad (unwrapped next to ω_c); the chain's variance restarts
   // from sigma_rad, so later frames grow from it. `estimate`, the last push's, is updated: its

@@ -1,5 +1,5 @@
 #pragma once
-// Strict YAML configuration (DESIGN.md, Conventions: Config). A component's parameters are a
+// Strict YAML configuration (docs/design.md, Conventions: Config). A component's parameters are a
 // `struct ...Params` with documented defaults; its loader asks a ConfigReader for each key it
 // knows. A key the file lacks keeps the struct's default; a key nobody asked for, a value of the
 // wrong type or out of range is a ConfigError naming the file, the key and the valid range.

@@ -1,5 +1,5 @@
 #pragma once
-// Organising a visual memory into a lattice (001_5bb151a4e28490b4.txt §3): distances estimated
+// Organising a visual memory into a lattice (Menegatti et al. 2004, §3): distances estimated
 // from similarity (calibrated without ground truth), springs between places, motion directions
 // from the phases, solved by spring_lattice.hpp, and the positions written into the places.
 

@@ -9,7 +9,7 @@
 
 namespace omninav::lattice {
 
-// A spring between two places (001_5bb151a4e28490b4.txt §3.2): its force is proportional to the
+// A spring between two places (Menegatti et al. 2004, §3.2): its force is proportional to the
 // difference between the places' distance on the lattice and the spring's rest length, the
 // distance estimated from their similarity. Residual: √K · (|p_a − p_b| − rest_length).
 class SpringResidual {
@@ -41,7 +41,7 @@ class SpringResidual {
   const bool at_least_;
 };
 
-// A motion between two places measured from the Fourier phases (001_5bb151a4e28490b4.txt
+// A motion between two places measured from the Fourier phases (Menegatti et al. 2004,
 // §3.4: the direction) together with its length (the exploration's step, or the spring's
 // length): a spring that also knows which way it points. Residuals, in standard deviations:
 // along the measured direction u, (Δ·u − length) / σ_length; across it, (Δ·u⊥) / (σ_direction ·

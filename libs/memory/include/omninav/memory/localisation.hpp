@@ -1,5 +1,5 @@
 #pragma once
-// Localising a query image in the visual memory (001_5bb151a4e28490b4.txt §2.2-2.3): the
+// Localising a query image in the visual memory (Menegatti et al. 2004, §2.2-2.3): the
 // hierarchical search of signature/hierarchy.hpp over the map's places, then for the best
 // places the query's heading relative to each (phases, Eq. 1) and, when the places have
 // positions (lattice, else ground truth), a position estimate.
@@ -101,7 +101,7 @@ std::optional<std::pair<PositionFrame, std::vector<Eigen::Vector2d>>> place_posi
     const VisualMemory& memory);
 
 // The median distance from each point to its nearest other: a grid's spacing ("one grid
-// spacing" of DESIGN.md's evaluation). 1 for fewer than two points.
+// spacing" of docs/design.md's evaluation). 1 for fewer than two points.
 double typical_spacing(const std::vector<Eigen::Vector2d>& points);
 
 // A weight per line (rows × channels) learned from the map without ground truth: places listed

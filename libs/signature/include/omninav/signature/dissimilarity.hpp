@@ -1,5 +1,5 @@
 #pragma once
-// Comparing signatures (001_5bb151a4e28490b4.txt §2.2).
+// Comparing signatures (Menegatti et al. 2004, §2.2).
 //
 // Eq. 2, the dissimilarity, the L1 distance between the magnitudes:
 //     Dis(O_i, O_j) = Σ_{y<l} Σ_{k<m} |F_iy(k) − F_jy(k)|
@@ -53,8 +53,8 @@ double dissimilarity(const Signature& a, const Signature& b, int components = -1
 // Eq. 2 compares magnitudes only, which forgets where along the horizon each row's structure
 // lies, so places whose rows hold the same mix of features in another arrangement look alike;
 // the phases, aligned by the turn, keep the arrangement. By Parseval it is the image-space
-// distance of the low-pass panoramas at that rotation (the visual compass's, 000 §2), in L1 over
-// the coefficients. ≥ Eq. 6's value for the same weights (|a − b| ≥ ||a| − |b||). Throws as
+// distance of the low-pass panoramas at that rotation (the visual compass's, Labrosse 2006, §2), in
+// L1 over the coefficients. ≥ Eq. 6's value for the same weights (|a − b| ≥ ||a| − |b||). Throws as
 // dissimilarity().
 // `line_weights`, when not empty, weights each line's terms (one per line, ≥ 0).
 double rotational_dissimilarity(const Signature& from, const Signature& to, double turn_rad,

@@ -1,5 +1,5 @@
 #pragma once
-// Hierarchical localisation (001_5bb151a4e28490b4.txt §2.3, Figs. 9-10): comparing only the
+// Hierarchical localisation (Menegatti et al. 2004, §2.3, Figs. 9-10): comparing only the
 // first few Fourier components matches a query with every place of a wide neighbourhood,
 // comparing more narrows it down. Level l compares the first m_l components (e.g. 2, 5, 15);
 // its candidate set is the places whose similarity (Eq. 3) reaches a threshold.
@@ -34,8 +34,8 @@ class ConfigReader;
 namespace omninav::signature {
 
 struct HierarchyParams {
-  // Components compared at each level, increasing; 001 §2.1 Fig. 6 compares 2, 5 and 15
-  // (and more); the finest must not exceed the map's signature components.
+  // Components compared at each level, increasing; Menegatti et al. 2004, §2.1 Fig. 6 compares 2, 5
+  // and 15 (and more); the finest must not exceed the map's signature components.
   std::vector<int> levels{2, 5, 15};
   // Similarity (Eq. 3, 0..1000) a place must reach at a level to be a candidate, the same at
   // every level: higher levels are more discriminating, so their sets shrink (Fig. 9).
