@@ -58,7 +58,6 @@ from ._omninav import (  # noqa: F401 (re-exported)
     SignatureParams,
     Unwrapper,
     UsageError,
-    WindowParams,
     World,
     azimuth_of_column,
     channel_order,
@@ -99,7 +98,7 @@ def _fields_repr(value):
 
 
 # The result and parameter types print their fields (the others keep their own __repr__).
-for _type in (SamplingParams, MinimiserParams, WindowParams, CompassConfig, SignatureParams,
+for _type in (SamplingParams, MinimiserParams, CompassConfig, SignatureParams,
               ExplorationParams, LocalisationParams, MemoryConfig, RouteParams, NavigatorParams,
               NavigationConfig, Place, Edge, Localisation, RoutePlan, Run, NavigationStep, GoalRun):
     _type.__repr__ = _fields_repr

@@ -27,7 +27,6 @@ void load_compass_config(const ConfigReader& config, CompassConfig& out) {
   matcher.minimiser.kind = minimiser_kind_of(kind);
   minimiser.read("scan_values", matcher.minimiser.scan_values, 2, 64);
   minimiser.read_deg("scan_span_deg", matcher.minimiser.scan_span_rad, 0.1, 180.0);
-  minimiser.read("seed_with_phase", matcher.minimiser.seed_with_phase);
   std::string planning =
       matcher.minimiser.fft_planning == FftPlanning::kMeasure ? "measure" : "estimate";
   minimiser.read("fft_planning", planning, {"estimate", "measure"});
@@ -35,7 +34,6 @@ void load_compass_config(const ConfigReader& config, CompassConfig& out) {
       planning == "measure" ? FftPlanning::kMeasure : FftPlanning::kEstimate;
 
   minimiser.read("global_fallback", out.compass.fast_turns.global_fallback);
-  minimiser.read("keep_alternative", out.compass.fast_turns.keep_alternative);
   minimiser.read("global_deeper_ratio", out.compass.fast_turns.deeper_ratio, 0.0, 1.0);
 
   const ConfigReader phase = config.section("phase");
@@ -68,31 +66,8 @@ void load_compass_config(const ConfigReader& config, CompassConfig& out) {
                       180.0);
   confidence.read("competing_depth_ratio", confidence_params.competing_depth_ratio, 0.0, 1.0);
 
-  const ConfigReader tilt = config.section("tilt");
-  TiltLevellingParams& levelling = out.compass.levelling;
-  tilt.read("level", levelling.enabled);
-  tilt.read("blocks", levelling.tilt.blocks, 4, 4096);
-  tilt.read_deg("max_tilt_deg", levelling.tilt.max_tilt_rad, 0.5, 30.0);
-
-  const ConfigReader travel = config.section("travel_fit");
-  travel.read("enabled", out.compass.travel.enabled);
-  travel.read("iterations", out.compass.travel.fit.iterations, 0, 100);
-  travel.read("rows_used", out.compass.travel.fit.rows_used, 1, 100000);
-  std::string travel_columns = out.compass.travel.fit.whole ? "whole" : "bands";
-  travel.read("columns", travel_columns, {"whole", "bands"});
-  out.compass.travel.fit.whole = travel_columns == "whole";
-  travel.read_deg("max_correction_deg", out.compass.travel.fit.max_correction_rad, 0.0, 180.0);
-
   const ConfigReader uncertainty = config.section("uncertainty");
   uncertainty.read("scale", out.compass.uncertainty.scale, 0.0, 1000.0);
-
-  const ConfigReader window = config.section("window");
-  WindowParams& window_params = out.compass.window;
-  window.read("enabled", window_params.enabled);
-  window.read("keyframes", window_params.keyframes, 0, 64);
-  window.read("length_frames", window_params.length_frames, 2, 1000);
-  window.read("loss_scale", window_params.loss_scale, 0.01, 1000.0);
-  window.read("gate_long_baselines", window_params.gate_long_baselines);
 
   const ConfigReader warping = config.section("min_warping");
   MinWarpingParams& mw = out.min_warping;

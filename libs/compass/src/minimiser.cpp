@@ -44,14 +44,8 @@ class LocalScanMinimiser : public Minimiser {
   MinimiserKind kind() const override { return MinimiserKind::kLocalScan; }
   ShiftSearch minimise(CostTable& table, int start_shift_px) const override {
     const int width = table.width_px();
-    int start = start_shift_px;
-    if (params_.seed_with_phase) {
-      const PhaseEstimate phase =
-          estimate_phase_shift(table.first(), table.second(), params_.phase);
-      start = static_cast<int>(std::lround(phase.shift_px));
-    }
     const std::vector<int> offsets = scan_offsets_px(params_, width);
-    int best = descend(table, start);
+    int best = descend(table, start_shift_px);
     // Each restart starts from a shift strictly before the current minimum in a total order,
     // so this ends after at most W restarts.
     for (int guard = 0; guard < width; ++guard) {

@@ -5,7 +5,6 @@
 #include <set>
 #include <tuple>
 
-#include "distance_information.hpp"
 #include "motions.hpp"
 #include "omninav/core/angles.hpp"
 #include "omninav/core/config.hpp"
@@ -74,7 +73,6 @@ void load_organise_params(const ConfigReader& section, OrganiseParams& params) {
   section.read("motion_neighbours", params.motion_neighbours, 0, 100);
   section.read("steps_along_heading", params.steps_along_heading);
   section.read("synchronise_compass_headings", params.synchronise_compass_headings);
-  section.read("one_phase_turn_per_stretch_pair", params.one_phase_turn_per_stretch_pair);
   section.read("step_likeness", params.step_likeness, 1.0, 10.0);
   section.read("look_alike_residual", params.look_alike_residual, 1.0, 100.0);
   section.read("step_check_steps", params.step_check_steps, 0, 1000);
@@ -82,10 +80,7 @@ void load_organise_params(const ConfigReader& section, OrganiseParams& params) {
   section.read("motion_direction_stddev_deg", params.motion_direction_stddev_deg, 0.1, 90.0);
   section.read("motion_length_stddev", params.motion_length_stddev, 0.01, 10.0);
   section.read("neighbour_motion_length_stddev", params.neighbour_motion_length_stddev, 0.01, 10.0);
-  section.read("neighbour_bearings_only", params.neighbour_bearings_only);
-  section.read("spring_weight_from_map", params.spring_weight_from_map);
   section.read("joins_by_residual", params.joins_by_residual);
-  section.read("joins_by_agreement", params.joins_by_agreement);
   section.read("spring_weight", params.lattice.spring_weight, 0.0, 1.0);
   section.read("min_stiffness", params.lattice.min_stiffness, 1e-9, 0.5);
   section.read("loss_scale_m", params.lattice.loss_scale_m, 1e-4, 100.0);
@@ -200,15 +195,11 @@ OrganiseResult organise(memory::VisualMemory& memory, const OrganiseParams& para
 
   LatticeParams lattice = params.lattice;
   lattice.correlation_range_m = calibration.correlation_range_m;
-  result.gap_correlation = detail::dissimilarity_gap_correlation(memory, dissimilarity, 3);
-  if (params.spring_weight_from_map && result.gap_correlation) {
-    lattice.spring_weight *= std::clamp(*result.gap_correlation, 0.0, 1.0);
-  }
   result.lattice = solve_lattice(count, result.springs, result.motions, lattice);
   memory.set_lattice_positions(result.lattice.positions);
   result.quality = measure_quality(result.lattice.positions, result.motions, result.motion_joins,
                                    calibration.step_m, params.max_motions_off);
-  // Several motions may join two pieces (joins_by_agreement): count the pieces themselves.
+  // The pieces the checked motions left, not the joins added (the verdict is about the former).
   result.quality.pieces = pieces;
   result.quality.trustworthy = pieces == 1 && result.quality.motions_off <= params.max_motions_off;
   memory.set_lattice_quality(result.quality);
@@ -220,10 +211,7 @@ OrganiseResult organise(memory::VisualMemory& memory, const OrganiseParams& para
            std::to_string(result.motion_joins) + " added to join the lattice); quality: " +
            std::to_string(result.quality.motions_off) + " of motions off, residual " +
            std::to_string(result.quality.motion_residual_steps) + " steps, " +
-           std::to_string(result.quality.pieces) + " piece(s); dissimilarity against gap: rho " +
-           (result.gap_correlation ? std::to_string(*result.gap_correlation) : "none") +
-           ", spring weight " + std::to_string(lattice.spring_weight) + "; " +
-           result.lattice.summary);
+           std::to_string(result.quality.pieces) + " piece(s); " + result.lattice.summary);
   return result;
 }
 

@@ -86,28 +86,12 @@ Eigen::RowVectorXf SignatureIndex::query_band(const Signature& query, std::size_
   const int count = levels_[level] - first;
   Eigen::RowVectorXf out(static_cast<Eigen::Index>(lines_) * count);
   for (int line = 0; line < lines_; ++line) {
-    const double line_weight =
-        line_weights_.empty() ? 1.0 : line_weights_[static_cast<std::size_t>(line)];
     for (int j = 0; j < count; ++j) {
       out[static_cast<Eigen::Index>(line) * count + j] =
-          static_cast<float>(line_weight * weights_[first + j]) *
-          query.magnitude[query.at(line, first + j)];
+          static_cast<float>(weights_[first + j]) * query.magnitude[query.at(line, first + j)];
     }
   }
   return out;
-}
-
-void SignatureIndex::set_line_weights(std::vector<double> line_weights) {
-  if (size_ > 0) throw UsageError("line weights are set before the first place is added");
-  if (!line_weights.empty() && line_weights.size() != static_cast<std::size_t>(lines_)) {
-    throw UsageError(std::to_string(line_weights.size()) + " line weights for an index of " +
-                     std::to_string(lines_) + " lines");
-  }
-  if (std::any_of(line_weights.begin(), line_weights.end(),
-                  [](double w) { return !(w >= 0.0) || !std::isfinite(w); })) {
-    throw UsageError("line weights must be finite and at least 0");
-  }
-  line_weights_ = std::move(line_weights);
 }
 
 std::uint32_t SignatureIndex::add(const Signature& signature) {

@@ -23,9 +23,8 @@ struct CompassConfig {
   MinWarpingParams min_warping;
 };
 
-// Reads the sections distance, minimiser, phase, subpixel, sampling, confidence, tilt,
-// travel_fit, uncertainty, window, min_warping and input (the tilt's elevations come from
-// camera.yaml, set by the caller). Throws ConfigError naming the key, the file and the valid range
+// Reads the sections distance, minimiser, phase, subpixel, sampling, confidence, uncertainty,
+// min_warping and input. Throws ConfigError naming the key, the file and the valid range
 // or choices, and UsageError for a combination that cannot work (the fft minimiser with the l1
 // metric).
 void load_compass_config(const ConfigReader& config, CompassConfig& out);

@@ -49,8 +49,6 @@ struct MinimiserParams {
   // 1080).
   int scan_values = 8;
   double scan_span_rad = 20.0 * 3.14159265358979323846 / 180.0;
-  // (b): start from the phase estimate (d) instead of the given start value.
-  bool seed_with_phase = false;
   // (a): use the fast kernel instead of the plain oracle code (benchmarks only).
   bool exhaustive_fast_kernel = false;
   // (c): how FFTW plans. The minimum and its cost are exact either way, so results do not

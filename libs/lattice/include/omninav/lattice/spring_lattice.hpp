@@ -33,10 +33,6 @@ struct MotionMeasurement {
   // Between consecutive places of a stream: the robot went from one to the other, so the two
   // are surely near; the start is built on such steps (initial_positions).
   bool step = false;
-  // Only the direction is trusted (BearingResidual): the length is the calibrated distance of a
-  // most similar place, which saturates beyond about one step. The start still uses the length
-  // (a linear problem needs one).
-  bool bearing_only = false;
 };
 
 struct LatticeParams {

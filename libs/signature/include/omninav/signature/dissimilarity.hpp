@@ -41,11 +41,8 @@ std::string to_string(const ComponentWeights& weights);
 
 // Eq. 2 / Eq. 6 over the first `components` components of both (−1: all of them). Throws
 // UsageError when the two differ in lines or have fewer components than asked for.
-// `line_weights`, when not empty, weights each line's terms (one per line, ≥ 0), as the search
-// index's SignatureIndex::set_line_weights does.
 double dissimilarity(const Signature& a, const Signature& b, int components = -1,
-                     const ComponentWeights& weights = {},
-                     std::span<const double> line_weights = {});
+                     const ComponentWeights& weights = {});
 
 // Beyond the papers: the dissimilarity of the coefficients themselves, magnitudes and phases,
 // once `from` is turned by `turn_rad` (phase_heading.hpp's sign: heading(to) − heading(from)):
@@ -56,10 +53,8 @@ double dissimilarity(const Signature& a, const Signature& b, int components = -1
 // distance of the low-pass panoramas at that rotation (the visual compass's, Labrosse 2006, §2), in
 // L1 over the coefficients. ≥ Eq. 6's value for the same weights (|a − b| ≥ ||a| − |b||). Throws as
 // dissimilarity().
-// `line_weights`, when not empty, weights each line's terms (one per line, ≥ 0).
 double rotational_dissimilarity(const Signature& from, const Signature& to, double turn_rad,
-                                int components = -1, const ComponentWeights& weights = {},
-                                std::span<const double> line_weights = {});
+                                int components = -1, const ComponentWeights& weights = {});
 
 // Eq. 3 for one value, given the range of the reference set; clamped to [0, 1000]. A
 // degenerate range (max ≤ min) gives 1000.

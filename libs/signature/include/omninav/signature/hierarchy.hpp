@@ -80,10 +80,6 @@ class SignatureIndex {
   // components.
   std::uint32_t add(const Signature& signature);
   void reserve(std::size_t places);
-  // Beyond the papers: a weight per line (rows × channels, each ≥ 0) on top of Eq. 6's per
-  // component, folded into the stored magnitudes like those (memory/localisation.hpp learns
-  // them from the map). Before the first add(); throws UsageError otherwise or on a bad size.
-  void set_line_weights(std::vector<double> line_weights);
 
   std::size_t size() const { return size_; }
   const std::vector<int>& levels() const { return levels_; }
@@ -113,8 +109,7 @@ class SignatureIndex {
   int lines_;
   std::vector<int> levels_;
   ComponentWeights weights_;
-  std::vector<double> line_weights_;  // empty: every line 1
-  std::vector<Band> bands_;           // capacity rows; the first size_ are places
+  std::vector<Band> bands_;  // capacity rows; the first size_ are places
   std::size_t size_ = 0;
 };
 
