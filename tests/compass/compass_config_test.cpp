@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include "omninav/compass/compass_run.hpp"
 #include "omninav/core/angles.hpp"
 #include "omninav/core/config.hpp"
 #include "omninav/core/errors.hpp"
@@ -106,6 +107,56 @@ TEST(CompassConfig, RejectsUnknownKeysBadValuesAndImpossibleCombinations) {
   EXPECT_NE(message_of("input: {width_px: 360.5}\n").find("width_px"), std::string::npos);
   EXPECT_NE(message_of("input: {width_px: 360.5}\n").find("compass.yaml"), std::string::npos);
   EXPECT_FALSE(load(ConfigReader::from_string("input: {width_px: ~}\n", "c.yaml")).width_px);
+}
+
+// The ranges live in the Params structs' check(), which the algorithms call too: a value set in
+// code, as Python's writable fields set it, is refused by the compass as the YAML loader refuses
+// it in a file, naming the same key (the loader adds the file).
+TEST(CompassConfig, AValueSetInCodeIsRefusedAsTheLoaderRefusesIt) {
+  const auto refusal = [](const auto& make) -> std::string {
+    try {
+      make();
+    } catch (const UsageError& error) {
+      return error.what();
+    }
+    return "";
+  };
+  CompassParams sampling;
+  sampling.sampling.threshold_norm_amp = 1.6;
+  EXPECT_NE(refusal([&] { VisualCompass compass(sampling); }).find("sampling.threshold_norm_amp"),
+            std::string::npos);
+  EXPECT_NE(refusal([&] { CompassRun run(sampling, std::nullopt); }).find("threshold_norm_amp"),
+            std::string::npos);
+  CompassParams deeper;
+  deeper.fast_turns.deeper_ratio = -0.1;
+  EXPECT_NE(refusal([&] { VisualCompass compass(deeper); }).find("minimiser.global_deeper_ratio"),
+            std::string::npos);
+  PairMatcherParams matcher;
+  matcher.confidence.competing_separation_rad = deg_to_rad(200.0);
+  EXPECT_NE(refusal([&] { PairMatcher pairs(matcher); }).find("competing_separation_deg"),
+            std::string::npos);
+  matcher = {};
+  matcher.minimiser.kind = MinimiserKind::kFft;
+  matcher.distance.metric = Metric::kL1;
+  EXPECT_NE(refusal([&] { PairMatcher pairs(matcher); }).find("l2"), std::string::npos);
+  MinWarpingParams warping;
+  warping.scale_planes = 8;
+  EXPECT_NE(refusal([&] { MinWarping w(warping, PanoramaGeometry{}); }).find("scale_planes"),
+            std::string::npos);
+  // The same value in a file: a ConfigError naming the file and the key.
+  try {
+    load(ConfigReader::from_string("sampling: {threshold_norm_amp: 1.6}\n", "compass.yaml"));
+    ADD_FAILURE() << "1.6 was accepted";
+  } catch (const ConfigError& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find("compass.yaml"), std::string::npos) << message;
+    EXPECT_NE(message.find("sampling.threshold_norm_amp"), std::string::npos) << message;
+  }
+  // The bounds themselves pass, degrees through radians included.
+  CompassParams bounds;
+  bounds.sampling.max_reference_rotation_rad = deg_to_rad(180.0);
+  bounds.matcher.minimiser.scan_span_rad = deg_to_rad(0.1);
+  EXPECT_NO_THROW(bounds.check());
 }
 
 }  // namespace

@@ -387,5 +387,23 @@ TEST(Organise, ClearErrors) {
   EXPECT_THROW(organise(map, {}), UsageError);  // no step given, none in the map
 }
 
+// A value set in code, as Python's writable fields set it, is refused by organise() as the YAML
+// loader refuses it in lattice.yaml, naming the key (OrganiseParams::check), before any work.
+TEST(Organise, ParamsOutOfRangeAreRefusedBeforeAnyWork) {
+  memory::VisualMemory memory;
+  OrganiseParams params;
+  params.range_fraction = 2.0;
+  try {
+    organise(memory, params);
+    ADD_FAILURE() << "range_fraction 2 was accepted";
+  } catch (const UsageError& error) {
+    EXPECT_NE(std::string(error.what()).find("organise.range_fraction"), std::string::npos);
+  }
+  params = {};
+  params.lattice.max_iterations = 0;
+  EXPECT_THROW(organise(memory, params), UsageError);
+  EXPECT_NO_THROW(OrganiseParams{}.check());
+}
+
 }  // namespace
 }  // namespace omninav::lattice

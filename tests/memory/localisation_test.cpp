@@ -158,5 +158,30 @@ TEST(GridLocalisation, FineLevelKeepsEquationSixAndTopK) {
   }
 }
 
+// A value set in code, as Python's writable fields set it, is refused by the localiser as the
+// YAML loader refuses it in memory.yaml, naming the key (LocalisationParams::check, with the
+// hierarchy's).
+TEST(GridLocalisation, ParamsOutOfRangeAreRefusedByTheLocaliser) {
+  const VisualMemory memory{MapParameters{}};
+  const auto refusal = [&](const LocalisationParams& params) -> std::string {
+    try {
+      Localiser localiser(memory, params);
+    } catch (const UsageError& error) {
+      return error.what();
+    }
+    return "";
+  };
+  LocalisationParams top;
+  top.top_k = 0;
+  EXPECT_NE(refusal(top).find("localisation.top_k"), std::string::npos);
+  LocalisationParams similarity;
+  similarity.hierarchy.candidate_similarity = 2000.0;
+  EXPECT_NE(refusal(similarity).find("localisation.candidate_similarity"), std::string::npos);
+  LocalisationParams weight;
+  weight.fine_rotational_weight = -1.0;
+  EXPECT_NE(refusal(weight).find("localisation.fine_rotational_weight"), std::string::npos);
+  EXPECT_EQ(refusal(LocalisationParams{}), "");
+}
+
 }  // namespace
 }  // namespace omninav::memory

@@ -88,3 +88,10 @@ def test_min_warping_gives_the_home_direction_and_the_turn():
     assert abs(math.remainder(result.home_rad - home_truth, 2 * math.pi)) < math.radians(10)
     travel_world = result.travel_world_rad(0.4)
     assert abs(math.remainder(travel_world - math.atan2(0.3, 0.6), 2 * math.pi)) < math.radians(10)
+
+
+def test_a_value_out_of_range_set_from_python_is_refused_as_in_compass_yaml():
+    config = omninav.CompassConfig.load()
+    config.sampling.threshold_norm_amp = 1.6  # compass.yaml allows 0..1
+    with pytest.raises(omninav.UsageError, match="sampling.threshold_norm_amp"):
+        omninav.Compass(config)

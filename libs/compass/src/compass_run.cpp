@@ -6,7 +6,9 @@
 namespace omninav::compass {
 
 CompassRun::CompassRun(CompassParams params, std::optional<int> width_px)
-    : params_(std::move(params)), width_px_(width_px) {}
+    : params_(std::move(params)), width_px_(width_px) {
+  params_.check();  // now, not at the first frame
+}
 
 CompassEstimate CompassRun::push(const cv::Mat& panorama, int frame_index,
                                  const std::string& source,

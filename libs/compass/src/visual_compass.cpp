@@ -9,6 +9,7 @@
 #include "omninav/core/errors.hpp"
 #include "omninav/core/format.hpp"
 #include "omninav/core/panorama.hpp"
+#include "omninav/core/param_check.hpp"
 
 namespace omninav::compass {
 
@@ -54,20 +55,23 @@ double match_variance_rad2(const PairMatch& match, int width_px) {
   return std::min(variance, kUniform);
 }
 
+void CompassParams::check() const {
+  matcher.check();
+  check_range("sampling.threshold_norm_amp", sampling.threshold_norm_amp, 0.0, 1.0);
+  check_range("sampling.fixed_skip_frames", sampling.fixed_skip_frames, 0, 100000);
+  check_range_deg("sampling.max_reference_rotation_deg", sampling.max_reference_rotation_rad, 0.0,
+                  180.0);
+  check_range("sampling.parallax_step_ratio", sampling.parallax_step_ratio, 0.0, 10.0);
+  check_range("minimiser.global_deeper_ratio", fast_turns.deeper_ratio, 0.0, 1.0);
+  check_range("uncertainty.scale", uncertainty.scale, 0.0, 1000.0);
+}
+
 VisualCompass::VisualCompass(const CompassParams& params, double initial_heading_rad)
     : params_(params),
       matcher_(params.matcher),
       global_matcher_(make_global_matcher(params)),
       initial_heading_rad_(initial_heading_rad) {
-  if (!(params.sampling.max_reference_rotation_rad >= 0.0) ||
-      !(params.sampling.parallax_step_ratio >= 0.0)) {
-    throw UsageError("the rotation cap of Algorithm 1 needs a rotation and a parallax ratio >= 0");
-  }
-  if (params.sampling.policy == SamplingPolicy::kFixedSkip &&
-      params.sampling.fixed_skip_frames < 0) {
-    throw UsageError("Fx n needs n >= 0 frames skipped, got " +
-                     std::to_string(params.sampling.fixed_skip_frames));
-  }
+  params.check();
 }
 
 VisualCompass::~VisualCompass() = default;

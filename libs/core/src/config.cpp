@@ -198,6 +198,35 @@ int ConfigReader::whole_number(const YAML::Node& node, const std::string& key, i
   return parsed;
 }
 
+void ConfigReader::read(const std::string& key, double& value) const {
+  const std::optional<YAML::Node> node = lookup(key);
+  if (!node) return;
+  double parsed = 0.0;
+  if (!node->IsScalar() || !YAML::convert<double>::decode(*node, parsed) ||
+      !std::isfinite(parsed)) {
+    fail(key, "must be a number");
+  }
+  value = parsed;
+}
+
+void ConfigReader::read(const std::string& key, int& value) const {
+  const std::optional<YAML::Node> node = lookup(key);
+  if (!node) return;
+  int parsed = 0;
+  if (!node->IsScalar() || !YAML::convert<int>::decode(*node, parsed)) {
+    fail(key, "must be a whole number");
+  }
+  value = parsed;
+}
+
+void ConfigReader::read_deg(const std::string& key, double& value_rad) const {
+  const std::optional<YAML::Node> node = lookup(key);
+  if (!node) return;
+  double degrees = 0.0;
+  read(key, degrees);
+  value_rad = deg_to_rad(degrees);
+}
+
 void ConfigReader::read(const std::string& key, double& value, double min, double max) const {
   if (const std::optional<YAML::Node> node = lookup(key)) value = number(*node, key, min, max);
 }

@@ -8,6 +8,7 @@
 #include "omninav/core/angles.hpp"
 #include "omninav/core/config.hpp"
 #include "omninav/core/errors.hpp"
+#include "omninav/core/param_check.hpp"
 #include "omninav/core/statistics.hpp"
 #include "omninav/signature/dissimilarity.hpp"
 #include "omninav/signature/phase_heading.hpp"
@@ -16,9 +17,17 @@ namespace omninav::memory {
 
 void load_localisation_params(const ConfigReader& section, LocalisationParams& params) {
   signature::load_hierarchy_params(section, params.hierarchy);
-  section.read("top_k", params.top_k, 1, 100000);
-  section.read("fine_candidates", params.fine_candidates, 0, 100000);
-  section.read("fine_rotational_weight", params.fine_rotational_weight, 0.0, 1000.0);
+  section.read("top_k", params.top_k);
+  section.read("fine_candidates", params.fine_candidates);
+  section.read("fine_rotational_weight", params.fine_rotational_weight);
+  check_loaded(section.source_name(), [&] { params.check(); });
+}
+
+void LocalisationParams::check() const {
+  hierarchy.check();
+  check_range("localisation.top_k", top_k, 1, 100000);
+  check_range("localisation.fine_candidates", fine_candidates, 0, 100000);
+  check_range("localisation.fine_rotational_weight", fine_rotational_weight, 0.0, 1000.0);
 }
 
 std::string to_string(PositionFrame frame) {
@@ -151,6 +160,7 @@ Localiser::Localiser(const VisualMemory& memory, LocalisationParams params)
              memory.parameters().signature.colour == signature::ColourMode::kLuminance ? 1 : 3,
              params_.hierarchy.levels, memory.parameters().weights),
       extractor_(memory.parameters().signature) {
+  params_.check();
   if (params_.hierarchy.levels.back() > memory.parameters().signature.components) {
     throw UsageError("the finest level compares " +
                      std::to_string(params_.hierarchy.levels.back()) +

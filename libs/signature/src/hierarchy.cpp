@@ -6,6 +6,7 @@
 #include "omninav/core/best_k.hpp"
 #include "omninav/core/config.hpp"
 #include "omninav/core/errors.hpp"
+#include "omninav/core/param_check.hpp"
 #include "omninav/core/parse.hpp"
 
 namespace omninav::signature {
@@ -41,8 +42,20 @@ void load_hierarchy_params(const ConfigReader& section, HierarchyParams& params)
   } catch (const UsageError& error) {
     throw ConfigError(error.what());
   }
-  section.read("candidate_similarity", params.candidate_similarity, 0.0, 1000.0);
-  section.read("max_probes", params.max_probes, 0, 100000);
+  section.read("candidate_similarity", params.candidate_similarity);
+  section.read("max_probes", params.max_probes);
+  check_loaded(section.source_name(), [&] { params.check(); });
+}
+
+void HierarchyParams::check() const {
+  if (levels.empty()) throw UsageError("key 'localisation.levels': no levels given");
+  for (std::size_t l = 0; l < levels.size(); ++l) {
+    if (levels[l] < 1 || (l > 0 && levels[l] <= levels[l - 1])) {
+      throw UsageError("key 'localisation.levels' must be increasing and each at least 1");
+    }
+  }
+  check_range("localisation.candidate_similarity", candidate_similarity, 0.0, 1000.0);
+  check_range("localisation.max_probes", max_probes, 0, 100000);
 }
 
 SignatureIndex::SignatureIndex(int rows, int channels, std::vector<int> levels,

@@ -24,9 +24,9 @@ struct CompassConfig {
 };
 
 // Reads the sections distance, minimiser, phase, subpixel, sampling, confidence, uncertainty,
-// min_warping and input. Throws ConfigError naming the key, the file and the valid range
-// or choices, and UsageError for a combination that cannot work (the fft minimiser with the l1
-// metric).
+// min_warping and input, then checks the values (CompassParams::check, MinWarpingParams::check).
+// Throws ConfigError naming the file, the key and the valid range or choices, or the
+// combination that cannot work (the fft minimiser with the l1 metric).
 void load_compass_config(const ConfigReader& config, CompassConfig& out);
 
 }  // namespace omninav::compass

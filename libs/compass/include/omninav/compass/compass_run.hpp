@@ -14,6 +14,7 @@ namespace omninav::compass {
 
 class CompassRun {
  public:
+  // Throws UsageError for parameters out of range (CompassParams::check).
   CompassRun(CompassParams params, std::optional<int> width_px);
 
   // The next frame's estimate. Throws InputError naming `source` for an empty image or one

@@ -64,6 +64,11 @@ struct PairMatcherParams {
   MinimiserParams minimiser;
   SubpixelParams subpixel;
   ConfidenceParams confidence;
+
+  // The ranges of compass.yaml's distance, minimiser, phase, subpixel and confidence sections,
+  // and the combinations that cannot work (fft needs l2). Throws UsageError naming the key
+  // (core/param_check.hpp); PairMatcher's constructor calls it.
+  void check() const;
 };
 
 struct PairMatch {

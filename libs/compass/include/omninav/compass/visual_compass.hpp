@@ -109,6 +109,10 @@ struct CompassParams {
   SamplingParams sampling;
   FastTurns fast_turns;
   UncertaintyParams uncertainty;
+
+  // The ranges of compass.yaml's keys for these (the matcher's too). Throws UsageError naming
+  // the key (core/param_check.hpp); the loader and VisualCompass's constructor call it.
+  void check() const;
 };
 
 // What the compass says about one frame.
@@ -132,7 +136,7 @@ struct CompassEstimate {
 
 class VisualCompass {
  public:
-  // Throws UsageError for impossible parameters (see make_minimiser).
+  // Throws UsageError for parameters out of range (CompassParams::check).
   explicit VisualCompass(const CompassParams& params, double initial_heading_rad = 0.0);
   ~VisualCompass();
   VisualCompass(const VisualCompass&) = delete;

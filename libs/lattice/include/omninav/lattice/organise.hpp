@@ -64,9 +64,13 @@ struct OrganiseParams {
   // away from where the lattice puts their places, or when the motions that survived the
   // look-alike checks left the places in more than one piece (joined by look-alikes only).
   double max_motions_off = 0.02;
+
+  // The ranges of lattice.yaml's organise section (the lattice's keys too). Throws UsageError
+  // naming the key (core/param_check.hpp); the loader and organise() call it.
+  void check() const;
 };
 
-// Reads the `organise:` section of lattice.yaml.
+// Reads the `organise:` section of lattice.yaml, then checks it (OrganiseParams::check).
 void load_organise_params(const ConfigReader& section, OrganiseParams& params);
 
 // How dissimilarity maps to distance, calibrated on the map itself (our reading of Fig. 7 and

@@ -35,6 +35,10 @@ struct LocalisationParams {
   // the least among the candidates). Chosen across the zoo (docs/memory.md): 1 gains more in
   // the field but loses look-alike desks in the office; 0.5 loses nowhere.
   double fine_rotational_weight = 0.5;
+
+  // The ranges of memory.yaml's localisation section (the hierarchy's too). Throws UsageError
+  // naming the key (core/param_check.hpp); the loader and Localiser's constructor call it.
+  void check() const;
 };
 
 // Reads the `localisation:` section of memory.yaml (levels, candidate_similarity, max_probes,

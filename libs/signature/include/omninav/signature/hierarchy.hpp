@@ -42,6 +42,11 @@ struct HierarchyParams {
   double candidate_similarity = 800.0;
   // Places carried through every level to estimate Max Dis (see above).
   int max_probes = 16;
+
+  // The ranges of memory.yaml's localisation.levels (increasing, each ≥ 1),
+  // candidate_similarity (0..1000) and max_probes (0..100000). Throws UsageError naming the key
+  // (core/param_check.hpp); the loader and memory::Localiser's constructor call it.
+  void check() const;
 };
 
 // Reads `levels` ("2,5,15"), `candidate_similarity` and `max_probes` of a `localisation:`

@@ -51,6 +51,10 @@ struct SignatureParams {
   // multiplies a channel's every component by one gain, which this cancels exactly (short of
   // clipping); docs/memory.md measures what it costs and what it buys. The paper: false.
   bool normalise_brightness = true;
+
+  // The range of memory.yaml's signature.components (1..4096). Throws UsageError naming the key
+  // (core/param_check.hpp); the loader and SignatureExtractor's constructor call it.
+  void check() const;
 };
 
 // Reads the `signature:` section of memory.yaml (keys components, colour,
