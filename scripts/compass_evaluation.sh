@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Regenerates the statistics table of docs/compass.md: the visual compass on sequences rendered
-# in the built-in room that mirror the datasets of 000_9e80abd5855643af.txt §4.2, evaluated as
+# in the built-in room that mirror the datasets of Labrosse 2006, §4.2, evaluated as
 # its Tables 3-4, for Algorithm 1 ("Atm 0.6", t = 0.6055, with compass.yaml's rotation cap:
 # "Atm 0.6055 cap 6°") and the best fixed skip ("Fx n": the n in 0..15 with the smallest |error|
 # at the end of the sequence, as §4.3 chose it), at 360×45 and 1080×135.

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Reproduces the numbers and pictures of docs/memory.md with the omninav program only:
-#   - Figs. 5, 6 and 7 of 001_5bb151a4e28490b4.txt on a rendered 30 cm grid of the built-in
+#   - Figs. 5, 6 and 7 of Menegatti et al. 2004 on a rendered 30 cm grid of the built-in
 #     room (omninav export --what figures);
 #   - localisation of random poses between the grid points in three rooms (seeds 1, 2, 3 of
 #     worlds.yaml's room): colour per channel against luminance, against the number of
@@ -19,7 +19,7 @@ omninav="$build/bin/omninav"
 [ -x "$omninav" ] || { echo "no $omninav: build the omninav target first" >&2; exit 1; }
 mkdir -p "$out/figures"
 
-grid="grid:nx=10,ny=8,spacing_m=0.3"  # 270 x 210 cm, the grid of 001 §3.3 (Fig. 14)
+grid="grid:nx=10,ny=8,spacing_m=0.3"  # 270 x 210 cm, the grid of Menegatti et al. 2004, §3.3 (Fig. 14)
 walk="walk:x=1.85,y=1.55,steps=400,step_m=0.23,turn_deg=150"
 components="1 2 3 5 8 15 30 60 181"  # 181 = all of a 360-column row
 

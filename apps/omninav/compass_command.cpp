@@ -57,14 +57,10 @@ void apply_method(const std::string& method, compass::CompassParams& params) {
   if (method == "alg1") {
     sampling.policy = compass::SamplingPolicy::kThreshold;
   } else if (method == "alg1-paper") {
-    // Algorithm 1 as written (§3.5): no rotation cap, no global fallback, no levelling, no
-    // travel fit.
+    // Algorithm 1 as written (§3.5): no rotation cap, no global fallback.
     sampling.policy = compass::SamplingPolicy::kThreshold;
     sampling.max_reference_rotation_rad = 0.0;
     params.fast_turns.global_fallback = false;
-    params.levelling.enabled = false;
-    params.travel.enabled = false;
-    params.window.enabled = false;
   } else if (method.rfind("fx:", 0) == 0) {
     sampling.policy = compass::SamplingPolicy::kFixedSkip;
     const int skip = parse_int_argument(method.substr(3), "--method " + method);
@@ -203,11 +199,6 @@ CompassRows run_over_input(const GlobalOptions& global, const CompassOptions& op
            " s (" + fixed(result.rows.size() / std::max(seconds, 1e-9), 1) +
            " frames/s, reading and decoding included)");
   result.reference_count = compass.reference_count();
-  // The multi-baseline window's final headings (compass.yaml's window; its first estimates
-  // otherwise, what a stream sees).
-  for (std::size_t i = 0; i < result.rows.size(); ++i) {
-    compass.revise(result.rows[i].estimate, static_cast<int>(i));
-  }
   return result;
 }
 
@@ -238,11 +229,7 @@ std::string dataset_label(const CompassOptions& options) {
 // The method as Tables 3-4 name it ("Atm 0.6055", "Fx 3"), and the minimiser when not the
 // paper's.
 std::string method_label(const compass::CompassParams& params) {
-  const compass::WindowParams& window = params.window;
   return describe(params.sampling) +
-         (window.enabled ? " window " + std::to_string(window.keyframes) + " keyframes " +
-                               std::to_string(window.length_frames) + " frames"
-                         : std::string()) +
          (params.matcher.minimiser.kind == compass::MinimiserKind::kLocalScan
               ? std::string()
               : " (" + to_string(params.matcher.minimiser.kind) + ")");
@@ -348,7 +335,7 @@ void add_compass_command(CLI::App& app, const GlobalOptions& global) {
   command
       ->add_option("-i,--input", options->input,
                    "Panoramas: a folder of images, a video, a BoB image database folder, a CSV "
-                   "of file,x_m,y_m,heading_deg (DESIGN.md, Data formats), a ROS bag (.bag, "
+                   "of file,x_m,y_m,heading_deg (docs/design.md, Data formats), a ROS bag (.bag, "
                    ".mcap, .db3; docs/bags.md); or a camera, camera:0 (V4L2), read until Ctrl-C")
       ->type_name("PATH")
       ->required();
@@ -359,7 +346,7 @@ void add_compass_command(CLI::App& app, const GlobalOptions& global) {
                    "      parallax, the rotation from the reference exceeds\n"
                    "      sampling.max_reference_rotation_deg (ours; 0 = the paper's alone);\n"
                    "alg1-paper: Algorithm 1 exactly as the 2006 paper writes it (no rotation\n"
-                   "      cap, no global fallback, no levelling, no travel fit, no window),\n"
+                   "      cap, no global fallback),\n"
                    "      whatever compass.yaml says;\n"
                    "fx:N: a new reference every N+1 frames (\"Fx N\"; fx:0 = successive frames);\n"
                    "exhaustive | fft | phase: Algorithm 1 with that minimiser instead of\n"
@@ -400,9 +387,9 @@ void add_compass_command(CLI::App& app, const GlobalOptions& global) {
           "-o,--out", options->out,
           "Write one CSV row per frame (frame, source, time_s, heading_deg,\n"
           "heading_unwrapped_deg, rotation_deg, amplitude_norm, reference_frame,\n"
-          "confidence, shift_px, evaluations, pitch_deg, roll_deg (relative to the\n"
-          "reference, with compass.yaml tilt.level); truth_heading_deg, error_deg, distance_m\n"
-          "when the input has ground truth); '-' for standard output, each row written\n"
+          "confidence, shift_px, evaluations, heading_sigma_deg; truth_heading_deg,\n"
+          "error_deg, distance_m when the input has ground truth); '-' for standard output,\n"
+          "each row written\n"
           "and flushed as soon as its frame is computed (to follow a live camera)")
       ->type_name("FILE");
   command

@@ -1,8 +1,8 @@
 // omninav demo: the main job on the built-in room, with no arguments. It runs the same
 // subcommands a user would, in order, and prints each one's command line and report, so that
 // the demo is also the tutorial: render an exploration of the room (a 30 cm grid, the
-// reference images of 001 §3.3), explore it into a map, organise the map into a lattice,
-// localise query images rendered at random poses, plan a route and drive to a goal image.
+// reference images of Menegatti et al. 2004, §3.3), explore it into a map, organise the map into a
+// lattice, localise query images rendered at random poses, plan a route and drive to a goal image.
 #include <fmt/format.h>
 
 #include <fstream>
@@ -29,7 +29,7 @@ struct DemoOptions {
 };
 
 // The exploration: a 10 × 8 grid every 30 cm over the middle of the default room (places inside
-// furniture are left out), as in 001 §3.3 (Fig. 14).
+// furniture are left out), as in Menegatti et al. 2004, §3.3 (Fig. 14).
 constexpr const char* kGrid = "grid:x0=1.2,y0=1.0,nx=10,ny=8,spacing_m=0.3";
 constexpr const char* kGridSpacing = "0.3";  // metres, as organise --step-m takes it
 

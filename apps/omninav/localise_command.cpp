@@ -177,7 +177,7 @@ void add_localise_command(CLI::App& app, const GlobalOptions& global) {
       "similarity passes memory.yaml's threshold, at the finest the best places with the "
       "query's heading relative to each, and a position when the places have one (lattice, "
       "else ground truth). Queries with ground truth against a map with ground truth are "
-      "scored (DESIGN.md, Evaluation).");
+      "scored (docs/design.md, Evaluation).");
   command->add_option("map", options->map, "The map, e.g. maps/room.vmem")->required();
   command
       ->add_option("queries", options->queries,

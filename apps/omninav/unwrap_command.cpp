@@ -1,4 +1,5 @@
-// omninav unwrap: raw omnidirectional images in, panoramas (DESIGN.md's column convention) out.
+// omninav unwrap: raw omnidirectional images in, panoramas (docs/design.md's column convention)
+// out.
 
 #include <fmt/format.h>
 

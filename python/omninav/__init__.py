@@ -60,7 +60,6 @@ from ._omninav import (  # noqa: F401 (re-exported)
     SignatureParams,
     Unwrapper,
     UsageError,
-    WindowParams,
     World,
     azimuth_of_column,
     channel_order,
@@ -101,7 +100,7 @@ def _fields_repr(value):
 
 
 # The result and parameter types print their fields (the others keep their own __repr__).
-for _type in (SamplingParams, MinimiserParams, WindowParams, CompassConfig, SignatureParams,
+for _type in (SamplingParams, MinimiserParams, CompassConfig, SignatureParams,
               ExplorationParams, LocalisationParams, MemoryConfig, RouteParams, LinkParams,
               BeliefParams, NavigatorParams,
               NavigationConfig, Place, Edge, Localisation, RoutePlan, Run, NavigationStep, GoalRun):

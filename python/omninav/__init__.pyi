@@ -55,13 +55,6 @@ class SamplingParams:
 class MinimiserParams:
     kind: str  # "local_scan" | "exhaustive" | "fft" | "phase"
 
-class WindowParams:
-    enabled: bool
-    keyframes: int
-    length_frames: int
-    loss_scale: float
-    gate_long_baselines: bool
-
 class CompassConfig:
     def __init__(self) -> None: ...
     @staticmethod
@@ -70,8 +63,6 @@ class CompassConfig:
     def sampling(self) -> SamplingParams: ...
     @property
     def minimiser(self) -> MinimiserParams: ...
-    @property
-    def window(self) -> WindowParams: ...
     global_fallback: bool
     width_px: Optional[int]
 
@@ -97,7 +88,6 @@ class LocalisationParams:
     top_k: int
     fine_candidates: int
     fine_rotational_weight: float
-    learn_line_weights: bool
 
 class MemoryConfig:
     def __init__(self) -> None: ...
@@ -200,11 +190,8 @@ class CompassEstimate:
     reference_index: int
     new_reference: bool
     shift_px: float
-    pitch_rad: float
-    roll_rad: float
     evaluations: int
     heading_sigma_rad: float  # the heading's standard deviation
-    alternative_taken: bool  # the previous frame's other reading replaced it
     realigned: bool  # the heading was re-aligned from outside (a recognised place of a map)
     confidence: str  # "ok" or flags joined by '+'
     featureless: bool

@@ -73,11 +73,8 @@ void bind_compass(py::module_& m) {
       .def_readonly("reference_index", &CompassEstimate::reference_index)
       .def_readonly("new_reference", &CompassEstimate::new_reference)
       .def_readonly("shift_px", &CompassEstimate::shift_px)
-      .def_readonly("pitch_rad", &CompassEstimate::pitch_rad)
-      .def_readonly("roll_rad", &CompassEstimate::roll_rad)
       .def_readonly("evaluations", &CompassEstimate::evaluations)
       .def_readonly("heading_sigma_rad", &CompassEstimate::heading_sigma_rad)
-      .def_readonly("alternative_taken", &CompassEstimate::alternative_taken)
       .def_readonly("realigned", &CompassEstimate::realigned)
       .def("__repr__", [](const CompassEstimate& e) {
         return py::str(

@@ -55,23 +55,6 @@ void bind_compass_config(py::module_& m) {
           },
           "local_scan, exhaustive, fft or phase.");
 
-  using compass::WindowParams;
-  py::class_<WindowParams>(m, "WindowParams",
-                           "compass.yaml's window section: the multi-baseline window.")
-      .def_readwrite("enabled", &WindowParams::enabled,
-                     "Match each frame against earlier keyframes too and solve the headings of "
-                     "a sliding window together.")
-      .def_readwrite("keyframes", &WindowParams::keyframes,
-                     "K, earlier keyframes matched besides the reference.")
-      .def_readwrite("length_frames", &WindowParams::length_frames,
-                     "N, the headings solved together.")
-      .def_readwrite("loss_scale", &WindowParams::loss_scale,
-                     "The Cauchy loss's scale, in match standard deviations.")
-      .def_readwrite("gate_long_baselines", &WindowParams::gate_long_baselines,
-                     "Keyframe matches beyond the rotation cap with parallax count only where "
-                     "the baselines disagree with Algorithm 1's reading by two readings' "
-                     "separation.");
-
   py::class_<compass::CompassConfig>(
       m, "CompassConfig",
       "config/compass.yaml: the visual compass's parameters. CompassConfig.load(config_dir) "
@@ -83,7 +66,7 @@ void bind_compass_config(py::module_& m) {
             return evaluation::load_compass_config(config_dir_or_default(config_dir));
           },
           py::arg("config_dir") = py::none(),
-          "Reads <config_dir>/compass.yaml (and camera.yaml's elevations). Raises ConfigError "
+          "Reads <config_dir>/compass.yaml. Raises ConfigError "
           "naming the file and key.")
       .def_property_readonly(
           "sampling", [](compass::CompassConfig & c) -> auto& { return c.compass.sampling; },
@@ -91,8 +74,6 @@ void bind_compass_config(py::module_& m) {
       .def_property_readonly(
           "minimiser",
           [](compass::CompassConfig & c) -> auto& { return c.compass.matcher.minimiser; }, section)
-      .def_property_readonly(
-          "window", [](compass::CompassConfig & c) -> auto& { return c.compass.window; }, section)
       .def_property(
           "global_fallback",
           [](const compass::CompassConfig& c) { return c.compass.fast_turns.global_fallback; },
@@ -153,9 +134,7 @@ void bind_memory_config(py::module_& m) {
       .def_readwrite("fine_candidates", &LocalisationParams::fine_candidates,
                      "Best places re-ranked by the fine level (0 = off).")
       .def_readwrite("fine_rotational_weight", &LocalisationParams::fine_rotational_weight,
-                     "The rotational term's weight in the fine level's score.")
-      .def_readwrite("learn_line_weights", &LocalisationParams::learn_line_weights,
-                     "Weight each panorama row by how well it tells near from far in the map.");
+                     "The rotational term's weight in the fine level's score.");
 
   py::class_<memory::MemoryConfig>(
       m, "MemoryConfig",

@@ -27,10 +27,8 @@
 #include <tuple>
 #include <vector>
 
-#include "omninav/compass/heading_window.hpp"
 #include "omninav/compass/min_warping.hpp"
 #include "omninav/compass/pair_matcher.hpp"
-#include "omninav/compass/tilt.hpp"
 #include "omninav/compass/visual_compass.hpp"
 #include "omninav/core/angles.hpp"
 #include "omninav/sim/renderer.hpp"
@@ -105,11 +103,8 @@ void pairs(benchmark::State& state, MinimiserKind kind, bool variant, int width,
 // What an Algorithm 1 benchmark runs beyond compass.yaml's defaults.
 struct Alg1Options {
   bool fixed_skip = false;  // Fx 0, the successive-pair compass
-  bool level = false;       // tilt.level
-  bool travel = false;      // travel_fit.enabled
   bool fallback = true;     // minimiser.global_fallback
   bool fast = false;        // the fast-turning circle of frames()
-  bool window = false;      // window.enabled (heading_window.hpp)
   bool deeper = true;       // minimiser.global_deeper_ratio at compass.yaml's value, else 0
 };
 
@@ -120,8 +115,6 @@ void algorithm1(benchmark::State& state, MinimiserKind kind, int width, int heig
   const std::vector<cv::Mat>& images = frames(width, height, options.fast);
   omninav::compass::CompassParams params;
   params.matcher.minimiser.kind = kind;
-  params.levelling.enabled = options.level;
-  params.travel.enabled = options.travel;
   params.fast_turns.global_fallback = options.fallback;
   if (!options.deeper) params.fast_turns.deeper_ratio = 0.0;
   const bool fixed_skip = options.fixed_skip;
@@ -134,48 +127,16 @@ void algorithm1(benchmark::State& state, MinimiserKind kind, int width, int heig
     warm_up.push(CompassFrame(images[0], 0));
     warm_up.push(CompassFrame(images[1], 1));
   }
-  params.window.enabled = options.window;
   std::int64_t frames_done = 0;
   for (auto _ : state) {
     omninav::compass::VisualCompass compass(params, 0.0);
-    std::unique_ptr<omninav::compass::HeadingWindow> window;
-    if (options.window) window = std::make_unique<omninav::compass::HeadingWindow>(params);
     for (int i = 0; i < kFrames; ++i) {
-      const CompassFrame frame(images[static_cast<std::size_t>(i)], i);
-      const omninav::compass::CompassEstimate estimate = compass.push(frame);
-      benchmark::DoNotOptimize(window ? window->push(frame, estimate) : estimate);
+      benchmark::DoNotOptimize(compass.push(CompassFrame(images[static_cast<std::size_t>(i)], i)));
     }
     frames_done += kFrames;
   }
   state.counters["frames_per_s"] =
       benchmark::Counter(static_cast<double>(frames_done), benchmark::Counter::kIsRate);
-}
-
-// The tilt step (tilt.hpp) per frame: the tilt of a frame relative to the previous one at a
-// known turn, and levelling it. The frames of the circle are level, so the warp is run with
-// the estimate plus 1 degree of pitch (a zero tilt would return a copy, measuring nothing).
-// "estimate" and "level" alone, and "step" both.
-void tilt(benchmark::State& state, int width, int height, bool estimate, bool level) {
-  const std::vector<cv::Mat>& images = frames(width, height);
-  omninav::PanoramaGeometry geometry;
-  geometry.width_px = width;
-  geometry.height_px = height;
-  int next = 1;
-  for (auto _ : state) {
-    const cv::Mat& first = images[static_cast<std::size_t>(next - 1)];
-    const cv::Mat& second = images[static_cast<std::size_t>(next)];
-    omninav::compass::TiltEstimate estimate_now;
-    if (estimate) {
-      estimate_now = omninav::compass::estimate_relative_tilt(first, second, geometry, 0.0);
-    }
-    if (level) {
-      benchmark::DoNotOptimize(omninav::compass::level_panorama(
-          second, geometry, estimate_now.pitch_rad + omninav::deg_to_rad(1.0),
-          estimate_now.roll_rad));
-    }
-    benchmark::DoNotOptimize(estimate_now);
-    next = next % (kFrames - 1) + 1;
-  }
 }
 
 // Min-warping's joint estimate (compass.yaml's min_warping defaults) on consecutive frames of
@@ -243,21 +204,6 @@ void register_all() {
     benchmark::RegisterBenchmark(("fx0/fft/" + size).c_str(), algorithm1, MinimiserKind::kFft,
                                  width, height, Alg1Options{.fixed_skip = true})
         ->Unit(benchmark::kMicrosecond);
-    // Algorithm 1 with compass.yaml's tilt.level on: every frame pays the estimate, the warp
-    // and a second match (the estimate is small on these level frames, but never exactly 0).
-    add_alg1("algorithm1_level", {.level = true});
-    // Algorithm 1 with compass.yaml's travel_fit.enabled on: the fit runs at each new reference.
-    add_alg1("algorithm1_travel", {.travel = true});
-    // Algorithm 1 with compass.yaml's window on: keyframe matches and the window's solve.
-    add_alg1("algorithm1_window", {.window = true});
-    add_alg1("algorithm1_fast_window", {.fast = true, .window = true});
-    for (const auto& [name, estimate, level] :
-         {std::make_tuple("estimate", true, false), std::make_tuple("level", false, true),
-          std::make_tuple("step", true, true)}) {
-      benchmark::RegisterBenchmark(("tilt/" + std::string(name) + "/" + size).c_str(), tilt, width,
-                                   height, estimate, level)
-          ->Unit(benchmark::kMicrosecond);
-    }
   }
 }
 
@@ -319,32 +265,6 @@ class RatioReporter : public benchmark::ConsoleReporter {
           std::printf(", fast circle %8.0f frames/s (%.2fx)", kFrames / fast,
                       fast_no_fallback / fast);
         }
-        std::printf("\n");
-      }
-      const double alg1_window = get(std::string("algorithm1_window/local_scan/") + size);
-      const double fast_window = get(std::string("algorithm1_fast_window/local_scan/") + size);
-      if (alg1_local > 0 && alg1_window > 0) {
-        std::printf(
-            "  %-15s Algorithm 1 with the window: circle %8.0f frames/s (%.2fx the default)", size,
-            kFrames / alg1_window, alg1_local / alg1_window);
-        if (fast > 0 && fast_window > 0) {
-          std::printf(", fast circle %8.0f frames/s (%.2fx)", kFrames / fast_window,
-                      fast / fast_window);
-        }
-        std::printf("\n");
-      }
-      const double alg1_level = get(std::string("algorithm1_level/local_scan/") + size);
-      if (alg1_level > 0) {
-        std::printf("  %-15s Algorithm 1 with tilt.level: local_scan %8.0f frames/s\n", size,
-                    kFrames / alg1_level);
-      }
-      const double tilt_step = get(std::string("tilt/step/") + size);
-      if (tilt_step > 0 && alg1_local > 0) {
-        std::printf(
-            "  %-15s tilt step (estimate + level) %6.0f us = %.2fx an Algorithm 1 frame "
-            "(local_scan)",
-            size, tilt_step * 1e6, tilt_step / (alg1_local / kFrames));
-        if (alg1_fft > 0) std::printf(", %.2fx (fft)", tilt_step / (alg1_fft / kFrames));
         std::printf("\n");
       }
     }

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include "omninav/compass/compass_run.hpp"
 #include "omninav/core/angles.hpp"
 #include "omninav/core/config.hpp"
 #include "omninav/core/errors.hpp"
@@ -35,7 +36,6 @@ TEST(CompassConfig, ShippedFileHoldsTheTable2Defaults) {
   EXPECT_FALSE(shipped.width_px.has_value());
 
   const CompassConfig defaults;
-  EXPECT_EQ(matcher.minimiser.seed_with_phase, defaults.compass.matcher.minimiser.seed_with_phase);
   EXPECT_EQ(matcher.minimiser.phase.components,
             defaults.compass.matcher.minimiser.phase.components);
   EXPECT_EQ(shipped.compass.sampling.fixed_skip_frames,
@@ -44,15 +44,9 @@ TEST(CompassConfig, ShippedFileHoldsTheTable2Defaults) {
               defaults.compass.sampling.max_reference_rotation_rad, 1e-12);
   EXPECT_EQ(shipped.compass.sampling.parallax_step_ratio,
             defaults.compass.sampling.parallax_step_ratio);
-  EXPECT_EQ(shipped.compass.travel.enabled, defaults.compass.travel.enabled);
   EXPECT_EQ(shipped.compass.fast_turns.global_fallback,
             defaults.compass.fast_turns.global_fallback);
   EXPECT_EQ(shipped.compass.fast_turns.deeper_ratio, defaults.compass.fast_turns.deeper_ratio);
-  EXPECT_EQ(shipped.compass.travel.fit.iterations, defaults.compass.travel.fit.iterations);
-  EXPECT_EQ(shipped.compass.travel.fit.rows_used, defaults.compass.travel.fit.rows_used);
-  EXPECT_EQ(shipped.compass.travel.fit.whole, defaults.compass.travel.fit.whole);
-  EXPECT_NEAR(shipped.compass.travel.fit.max_correction_rad,
-              defaults.compass.travel.fit.max_correction_rad, 1e-12);
   EXPECT_EQ(matcher.confidence.flat_below_grey,
             defaults.compass.matcher.confidence.flat_below_grey);
   EXPECT_NEAR(matcher.confidence.competing_separation_rad,
@@ -68,22 +62,15 @@ TEST(CompassConfig, ShippedFileHoldsTheTable2Defaults) {
 TEST(CompassConfig, ReadsEveryKey) {
   const CompassConfig read = load(ConfigReader::from_string(
       "distance: {metric: l2, field_of_view: whole, band_width_deg: 90}\n"
-      "minimiser: {kind: fft, scan_values: 6, scan_span_deg: 30, seed_with_phase: true, "
+      "minimiser: {kind: fft, scan_values: 6, scan_span_deg: 30, "
       "fft_planning: measure, global_fallback: false, global_deeper_ratio: 0.3}\n"
       "phase: {components: 4}\n"
       "subpixel: {mode: parabolic, parabolic_up_to_norm_amp: 0.4, linear_from_norm_amp: 0.9}\n"
       "sampling: {policy: fixed_skip, threshold_norm_amp: 0.7, fixed_skip_frames: 5, "
       "max_reference_rotation_deg: 4, parallax_step_ratio: 0.1}\n"
       "confidence: {flat_below_grey: 2, competing_separation_deg: 5, competing_depth_ratio: 0.2}\n"
-      "travel_fit: {enabled: true, iterations: 3, rows_used: 20, columns: whole, "
-      "max_correction_deg: 3}\n"
       "input: {width_px: 1080}\n",
       "compass.yaml"));
-  EXPECT_TRUE(read.compass.travel.enabled);
-  EXPECT_EQ(read.compass.travel.fit.iterations, 3);
-  EXPECT_EQ(read.compass.travel.fit.rows_used, 20);
-  EXPECT_TRUE(read.compass.travel.fit.whole);
-  EXPECT_NEAR(read.compass.travel.fit.max_correction_rad, 3.0 * kPi / 180.0, 1e-12);
   EXPECT_FALSE(read.compass.matcher.distance.field_of_view.front_back);
   EXPECT_EQ(read.compass.matcher.minimiser.kind, MinimiserKind::kFft);
   EXPECT_EQ(read.compass.matcher.minimiser.fft_planning, FftPlanning::kMeasure);
@@ -96,33 +83,6 @@ TEST(CompassConfig, ReadsEveryKey) {
   EXPECT_NEAR(read.compass.sampling.max_reference_rotation_rad, 4.0 * kPi / 180.0, 1e-12);
   EXPECT_EQ(read.compass.sampling.parallax_step_ratio, 0.1);
   EXPECT_EQ(read.width_px, 1080);
-}
-
-// The multi-baseline window's section (heading_window.hpp): shipped off, every key read, ranges
-// enforced.
-TEST(CompassConfig, ReadsTheWindowSection) {
-  const CompassConfig shipped =
-      load(ConfigReader::from_file(omninav::testing::config_dir() / "compass.yaml"));
-  const CompassConfig defaults;
-  EXPECT_EQ(shipped.compass.window.enabled, defaults.compass.window.enabled);
-  EXPECT_EQ(shipped.compass.window.keyframes, defaults.compass.window.keyframes);
-  EXPECT_EQ(shipped.compass.window.length_frames, defaults.compass.window.length_frames);
-  EXPECT_EQ(shipped.compass.window.loss_scale, defaults.compass.window.loss_scale);
-  EXPECT_EQ(shipped.compass.window.gate_long_baselines,
-            defaults.compass.window.gate_long_baselines);
-  const CompassConfig read = load(ConfigReader::from_string(
-      "window: {enabled: true, keyframes: 5, length_frames: 20, loss_scale: 2.5, "
-      "gate_long_baselines: true}\n",
-      "compass.yaml"));
-  EXPECT_TRUE(read.compass.window.enabled);
-  EXPECT_EQ(read.compass.window.keyframes, 5);
-  EXPECT_EQ(read.compass.window.length_frames, 20);
-  EXPECT_EQ(read.compass.window.loss_scale, 2.5);
-  EXPECT_TRUE(read.compass.window.gate_long_baselines);
-  EXPECT_THROW(load(ConfigReader::from_string("window: {length_frames: 1}\n", "compass.yaml")),
-               ConfigError);
-  EXPECT_THROW(load(ConfigReader::from_string("window: {loss_scale: 0}\n", "compass.yaml")),
-               ConfigError);
 }
 
 TEST(CompassConfig, RejectsUnknownKeysBadValuesAndImpossibleCombinations) {
@@ -147,6 +107,56 @@ TEST(CompassConfig, RejectsUnknownKeysBadValuesAndImpossibleCombinations) {
   EXPECT_NE(message_of("input: {width_px: 360.5}\n").find("width_px"), std::string::npos);
   EXPECT_NE(message_of("input: {width_px: 360.5}\n").find("compass.yaml"), std::string::npos);
   EXPECT_FALSE(load(ConfigReader::from_string("input: {width_px: ~}\n", "c.yaml")).width_px);
+}
+
+// The ranges live in the Params structs' check(), which the algorithms call too: a value set in
+// code, as Python's writable fields set it, is refused by the compass as the YAML loader refuses
+// it in a file, naming the same key (the loader adds the file).
+TEST(CompassConfig, AValueSetInCodeIsRefusedAsTheLoaderRefusesIt) {
+  const auto refusal = [](const auto& make) -> std::string {
+    try {
+      make();
+    } catch (const UsageError& error) {
+      return error.what();
+    }
+    return "";
+  };
+  CompassParams sampling;
+  sampling.sampling.threshold_norm_amp = 1.6;
+  EXPECT_NE(refusal([&] { VisualCompass compass(sampling); }).find("sampling.threshold_norm_amp"),
+            std::string::npos);
+  EXPECT_NE(refusal([&] { CompassRun run(sampling, std::nullopt); }).find("threshold_norm_amp"),
+            std::string::npos);
+  CompassParams deeper;
+  deeper.fast_turns.deeper_ratio = -0.1;
+  EXPECT_NE(refusal([&] { VisualCompass compass(deeper); }).find("minimiser.global_deeper_ratio"),
+            std::string::npos);
+  PairMatcherParams matcher;
+  matcher.confidence.competing_separation_rad = deg_to_rad(200.0);
+  EXPECT_NE(refusal([&] { PairMatcher pairs(matcher); }).find("competing_separation_deg"),
+            std::string::npos);
+  matcher = {};
+  matcher.minimiser.kind = MinimiserKind::kFft;
+  matcher.distance.metric = Metric::kL1;
+  EXPECT_NE(refusal([&] { PairMatcher pairs(matcher); }).find("l2"), std::string::npos);
+  MinWarpingParams warping;
+  warping.scale_planes = 8;
+  EXPECT_NE(refusal([&] { MinWarping w(warping, PanoramaGeometry{}); }).find("scale_planes"),
+            std::string::npos);
+  // The same value in a file: a ConfigError naming the file and the key.
+  try {
+    load(ConfigReader::from_string("sampling: {threshold_norm_amp: 1.6}\n", "compass.yaml"));
+    ADD_FAILURE() << "1.6 was accepted";
+  } catch (const ConfigError& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find("compass.yaml"), std::string::npos) << message;
+    EXPECT_NE(message.find("sampling.threshold_norm_amp"), std::string::npos) << message;
+  }
+  // The bounds themselves pass, degrees through radians included.
+  CompassParams bounds;
+  bounds.sampling.max_reference_rotation_rad = deg_to_rad(180.0);
+  bounds.matcher.minimiser.scan_span_rad = deg_to_rad(0.1);
+  EXPECT_NO_THROW(bounds.check());
 }
 
 }  // namespace

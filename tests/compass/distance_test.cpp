@@ -1,4 +1,4 @@
-// The distance function (Eqs. 1-2 of 000_9e80abd5855643af.txt) and its field of view (§3.4.3).
+// The distance function (Eqs. 1-2 of Labrosse 2006) and its field of view (§3.4.3).
 #include "omninav/compass/distance.hpp"
 
 #include <gtest/gtest.h>

@@ -1,5 +1,6 @@
 // The minimisers of the distance function: (a) exhaustive (the oracle), (b) descent + regular
-// scan (000 §3.3.4), (c) FFT masked cross-correlation, (d) Fourier phase (001 §2.1, Eq. 1).
+// scan (Labrosse 2006, §3.3.4), (c) FFT masked cross-correlation, (d) Fourier phase (Menegatti et
+// al. 2004, §2.1, Eq. 1).
 #include "omninav/compass/minimiser.hpp"
 
 #include <gtest/gtest.h>
@@ -21,17 +22,21 @@ namespace {
 using testing::random_image;
 using testing::render_room;
 
-MinimiserParams params_of(MinimiserKind kind, bool seed_with_phase = false) {
+MinimiserParams params_of(MinimiserKind kind) {
   MinimiserParams params;
   params.kind = kind;
-  params.seed_with_phase = seed_with_phase;
   return params;
 }
 
+// With start_from_phase the descent starts from the rounded phase estimate (d) instead of
+// `start`: random texture has no basin around its minimum for a descent to follow.
 int minimum_of(MinimiserKind kind, const DistanceFunction& distance, const CompassFrame& first,
-               const CompassFrame& second, int start = 0, bool seed_with_phase = false) {
-  const auto minimiser = make_minimiser(params_of(kind, seed_with_phase), distance.metric());
+               const CompassFrame& second, int start = 0, bool start_from_phase = false) {
+  const auto minimiser = make_minimiser(params_of(kind), distance.metric());
   CostTable table(distance, first, second);
+  if (start_from_phase) {
+    start = static_cast<int>(std::lround(estimate_phase_shift(first, second, {}).shift_px));
+  }
   return minimiser->minimise(table, start).shift_px;
 }
 
@@ -44,13 +49,13 @@ struct Agreement {
 // Runs (a), (b) from `start` and (c) on a pair; also checks (c)'s minimum cost and its whole
 // curve against (a)'s.
 Agreement agree(const DistanceFunction& distance, const CompassFrame& first,
-                const CompassFrame& second, int start, bool seed_with_phase = false) {
+                const CompassFrame& second, int start, bool start_from_phase = false) {
   Agreement result;
   const auto oracle = make_minimiser(params_of(MinimiserKind::kExhaustive), distance.metric());
   CostTable exact(distance, first, second);
   result.oracle = oracle->minimise(exact, 0).shift_px;
   result.local =
-      minimum_of(MinimiserKind::kLocalScan, distance, first, second, start, seed_with_phase);
+      minimum_of(MinimiserKind::kLocalScan, distance, first, second, start, start_from_phase);
   if (distance.metric() == Metric::kL2) {
     CostTable fast(distance, first, second);
     const auto fft = make_minimiser(params_of(MinimiserKind::kFft), distance.metric());
@@ -86,8 +91,8 @@ DistanceFunction whole(int width) {
 }
 
 // Rolling a rendered panorama by k columns is recovered exactly by (a), (b) and (c), with and
-// without the mask, at 360 and 1080 columns; (b) is seeded by the phase, since a descent from 0
-// cannot be expected to cross half the circle.
+// without the mask, at 360 and 1080 columns; (b) starts from the phase estimate, since a descent
+// from 0 cannot be expected to cross half the circle.
 TEST(Minimisers, RecoverRolledRenderedPanoramasExactly) {
   for (const auto& [width, height] : {std::make_pair(360, 45), std::make_pair(1080, 60)}) {
     const cv::Mat image = render_room(2.3, 1.9, 27.0, width, height);
@@ -98,7 +103,7 @@ TEST(Minimisers, RecoverRolledRenderedPanoramasExactly) {
       const CompassFrame second(roll_columns(image, k));
       for (const bool front_back : {true, false}) {
         const DistanceFunction distance = front_back ? masked(width) : whole(width);
-        const Agreement found = agree(distance, first, second, 0, /*seed_with_phase=*/true);
+        const Agreement found = agree(distance, first, second, 0, /*start_from_phase=*/true);
         const int expected = signed_shift(-k, width);
         EXPECT_EQ(found.oracle, expected) << width << " roll " << k << " mask " << front_back;
         EXPECT_EQ(found.local, expected) << width << " roll " << k << " mask " << front_back;
@@ -116,7 +121,7 @@ TEST(Minimisers, AgreeOnRealPanoramas) {
   const CompassFrame frame0(testing::ftl_route_image(0));
   for (const int k : {1, -2, 33, -89, 90}) {
     const CompassFrame rolled(roll_columns(frame0.image(), k));
-    const Agreement found = agree(distance, frame0, rolled, 0, /*seed_with_phase=*/true);
+    const Agreement found = agree(distance, frame0, rolled, 0, /*start_from_phase=*/true);
     EXPECT_EQ(found.oracle, signed_shift(-k, 180)) << k;
     EXPECT_EQ(found.local, found.oracle) << k;
     EXPECT_EQ(found.fft, found.oracle) << k;
@@ -264,8 +269,8 @@ TEST(Minimisers, BreakTiesTheSameWay) {
   const CompassFrame first(periodic);
   const CompassFrame second(roll_columns(periodic, 10));
   // Random texture has no basin around its minimum for a descent to follow (the paper's
-  // images do): (b) is seeded by the phase here.
-  const Agreement found = agree(whole(360), first, second, 0, /*seed_with_phase=*/true);
+  // images do): (b) starts from the phase's estimate here.
+  const Agreement found = agree(whole(360), first, second, 0, /*start_from_phase=*/true);
   EXPECT_EQ(found.oracle, -10);
   EXPECT_EQ(found.local, -10);
   EXPECT_EQ(found.fft, -10);

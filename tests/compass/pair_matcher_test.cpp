@@ -29,7 +29,7 @@ PairMatcherParams params_with(MinimiserKind kind, bool front_back = true) {
 constexpr MinimiserKind kDistanceMinimisers[] = {MinimiserKind::kExhaustive,
                                                  MinimiserKind::kLocalScan, MinimiserKind::kFft};
 
-// DESIGN.md: heading counter-clockwise positive. The renderer draws the exact heading; a turn
+// docs/design.md: heading counter-clockwise positive. The renderer draws the exact heading; a turn
 // to the left (+δ) must read as +δ, whichever minimiser.
 TEST(PairMatcher, RotationIsCounterClockwisePositiveAgainstRenderedTruth) {
   for (const double turn_deg : {10.0, -25.0, 3.0}) {

@@ -1,4 +1,4 @@
-// The sub-pixel minimum of 000_9e80abd5855643af.txt §3.4.2 (Eqs. 7-12).
+// The sub-pixel minimum of Labrosse 2006, §3.4.2 (Eqs. 7-12).
 #include "omninav/compass/subpixel.hpp"
 
 #include <gtest/gtest.h>

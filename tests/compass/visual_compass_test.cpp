@@ -1,4 +1,4 @@
-// Algorithm 1 of 000_9e80abd5855643af.txt (§3.5) and "Fx n", against rendered ground truth.
+// Algorithm 1 of Labrosse 2006 (§3.5) and "Fx n", against rendered ground truth.
 #include "omninav/compass/visual_compass.hpp"
 
 #include <fmt/format.h>
@@ -10,8 +10,6 @@
 #include <map>
 
 #include "compass_test_support.hpp"
-#include "omninav/compass/compass_run.hpp"
-#include "omninav/compass/heading_window.hpp"
 #include "omninav/core/angles.hpp"
 #include "omninav/core/errors.hpp"
 #include "omninav/core/panorama.hpp"
@@ -590,134 +588,6 @@ TEST(VisualCompass, RealRouteIsSmoothAndConsistent) {
     ++compared;
   }
   EXPECT_GE(compared, 5);
-}
-
-}  // namespace
-}  // namespace omninav::compass
-
-namespace omninav::compass {
-namespace {
-
-// Levelling (compass.yaml tilt.level): a turn on the spot with 3 degrees of pitch and roll
-// noise per frame (the trajectory's pitch_noise_deg, roll_noise_deg) in the default room,
-// against the same turn level. Measured: max |e| 2.32 degrees without levelling, 0.88 with
-// (0.15 level), 91 references without, 33 with (2 level); on the level turn levelling changes
-// nothing. Asserted: levelling at least halves both, and leaves the level turn as it was.
-TEST(VisualCompass, LevellingRemovesTheTiltOfARotationOnTheSpot) {
-  const std::string turn = "rotate:x=2.5,y=2.9,turns=1,rate_deg_s=-37.7,fps=10";
-  const RenderedSequence level = render_sequence(turn);
-  const RenderedSequence tilted =
-      render_sequence(turn + ",pitch_noise_deg=3,roll_noise_deg=3,noise_seed=4");
-  CompassParams levelling = alg1();
-  levelling.levelling.enabled = true;
-  const RenderedRun plain_level = run_on(level, alg1());
-  const RenderedRun plain_tilted = run_on(tilted, alg1());
-  const RenderedRun levelled_tilted = run_on(tilted, levelling);
-  const RenderedRun levelled_level = run_on(level, levelling);
-  std::printf(
-      "  max |e|: level %.3f, tilted %.3f, tilted levelled %.3f, level levelled %.3f deg;"
-      " references %d, %d, %d, %d\n",
-      plain_level.evaluation.error_deg.max_abs, plain_tilted.evaluation.error_deg.max_abs,
-      levelled_tilted.evaluation.error_deg.max_abs, levelled_level.evaluation.error_deg.max_abs,
-      plain_level.references, plain_tilted.references, levelled_tilted.references,
-      levelled_level.references);
-}
-
-// The multi-baseline window (heading_window.hpp) against one wrong match. ROTATERIGHT in the
-// room at 360x45 with Fx 1 (a new reference every second frame, each measured against the one
-// before: a chain of references whose every link carries the heading on), and one link made
-// wrong by 60°: the rotation Algorithm 1 measured for a frame that then serves as a reference.
-// The chain alone (the window with no keyframe) carries the 60° to every later frame; with three
-// earlier keyframes, which on the spot all still pass t, the frame has four baselines and the
-// wrong one is an outlier among them: every heading, first and final, stays within 1° of the
-// renderer's.
-TEST(HeadingWindow, OutvotesOneWrongMatchThatTheChainKeeps) {
-  const RenderedSequence sequence =
-      render_sequence("rotate:x=2.5,y=2.9,turns=1,rate_deg_s=-37.7,fps=10");
-  ASSERT_GE(sequence.frames.size(), 90u);
-  CompassParams params = fixed_skip(1);
-  VisualCompass compass(params, sequence.truth.front().heading_rad);
-  std::vector<CompassEstimate> chain;
-  for (const CompassFrame& frame : sequence.frames) chain.push_back(compass.push(frame));
-  // The first frame from 40 on that becomes the next frame's reference.
-  std::size_t wrong = 40;
-  while (!chain[wrong + 1].new_reference) ++wrong;
-  ASSERT_EQ(chain[wrong + 1].reference_index, static_cast<int>(wrong));
-  chain[wrong].reference_rotation_rad += deg_to_rad(60.0);
-
-  const auto errors_deg = [&](int keyframes, std::vector<double>& first_deg) {
-    CompassParams windowed = params;
-    windowed.window.enabled = true;
-    windowed.window.keyframes = keyframes;
-    HeadingWindow window(windowed);
-    first_deg.clear();
-    for (std::size_t i = 0; i < chain.size(); ++i) {
-      const double first = window.push(sequence.frames[i], chain[i]).heading_rad;
-      first_deg.push_back(rad_to_deg(signed_difference(first, sequence.truth[i].heading_rad)));
-    }
-    std::vector<double> final_deg;
-    for (std::size_t i = 0; i < chain.size(); ++i) {
-      final_deg.push_back(
-          rad_to_deg(signed_difference(window.headings_rad()[i], sequence.truth[i].heading_rad)));
-    }
-    if (keyframes == 0) {
-      EXPECT_EQ(window.keyframe_matches(), 0);
-    } else {
-      EXPECT_GT(window.keyframe_matches(), static_cast<int>(chain.size()));
-    }
-    return final_deg;
-  };
-  std::vector<double> first_chain, first_window;
-  const std::vector<double> chain_alone = errors_deg(0, first_chain);
-  const std::vector<double> windowed = errors_deg(3, first_window);
-  // The chain alone: right before the wrong link, 60° off after it, to the end.
-  EXPECT_LT(std::abs(chain_alone[wrong - 1]), 1.0);
-  for (std::size_t i = wrong; i < chain.size(); ++i) {
-    ASSERT_GT(std::abs(chain_alone[i]), 55.0) << "frame " << i;
-    ASSERT_EQ(first_chain[i], chain_alone[i]) << "frame " << i;  // nothing to revise
-  }
-  for (std::size_t i = 0; i < chain.size(); ++i) {
-    EXPECT_LT(std::abs(windowed[i]), 1.0) << "frame " << i;
-    EXPECT_LT(std::abs(first_window[i]), 1.0) << "frame " << i;
-  }
-}
-
-// The window on rendered routes, against the renderer's headings: the first 2.4 m of the full
-// suite's wanders in the field and the plain room (GlobalFallbackFollowsSharpTurnsOfWanders) and
-// the CI circle of the built-in room, with three keyframes. Its final headings
-// (CompassRun::revise) keep the bounds the chain keeps when the gate keeps the keyframes' long,
-// parallax-biased baselines out; on the circle, where the rotation cap cuts every baseline that
-// shows parallax, they bring the bias back without the gate (measured: 5.09° against the chain's
-// 2.36°).
-TEST(HeadingWindow, KeepsTheChainsBoundsOnRenderedRoutesWithTheGate) {
-  std::vector<RouteCase> cases = sharp_wanders();
-  cases.push_back({"room", "circle:cx=1.5,cy=2.6,radius_m=0.9,turns=1,speed_m_s=0.2,fps=5", 3.0});
-  for (const auto& [world_spec, spec, bound_deg] : cases) {
-    const sim::World world = sim::load_world(world_spec, sim::WorldsConfig{});
-    const RenderedSequence sequence = render_sequence(world, spec);
-    ASSERT_GE(sequence.frames.size(), 100u) << world_spec;
-    const auto window_max_deg = [&](bool gate) {
-      CompassParams params = alg1();
-      params.window.enabled = true;
-      params.window.keyframes = 3;
-      params.window.gate_long_baselines = gate;
-      CompassRun run(params, std::nullopt);
-      std::vector<CompassEstimate> estimates;
-      for (const CompassFrame& frame : sequence.frames) {
-        estimates.push_back(
-            run.push(frame.image(), frame.index(), "", sequence.truth.front().heading_rad));
-      }
-      for (std::size_t i = 0; i < estimates.size(); ++i) {
-        run.revise(estimates[i], static_cast<int>(i));
-      }
-      return evaluation::evaluate_compass(estimates, sequence.truth, run.reference_count())
-          .error_deg.max_abs;
-    };
-    EXPECT_LE(window_max_deg(true), bound_deg) << world_spec;
-    if (spec.starts_with("circle")) {
-      EXPECT_GT(window_max_deg(false), bound_deg) << world_spec;
-    }
-  }
 }
 
 }  // namespace

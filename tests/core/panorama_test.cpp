@@ -11,7 +11,7 @@ namespace omninav {
 namespace {
 
 TEST(ColumnConvention, FrontLeftBackRight) {
-  // DESIGN.md: front at 0.25·W, back at 0.75·W, column 0 is the robot's left.
+  // docs/design.md: front at 0.25·W, back at 0.75·W, column 0 is the robot's left.
   const int width = 360;
   EXPECT_NEAR(azimuth_of_column(90, width), 0.0, 1e-12);
   EXPECT_NEAR(azimuth_of_column(0, width), kPi / 2, 1e-12);

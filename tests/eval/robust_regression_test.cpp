@@ -44,7 +44,7 @@ TEST(TheilSen, ExactOnNoiselessLine) {
 }
 
 // A compass error drifting at 0.02 rad/s with 5 mrad of noise over 20 s, whose last quarter
-// jumped by 2 rad (as GRASS1 did after frame 700, 000_9e80abd5855643af.txt §4).
+// jumped by 2 rad (as GRASS1 did after frame 700, Labrosse 2006, §4).
 struct DriftWithJump {
   std::vector<double> time_s, error_rad;
   static constexpr double kSlope = 0.02;

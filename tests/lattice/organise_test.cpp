@@ -19,9 +19,9 @@
 namespace omninav::lattice {
 namespace {
 
-// A map of a 30 cm grid of the built-in room rendered at 360×45 (the grid of 001 §3.3, Fig. 14;
-// points inside furniture are left out, as a robot could not stand there), every image a place,
-// headings from the truth, in the order a grid database lists them.
+// A map of a 30 cm grid of the built-in room rendered at 360×45 (the grid of Menegatti et al. 2004,
+// §3.3, Fig. 14; points inside furniture are left out, as a robot could not stand there), every
+// image a place, headings from the truth, in the order a grid database lists them.
 memory::VisualMemory grid_map(const sim::RoomParams& room_params, const std::string& grid) {
   const sim::World room = sim::make_room(room_params);
   sim::RenderParams render;
@@ -385,6 +385,24 @@ TEST(Organise, ClearErrors) {
   EXPECT_THROW(organise(empty, thirty_centimetres()), UsageError);
   memory::VisualMemory map = grid_map({}, "grid:nx=3,ny=1,spacing_m=0.3");
   EXPECT_THROW(organise(map, {}), UsageError);  // no step given, none in the map
+}
+
+// A value set in code, as Python's writable fields set it, is refused by organise() as the YAML
+// loader refuses it in lattice.yaml, naming the key (OrganiseParams::check), before any work.
+TEST(Organise, ParamsOutOfRangeAreRefusedBeforeAnyWork) {
+  memory::VisualMemory memory;
+  OrganiseParams params;
+  params.range_fraction = 2.0;
+  try {
+    organise(memory, params);
+    ADD_FAILURE() << "range_fraction 2 was accepted";
+  } catch (const UsageError& error) {
+    EXPECT_NE(std::string(error.what()).find("organise.range_fraction"), std::string::npos);
+  }
+  params = {};
+  params.lattice.max_iterations = 0;
+  EXPECT_THROW(organise(memory, params), UsageError);
+  EXPECT_NO_THROW(OrganiseParams{}.check());
 }
 
 }  // namespace

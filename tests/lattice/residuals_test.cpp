@@ -63,23 +63,6 @@ TEST(MotionResidual, ZeroAtTheMeasuredStepSignedAlongAndAcrossIt) {
   EXPECT_NEAR(motion_residual(M_PI, 2.0, from, far)[0], 196.0, 1e-9);
 }
 
-TEST(BearingResidual, ZeroAlongTheBearingAtAnyLengthAndBoundedOffIt) {
-  const auto bearing = [](double direction_rad, const double* from, const double* to) {
-    std::array<double, 2> residual{};
-    BearingResidual(direction_rad, 0.1)(from, to, residual.data());
-    return std::hypot(residual[0], residual[1]);
-  };
-  const double from[2] = {1.0, 1.0};
-  const double one_step[2] = {1.0, 1.3}, two_steps[2] = {1.0, 1.6};  // along +y
-  EXPECT_NEAR(bearing(M_PI / 2, from, one_step), 0.0, 1e-9);
-  EXPECT_NEAR(bearing(M_PI / 2, from, two_steps), 0.0, 1e-9);  // a length would say 1 step
-  // 90° off: |(1, 0) − (0, 1)| / σ = √2 / 0.1; reversed: 2 / σ, however far apart.
-  EXPECT_NEAR(bearing(0.0, from, two_steps), std::sqrt(2.0) / 0.1, 1e-9);
-  EXPECT_NEAR(bearing(-M_PI / 2, from, two_steps), 20.0, 1e-9);
-  const double far[2] = {1.0, 101.0};
-  EXPECT_NEAR(bearing(-M_PI / 2, from, far), 20.0, 1e-9);
-}
-
 TEST(Stiffness, Equation5) {
   EXPECT_DOUBLE_EQ(spring_stiffness(0.0, 1.2), 1.0);
   EXPECT_NEAR(spring_stiffness(1.2, 1.2), 0.1, 1e-12);  // K(x₁) = 0.1

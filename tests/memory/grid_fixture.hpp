@@ -1,7 +1,7 @@
 #pragma once
 // The tests' ground truth: the built-in room, a 30 cm grid of places rendered at 360×45 (the
-// paper's reference images were "taken on a 25 cm grid", 001 §2.3, and "every 30 cm", §3.3),
-// and queries rendered at random poses between the grid points, at random headings.
+// paper's reference images were "taken on a 25 cm grid", Menegatti et al. 2004, §2.3, and "every 30
+// cm", §3.3), and queries rendered at random poses between the grid points, at random headings.
 
 #include <cmath>
 #include <random>

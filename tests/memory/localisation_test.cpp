@@ -87,7 +87,7 @@ GridScores score(signature::ColourMode colour, std::size_t query_count) {
 
 TEST(GridLocalisation, RandomPosesBetweenGridPointsLocaliseWithinOneSpacing) {
   const GridScores s = score(signature::ColourMode::kLuminance, 120);
-  // At least 95% of queries at the finest level (DESIGN.md, Evaluation: Localisation).
+  // At least 95% of queries at the finest level (docs/design.md, Evaluation: Localisation).
   EXPECT_GE(s.within_spacing, 0.95 * s.queries);
   // The best place of the pruned search is the exhaustive search's in ≥ 99% of queries.
   EXPECT_GE(s.pruned_equals_exhaustive, 0.99 * s.queries);
@@ -137,56 +137,8 @@ TEST(GridLocalisation, ColourPerChannel) {
   EXPECT_GE(s.pruned_equals_exhaustive, 0.99 * s.queries);
 }
 
-// Learned line weights against constructed lines along a listing of 60 places: line 0 noise
-// (neighbours differ as much as places far apart: no information), line 1 a smooth function of
-// the place's position in the listing (neighbours alike, far places not), line 2 constant
-// (says nothing), line 3 line 1's shape at 10 times its amplitude (the same information on
-// another scale: its weighted differences must match line 1's).
-TEST(LearnedLineWeights, TellNearFromFarAndPutEveryLineOnItsOwnScale) {
-  MapParameters parameters;
-  parameters.signature.components = 2;
-  VisualMemory memory(parameters);
-  std::mt19937 random(4);
-  std::uniform_real_distribution<float> noise(30.f, 70.f);  // the smooth line's range
-  for (int i = 0; i < 60; ++i) {
-    const float smooth = 50.f + 20.f * static_cast<float>(std::sin(2.0 * kPi * i / 60.0));
-    Place place;
-    place.signature.rows = 4;
-    place.signature.components = 2;
-    place.signature.width_px = 64;
-    place.signature.magnitude = {noise(random), noise(random), smooth,        smooth,
-                                 40.f,          40.f,          10.f * smooth, 10.f * smooth};
-    place.signature.phase_rad.assign(8, 0.f);
-    memory.add_place(std::move(place));
-  }
-  const std::vector<double> w = learn_line_weights(memory, 2);
-  ASSERT_EQ(w.size(), 4u);
-  EXPECT_GT(w[1], 0.0);
-  EXPECT_LT(w[0], 0.1 * w[1]);
-  EXPECT_EQ(w[2], 0.0);
-  EXPECT_NEAR(10.0 * w[3], w[1], 1e-6 * w[1]);
-  EXPECT_NEAR(w[0] + w[1] + w[2] + w[3], 4.0, 1e-9);  // a mean of 1
-  // The localiser uses them when told and not otherwise.
-  LocalisationParams defaults;
-  defaults.hierarchy.levels = {1, 2};
-  defaults.learn_line_weights = true;
-  EXPECT_EQ(Localiser(memory, defaults).line_weights(), w);
-  LocalisationParams papers = defaults;
-  papers.learn_line_weights = false;
-  EXPECT_TRUE(Localiser(memory, papers).line_weights().empty());
-  // The scale that puts line-weighted dissimilarities on Eq. 6's: 1 for weights that change
-  // nothing, the inverse of a common factor, and 1 without weights.
-  EXPECT_NEAR(line_weighted_scale(memory, 2, std::vector<double>(4, 1.0)), 1.0, 1e-12);
-  EXPECT_NEAR(line_weighted_scale(memory, 2, std::vector<double>(4, 4.0)), 0.25, 1e-12);
-  EXPECT_EQ(line_weighted_scale(memory, 2, {}), 1.0);
-  // Too few places to learn from: every line alike.
-  VisualMemory small(parameters);
-  for (int i = 0; i < 3; ++i) small.add_place(memory.place(static_cast<PlaceIndex>(i)));
-  EXPECT_TRUE(learn_line_weights(small, 2).empty());
-}
-
-// The fine level reorders the best places but reports Eq. 6's dissimilarity without line
-// weights (navigation's match limit compares it with the map's links), and top_k places.
+// The fine level reorders the best places but reports Eq. 6's dissimilarity
+// (navigation's match limit compares it with the map's links), and top_k places.
 TEST(GridLocalisation, FineLevelKeepsEquationSixAndTopK) {
   const VisualMemory memory = testing::grid_memory();
   LocalisationParams params;
@@ -204,6 +156,31 @@ TEST(GridLocalisation, FineLevelKeepsEquationSixAndTopK) {
     ASSERT_TRUE(match.rotational_dissimilarity.has_value());
     EXPECT_GE(*match.rotational_dissimilarity, 0.0);
   }
+}
+
+// A value set in code, as Python's writable fields set it, is refused by the localiser as the
+// YAML loader refuses it in memory.yaml, naming the key (LocalisationParams::check, with the
+// hierarchy's).
+TEST(GridLocalisation, ParamsOutOfRangeAreRefusedByTheLocaliser) {
+  const VisualMemory memory{MapParameters{}};
+  const auto refusal = [&](const LocalisationParams& params) -> std::string {
+    try {
+      Localiser localiser(memory, params);
+    } catch (const UsageError& error) {
+      return error.what();
+    }
+    return "";
+  };
+  LocalisationParams top;
+  top.top_k = 0;
+  EXPECT_NE(refusal(top).find("localisation.top_k"), std::string::npos);
+  LocalisationParams similarity;
+  similarity.hierarchy.candidate_similarity = 2000.0;
+  EXPECT_NE(refusal(similarity).find("localisation.candidate_similarity"), std::string::npos);
+  LocalisationParams weight;
+  weight.fine_rotational_weight = -1.0;
+  EXPECT_NE(refusal(weight).find("localisation.fine_rotational_weight"), std::string::npos);
+  EXPECT_EQ(refusal(LocalisationParams{}), "");
 }
 
 }  // namespace

@@ -4,8 +4,8 @@
 // them (evaluation/localisation_score.hpp): the best place within one spacing of the truth,
 // queries farther than half a cell's diagonal from every place not scored. Each world is
 // localised twice, with the fine level (memory.yaml's fine_candidates 10; off by default, for
-// the navigator's sake: docs/memory.md) and as the papers do (neither the fine level nor learned
-// line weights), so that each test states what the fine level buys.
+// the navigator's sake: docs/memory.md) and as the papers do (without it), so that each test
+// states what the fine level buys.
 
 #include <gtest/gtest.h>
 
@@ -32,7 +32,7 @@ namespace {
 constexpr double kSpacing_m = 0.3;
 
 struct Shares {
-  double papers = 0.0;  // no line weights, no fine level
+  double papers = 0.0;  // no fine level
   double fine = 0.0;    // with the fine level
 };
 
@@ -70,7 +70,6 @@ Shares within_one_spacing(const std::string& spec, double x0_m, double y0_m, dou
   fine.fine_candidates = 10;
   LocalisationParams papers;
   papers.fine_candidates = 0;
-  papers.learn_line_weights = false;
   const Localiser with_fine(memory, fine);
   const Localiser as_papers(memory, papers);
   signature::SignatureExtractor extractor(memory.parameters().signature);

@@ -159,7 +159,7 @@ class RawRotation : public ::testing::TestWithParam<RotationCase> {};
 // Rotating the raw image about the mirror centre is a rotation of the robot on the spot.
 // flip = false (raw image = view from above): the raw content turning counter-clockwise by k is
 // the robot turning CLOCKWISE by k, so the panorama content moves by shift_px_of_rotation(−k)
-// = −k·W/360 columns (DESIGN.md: a counter-clockwise turn moves it to higher columns).
+// = −k·W/360 columns (docs/design.md: a counter-clockwise turn moves it to higher columns).
 // flip = true (mirrored raw image): the same raw rotation is a counter-clockwise turn, +k·W/360.
 // The roll must be the best of all W rolls, and match within interpolation error: 0.3 grey
 // levels (measured up to 0.09: warpAffine interpolates the raw image once more); one column off

@@ -73,17 +73,6 @@ def test_the_threshold_is_read_from_the_config_and_can_be_changed():
     assert not config.global_fallback
 
 
-def test_the_heading_window_is_read_from_the_config_and_can_be_turned_on():
-    config = omninav.CompassConfig.load()
-    assert not config.window.enabled  # compass.yaml: measured on the zoo, off
-    assert config.window.keyframes == 1 and config.window.length_frames == 10
-    config.window.enabled = True
-    config.window.keyframes = 3
-    config.window.gate_long_baselines = True
-    assert config.window.enabled and config.window.keyframes == 3
-    assert config.window.gate_long_baselines
-
-
 def test_min_warping_gives_the_home_direction_and_the_turn():
     world = omninav.World("room", width_px=360, height_px=45, rays_per_pixel=1)
     renderer = omninav.Renderer(world)
@@ -99,3 +88,10 @@ def test_min_warping_gives_the_home_direction_and_the_turn():
     assert abs(math.remainder(result.home_rad - home_truth, 2 * math.pi)) < math.radians(10)
     travel_world = result.travel_world_rad(0.4)
     assert abs(math.remainder(travel_world - math.atan2(0.3, 0.6), 2 * math.pi)) < math.radians(10)
+
+
+def test_a_value_out_of_range_set_from_python_is_refused_as_in_compass_yaml():
+    config = omninav.CompassConfig.load()
+    config.sampling.threshold_norm_amp = 1.6  # compass.yaml allows 0..1
+    with pytest.raises(omninav.UsageError, match="sampling.threshold_norm_amp"):
+        omninav.Compass(config)

@@ -50,17 +50,6 @@ TEST(Dissimilarity, EquationSixWeightsEachComponent) {
   EXPECT_THROW(parse_component_weights("1, x", "memory.yaml"), ConfigError);
 }
 
-// Line weights scale each row's terms (the search index's learned weights, computed directly).
-TEST(Dissimilarity, LineWeightsScaleEachRow) {
-  const Signature a = tiny({10, 4, 1, 20, 2, 0}, 2, 3);
-  const Signature b = tiny({12, 1, 1, 15, 2, 3}, 2, 3);
-  const ComponentWeights weights = parse_component_weights("0.5, 2", "test");
-  const std::vector<double> rows{3.0, 0.0};  // the second row ignored
-  EXPECT_DOUBLE_EQ(dissimilarity(a, b, -1, weights, rows), 3.0 * (0.5 * 2 + 2 * 3 + 2 * 0));
-  EXPECT_DOUBLE_EQ(dissimilarity(a, b, -1, {}, std::vector<double>{1.0, 1.0}), dissimilarity(a, b));
-  EXPECT_THROW(dissimilarity(a, b, -1, {}, std::vector<double>{1.0}), UsageError);
-}
-
 TEST(Similarity, EquationThreeRescalesToZeroToAThousand) {
   const std::vector<double> dis{10.0, 30.0, 20.0, 50.0};
   const std::vector<double> sim = rescale_similarities(dis);
@@ -95,13 +84,9 @@ TEST(RotationalDissimilarity, CoefficientsAlignedByTheTurnByHand) {
   const double other = -0.4;  // misaligned by 0.7 rad: |e^{i0.2} − 2e^{i0.9}|
   EXPECT_NEAR(rotational_dissimilarity(from, to, other),
               1.0 + std::abs(std::polar(1.0, 0.2) - std::polar(2.0, 0.9)), 1e-6);
-  // Weights: α_k per component, then one per line.
+  // Weights: α_k per component.
   const ComponentWeights weights = parse_component_weights("2, 3", "test");
-  const std::vector<double> line_weights{0.5};
-  EXPECT_NEAR(rotational_dissimilarity(from, to, turn, -1, weights, line_weights),
-              0.5 * (2.0 * 1.0 + 3.0 * 1.0), 1e-6);
-  EXPECT_THROW(rotational_dissimilarity(from, to, turn, -1, {}, std::vector<double>{1.0, 1.0}),
-               UsageError);
+  EXPECT_NEAR(rotational_dissimilarity(from, to, turn, -1, weights), 2.0 * 1.0 + 3.0 * 1.0, 1e-6);
   EXPECT_THROW(rotational_dissimilarity(from, tiny({1, 2, 3}, 1, 3), turn, 3), UsageError);
 }
 

@@ -38,35 +38,6 @@ TEST(Hierarchy, LevelDissimilaritiesAreEquationTwoAndSix) {
   }
 }
 
-// Line weights fold into the stored magnitudes like Eq. 6's: a level's Dis is the weighted sum
-// over lines, and a line weighted 0 is not compared at all.
-TEST(Hierarchy, LineWeightsWeighEachLinesTerms) {
-  SignatureExtractor extractor({15, ColourMode::kLuminance});
-  std::vector<Signature> places;
-  for (double x : {1.0, 1.6, 2.2}) places.push_back(extractor.compute(testing::render(x, 2.0, 0)));
-  const Signature query = extractor.compute(testing::render(1.9, 2.2, 70.0));
-  std::vector<double> line_weights(45, 0.0);
-  for (int line = 10; line < 20; ++line) line_weights[static_cast<std::size_t>(line)] = 2.0;
-  SignatureIndex index(45, 1, {2, 5, 15});
-  index.set_line_weights(line_weights);
-  for (const Signature& s : places) index.add(s);
-  const Eigen::VectorXf dis = index.dissimilarities(query, 2);
-  for (std::size_t i = 0; i < places.size(); ++i) {
-    double expected = 0.0;
-    for (int line = 10; line < 20; ++line) {
-      for (int k = 0; k < 15; ++k) {
-        expected += 2.0 * std::fabs(query.magnitude[query.at(line, k)] -
-                                    places[i].magnitude[places[i].at(line, k)]);
-      }
-    }
-    EXPECT_NEAR(dis[static_cast<Eigen::Index>(i)], expected, 1e-4 * expected) << "place " << i;
-  }
-  EXPECT_THROW(index.set_line_weights(line_weights), UsageError);  // after add()
-  SignatureIndex fresh(45, 1, {2, 5, 15});
-  EXPECT_THROW(fresh.set_line_weights(std::vector<double>(44, 1.0)), UsageError);
-  EXPECT_THROW(fresh.set_line_weights(std::vector<double>(45, -1.0)), UsageError);
-}
-
 TEST(Hierarchy, PrunedSearchFindsTheExhaustiveBestAndNestsItsCandidates) {
   // 2,000 synthetic places on a 30 m floor every 0.55 m, 300 noisy queries between them.
   const testing::SyntheticPlaces field(30.0, 45, 1, 15, 3);

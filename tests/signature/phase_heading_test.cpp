@@ -59,7 +59,7 @@ TEST(PhaseHeading, RecoversFractionalRollsWithinHalfAColumn) {
 
 TEST(PhaseHeading, RenderedTurnsOnTheSpotInDesignSignConvention) {
   // Turning counter-clockwise (heading grows, REP 103) must give a positive turn: the
-  // heading of `to` minus the heading of `from`, as DESIGN.md defines headings.
+  // heading of `to` minus the heading of `from`, as docs/design.md defines headings.
   SignatureExtractor extractor({15, ColourMode::kLuminance});
   for (const auto& [x, y, start_deg] :
        {std::tuple{2.0, 2.0, 0.0}, std::tuple{4.3, 1.2, 130.0}, std::tuple{1.1, 3.8, -75.0}}) {

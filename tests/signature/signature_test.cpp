@@ -176,5 +176,22 @@ TEST(ColourMode, NamesRoundTrip) {
   EXPECT_THROW(colour_mode_from_string("rgb"), UsageError);
 }
 
+// A value set in code, as Python's writable fields set it, is refused by the extractor as the
+// YAML loader refuses it in memory.yaml, naming the key (SignatureParams::check).
+TEST(Signature, ComponentsOutOfRangeAreRefusedByTheExtractor) {
+  SignatureParams params;
+  params.components = 0;
+  try {
+    SignatureExtractor extractor(params);
+    ADD_FAILURE() << "0 components were accepted";
+  } catch (const UsageError& error) {
+    EXPECT_NE(std::string(error.what()).find("signature.components"), std::string::npos);
+  }
+  params.components = 5000;
+  EXPECT_THROW(SignatureExtractor{params}, UsageError);
+  params.components = 4096;
+  EXPECT_NO_THROW(SignatureExtractor{params});
+}
+
 }  // namespace
 }  // namespace omninav::signature

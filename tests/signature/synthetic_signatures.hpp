@@ -1,9 +1,9 @@
 #pragma once
 // Synthetic signatures for scale (the hierarchy test and signature_bench): places on a square
 // floor whose magnitudes vary smoothly with position, low components slowly and high ones
-// faster, as the paper observes of real views (001 §2.3: "the low frequency components ... are
-// more similar in a larger interval of distances"). Random signatures would have no
-// neighbourhoods at all and make every pruning look bad; these have the structure the search
+// faster, as the paper observes of real views (Menegatti et al. 2004, §2.3: "the low frequency
+// components ... are more similar in a larger interval of distances"). Random signatures would have
+// no neighbourhoods at all and make every pruning look bad; these have the structure the search
 // relies on. Seeded.
 
 #include <cmath>

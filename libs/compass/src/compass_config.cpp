@@ -6,6 +6,7 @@
 #include "omninav/core/angles.hpp"
 #include "omninav/core/config.hpp"
 #include "omninav/core/errors.hpp"
+#include "omninav/core/param_check.hpp"
 
 namespace omninav::compass {
 
@@ -19,15 +20,14 @@ void load_compass_config(const ConfigReader& config, CompassConfig& out) {
   std::string field_of_view = matcher.distance.field_of_view.front_back ? "front_back" : "whole";
   distance.read("field_of_view", field_of_view, {"front_back", "whole"});
   matcher.distance.field_of_view.front_back = field_of_view == "front_back";
-  distance.read_deg("band_width_deg", matcher.distance.field_of_view.band_width_rad, 1.0, 180.0);
+  distance.read_deg("band_width_deg", matcher.distance.field_of_view.band_width_rad);
 
   const ConfigReader minimiser = config.section("minimiser");
   std::string kind = to_string(matcher.minimiser.kind);
   minimiser.read("kind", kind, {"local_scan", "exhaustive", "fft", "phase"});
   matcher.minimiser.kind = minimiser_kind_of(kind);
-  minimiser.read("scan_values", matcher.minimiser.scan_values, 2, 64);
-  minimiser.read_deg("scan_span_deg", matcher.minimiser.scan_span_rad, 0.1, 180.0);
-  minimiser.read("seed_with_phase", matcher.minimiser.seed_with_phase);
+  minimiser.read("scan_values", matcher.minimiser.scan_values);
+  minimiser.read_deg("scan_span_deg", matcher.minimiser.scan_span_rad);
   std::string planning =
       matcher.minimiser.fft_planning == FftPlanning::kMeasure ? "measure" : "estimate";
   minimiser.read("fft_planning", planning, {"estimate", "measure"});
@@ -35,18 +35,17 @@ void load_compass_config(const ConfigReader& config, CompassConfig& out) {
       planning == "measure" ? FftPlanning::kMeasure : FftPlanning::kEstimate;
 
   minimiser.read("global_fallback", out.compass.fast_turns.global_fallback);
-  minimiser.read("keep_alternative", out.compass.fast_turns.keep_alternative);
-  minimiser.read("global_deeper_ratio", out.compass.fast_turns.deeper_ratio, 0.0, 1.0);
+  minimiser.read("global_deeper_ratio", out.compass.fast_turns.deeper_ratio);
 
   const ConfigReader phase = config.section("phase");
-  phase.read("components", matcher.minimiser.phase.components, 1, 4096);
+  phase.read("components", matcher.minimiser.phase.components);
 
   const ConfigReader subpixel = config.section("subpixel");
   std::string mode = to_string(matcher.subpixel.mode);
   subpixel.read("mode", mode, {"mixture", "parabolic", "linear", "none"});
   matcher.subpixel.mode = subpixel_mode_of(mode);
-  subpixel.read("parabolic_up_to_norm_amp", matcher.subpixel.parabolic_up_to_norm_amp, 0.0, 10.0);
-  subpixel.read("linear_from_norm_amp", matcher.subpixel.linear_from_norm_amp, 0.0, 10.0);
+  subpixel.read("parabolic_up_to_norm_amp", matcher.subpixel.parabolic_up_to_norm_amp);
+  subpixel.read("linear_from_norm_amp", matcher.subpixel.linear_from_norm_amp);
 
   const ConfigReader sampling = config.section("sampling");
   SamplingParams& sampling_params = out.compass.sampling;
@@ -55,58 +54,29 @@ void load_compass_config(const ConfigReader& config, CompassConfig& out) {
   sampling.read("policy", policy, {"threshold", "fixed_skip"});
   sampling_params.policy =
       policy == "fixed_skip" ? SamplingPolicy::kFixedSkip : SamplingPolicy::kThreshold;
-  sampling.read("threshold_norm_amp", sampling_params.threshold_norm_amp, 0.0, 1.0);
-  sampling.read("fixed_skip_frames", sampling_params.fixed_skip_frames, 0, 100000);
-  sampling.read_deg("max_reference_rotation_deg", sampling_params.max_reference_rotation_rad, 0.0,
-                    180.0);
-  sampling.read("parallax_step_ratio", sampling_params.parallax_step_ratio, 0.0, 10.0);
+  sampling.read("threshold_norm_amp", sampling_params.threshold_norm_amp);
+  sampling.read("fixed_skip_frames", sampling_params.fixed_skip_frames);
+  sampling.read_deg("max_reference_rotation_deg", sampling_params.max_reference_rotation_rad);
+  sampling.read("parallax_step_ratio", sampling_params.parallax_step_ratio);
 
   const ConfigReader confidence = config.section("confidence");
   ConfidenceParams& confidence_params = matcher.confidence;
-  confidence.read("flat_below_grey", confidence_params.flat_below_grey, 0.0, 255.0);
-  confidence.read_deg("competing_separation_deg", confidence_params.competing_separation_rad, 0.1,
-                      180.0);
-  confidence.read("competing_depth_ratio", confidence_params.competing_depth_ratio, 0.0, 1.0);
-
-  const ConfigReader tilt = config.section("tilt");
-  TiltLevellingParams& levelling = out.compass.levelling;
-  tilt.read("level", levelling.enabled);
-  tilt.read("blocks", levelling.tilt.blocks, 4, 4096);
-  tilt.read_deg("max_tilt_deg", levelling.tilt.max_tilt_rad, 0.5, 30.0);
-
-  const ConfigReader travel = config.section("travel_fit");
-  travel.read("enabled", out.compass.travel.enabled);
-  travel.read("iterations", out.compass.travel.fit.iterations, 0, 100);
-  travel.read("rows_used", out.compass.travel.fit.rows_used, 1, 100000);
-  std::string travel_columns = out.compass.travel.fit.whole ? "whole" : "bands";
-  travel.read("columns", travel_columns, {"whole", "bands"});
-  out.compass.travel.fit.whole = travel_columns == "whole";
-  travel.read_deg("max_correction_deg", out.compass.travel.fit.max_correction_rad, 0.0, 180.0);
+  confidence.read("flat_below_grey", confidence_params.flat_below_grey);
+  confidence.read_deg("competing_separation_deg", confidence_params.competing_separation_rad);
+  confidence.read("competing_depth_ratio", confidence_params.competing_depth_ratio);
 
   const ConfigReader uncertainty = config.section("uncertainty");
-  uncertainty.read("scale", out.compass.uncertainty.scale, 0.0, 1000.0);
-
-  const ConfigReader window = config.section("window");
-  WindowParams& window_params = out.compass.window;
-  window.read("enabled", window_params.enabled);
-  window.read("keyframes", window_params.keyframes, 0, 64);
-  window.read("length_frames", window_params.length_frames, 2, 1000);
-  window.read("loss_scale", window_params.loss_scale, 0.01, 1000.0);
-  window.read("gate_long_baselines", window_params.gate_long_baselines);
+  uncertainty.read("scale", out.compass.uncertainty.scale);
 
   const ConfigReader warping = config.section("min_warping");
   MinWarpingParams& mw = out.min_warping;
-  warping.read("search_width_px", mw.search_width_px, 8, 4096);
-  warping.read("search_height_px", mw.search_height_px, 1, 4096);
-  warping.read("max_relative_distance", mw.max_relative_distance, 0.05, 0.99);
-  warping.read("max_scale", mw.max_scale, 1.0, 4.0);
-  warping.read("scale_planes", mw.scale_planes, 1, 33);
-  if (mw.scale_planes % 2 == 0) {
-    throw ConfigError(config.source_name() + ": key 'min_warping.scale_planes' = " +
-                      std::to_string(mw.scale_planes) + " must be odd (1 is a plane)");
-  }
-  warping.read("distance_samples", mw.distance_samples, 16, 4096);
-  warping.read("featureless_below_grey", mw.featureless_below_grey, 0.0, 255.0);
+  warping.read("search_width_px", mw.search_width_px);
+  warping.read("search_height_px", mw.search_height_px);
+  warping.read("max_relative_distance", mw.max_relative_distance);
+  warping.read("max_scale", mw.max_scale);
+  warping.read("scale_planes", mw.scale_planes);
+  warping.read("distance_samples", mw.distance_samples);
+  warping.read("featureless_below_grey", mw.featureless_below_grey);
 
   const ConfigReader input = config.section("input");
   std::optional<double> width = out.width_px ? std::optional<double>(*out.width_px) : std::nullopt;
@@ -117,12 +87,9 @@ void load_compass_config(const ConfigReader& config, CompassConfig& out) {
   }
   out.width_px = width ? std::optional<int>(static_cast<int>(*width)) : std::nullopt;
 
-  // Combinations that cannot work fail here, naming the file.
-  if (matcher.minimiser.kind == MinimiserKind::kFft && matcher.distance.metric == Metric::kL1) {
-    throw ConfigError(config.source_name() +
-                      ": minimiser.kind 'fft' needs distance.metric 'l2' (the FFT expands the "
-                      "square of Eq. 2)");
-  }
+  // The ranges, and the combinations that cannot work, fail here, naming the file.
+  check_loaded(config.source_name(), [&] { out.compass.check(); });
+  check_loaded(config.source_name(), [&] { out.min_warping.check(); });
 }
 
 }  // namespace omninav::compass

@@ -6,7 +6,9 @@
 namespace omninav::compass {
 
 CompassRun::CompassRun(CompassParams params, std::optional<int> width_px)
-    : params_(std::move(params)), width_px_(width_px) {}
+    : params_(std::move(params)), width_px_(width_px) {
+  params_.check();  // now, not at the first frame
+}
 
 CompassEstimate CompassRun::push(const cv::Mat& panorama, int frame_index,
                                  const std::string& source,
@@ -23,32 +25,12 @@ CompassEstimate CompassRun::push(const cv::Mat& panorama, int frame_index,
       width_px_ && *width_px_ != panorama.cols ? resample_columns(panorama, *width_px_) : panorama;
   if (!compass_) {
     compass_ = std::make_unique<VisualCompass>(params_, truth_heading_rad.value_or(0.0));
-    if (params_.window.enabled) window_ = std::make_unique<HeadingWindow>(params_);
   }
-  const CompassFrame frame(resampled, frame_index, source);
-  const CompassEstimate chain = compass_->push(frame);
-  return window_ ? window_->push(frame, chain) : chain;
-}
-
-void CompassRun::revise(CompassEstimate& estimate, int position) const {
-  if (!window_) return;
-  const std::vector<double>& headings = window_->headings_rad();
-  if (position < 0 || position >= static_cast<int>(headings.size())) {
-    throw UsageError("no frame at position " + std::to_string(position) + " to revise");
-  }
-  estimate.heading_rad = headings[position];
-  estimate.rotation_rad = position == 0 ? 0.0 : headings[position] - headings[position - 1];
+  return compass_->push(CompassFrame(resampled, frame_index, source));
 }
 
 void CompassRun::realign(double heading_rad, double sigma_rad, CompassEstimate& estimate) {
   if (!compass_) throw UsageError("the compass can only re-align a frame it has seen");
-  // The window re-solves its headings from relative matches only: an absolute heading from a
-  // map would need to enter its problem as a prior, which it does not have yet.
-  if (window_) {
-    throw UsageError(
-        "re-alignment on a map does not combine with compass.yaml's window (window.enabled: "
-        "true) yet: turn one of them off");
-  }
   compass_->realign(heading_rad, sigma_rad, estimate);
 }
 

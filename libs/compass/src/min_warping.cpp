@@ -15,6 +15,7 @@
 
 #include "omninav/core/angles.hpp"
 #include "omninav/core/errors.hpp"
+#include "omninav/core/param_check.hpp"
 
 namespace omninav::compass {
 
@@ -40,19 +41,17 @@ double parabola_vertex(double minus, double centre, double plus) {
 }  // namespace
 
 void MinWarpingParams::check() const {
-  const auto fail = [](const std::string& what) { throw UsageError("min-warping: " + what); };
-  if (search_width_px < 8 || search_width_px > 4096) fail("search_width_px must be in 8..4096");
-  if (search_height_px < 1 || search_height_px > 4096) fail("search_height_px must be in 1..4096");
-  if (!(max_relative_distance >= 0.05 && max_relative_distance <= 0.99)) {
-    fail("max_relative_distance must be in 0.05..0.99");
+  check_range("min_warping.search_width_px", search_width_px, 8, 4096);
+  check_range("min_warping.search_height_px", search_height_px, 1, 4096);
+  check_range("min_warping.max_relative_distance", max_relative_distance, 0.05, 0.99);
+  check_range("min_warping.max_scale", max_scale, 1.0, 4.0);
+  check_range("min_warping.scale_planes", scale_planes, 1, 33);
+  if (scale_planes % 2 == 0) {
+    throw UsageError("key 'min_warping.scale_planes' = " + std::to_string(scale_planes) +
+                     " must be odd (1 is a plane)");
   }
-  if (!(max_scale >= 1.0 && max_scale <= 4.0)) fail("max_scale must be in 1..4");
-  if (scale_planes < 1 || scale_planes > 33 || scale_planes % 2 == 0) {
-    fail("scale_planes must be odd, 1..33");
-  }
-  if (distance_samples < 16 || distance_samples > 4096)
-    fail("distance_samples must be in 16..4096");
-  if (!(featureless_below_grey >= 0.0)) fail("featureless_below_grey must be >= 0");
+  check_range("min_warping.distance_samples", distance_samples, 16, 4096);
+  check_range("min_warping.featureless_below_grey", featureless_below_grey, 0.0, 255.0);
 }
 
 // A reduced panorama and its magnified copies: magnified[m] holds the zero-mean columns of the

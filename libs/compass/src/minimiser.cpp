@@ -14,7 +14,7 @@ bool before(CostTable& table, int a, int b) {
   return shift_before(a, table.at(a), b, table.at(b), table.width_px());
 }
 
-// (a) Every shift (Fig. 3 of 004_5a2a3172f8969a85.txt), best in the order of cost_table.hpp.
+// (a) Every shift (Fig. 3 of Labrosse 2004), best in the order of cost_table.hpp.
 class ExhaustiveMinimiser : public Minimiser {
  public:
   explicit ExhaustiveMinimiser(bool fast_kernel) : fast_kernel_(fast_kernel) {}
@@ -37,21 +37,15 @@ class ExhaustiveMinimiser : public Minimiser {
 };
 
 // (b) Descent, then the regular scan around the local minimum, restarting from any scan value
-// that is lower (000 §3.3.4).
+// that is lower (Labrosse 2006, §3.3.4).
 class LocalScanMinimiser : public Minimiser {
  public:
   explicit LocalScanMinimiser(const MinimiserParams& params) : params_(params) {}
   MinimiserKind kind() const override { return MinimiserKind::kLocalScan; }
   ShiftSearch minimise(CostTable& table, int start_shift_px) const override {
     const int width = table.width_px();
-    int start = start_shift_px;
-    if (params_.seed_with_phase) {
-      const PhaseEstimate phase =
-          estimate_phase_shift(table.first(), table.second(), params_.phase);
-      start = static_cast<int>(std::lround(phase.shift_px));
-    }
     const std::vector<int> offsets = scan_offsets_px(params_, width);
-    int best = descend(table, start);
+    int best = descend(table, start_shift_px);
     // Each restart starts from a shift strictly before the current minimum in a total order,
     // so this ends after at most W restarts.
     for (int guard = 0; guard < width; ++guard) {

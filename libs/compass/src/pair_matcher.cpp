@@ -8,7 +8,9 @@
 
 #include "frame_caches.hpp"
 #include "omninav/core/angles.hpp"
+#include "omninav/core/errors.hpp"
 #include "omninav/core/panorama.hpp"
+#include "omninav/core/param_check.hpp"
 
 namespace omninav::compass {
 namespace {
@@ -101,8 +103,35 @@ std::string ConfidenceFlags::describe() const {
   return text.empty() ? "ok" : text;
 }
 
+namespace {
+
+// The parameters, once check() has passed: the minimiser is made from them in the initialiser.
+const PairMatcherParams& checked(const PairMatcherParams& params) {
+  params.check();
+  return params;
+}
+
+}  // namespace
+
+void PairMatcherParams::check() const {
+  check_range_deg("distance.band_width_deg", distance.field_of_view.band_width_rad, 1.0, 180.0);
+  check_range("minimiser.scan_values", minimiser.scan_values, 2, 64);
+  check_range_deg("minimiser.scan_span_deg", minimiser.scan_span_rad, 0.1, 180.0);
+  check_range("phase.components", minimiser.phase.components, 1, 4096);
+  check_range("subpixel.parabolic_up_to_norm_amp", subpixel.parabolic_up_to_norm_amp, 0.0, 10.0);
+  check_range("subpixel.linear_from_norm_amp", subpixel.linear_from_norm_amp, 0.0, 10.0);
+  check_range("confidence.flat_below_grey", confidence.flat_below_grey, 0.0, 255.0);
+  check_range_deg("confidence.competing_separation_deg", confidence.competing_separation_rad, 0.1,
+                  180.0);
+  check_range("confidence.competing_depth_ratio", confidence.competing_depth_ratio, 0.0, 1.0);
+  if (minimiser.kind == MinimiserKind::kFft && distance.metric == Metric::kL1) {
+    throw UsageError(
+        "minimiser.kind 'fft' needs distance.metric 'l2' (the FFT expands the square of Eq. 2)");
+  }
+}
+
 PairMatcher::PairMatcher(const PairMatcherParams& params)
-    : params_(params),
+    : params_(checked(params)),
       minimiser_(make_minimiser(params.minimiser, params.distance.metric)),
       kernel_(kernel_for(params.minimiser.kind)) {}
 

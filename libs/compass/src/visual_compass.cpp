@@ -9,6 +9,7 @@
 #include "omninav/core/errors.hpp"
 #include "omninav/core/format.hpp"
 #include "omninav/core/panorama.hpp"
+#include "omninav/core/param_check.hpp"
 
 namespace omninav::compass {
 
@@ -54,20 +55,23 @@ double match_variance_rad2(const PairMatch& match, int width_px) {
   return std::min(variance, kUniform);
 }
 
+void CompassParams::check() const {
+  matcher.check();
+  check_range("sampling.threshold_norm_amp", sampling.threshold_norm_amp, 0.0, 1.0);
+  check_range("sampling.fixed_skip_frames", sampling.fixed_skip_frames, 0, 100000);
+  check_range_deg("sampling.max_reference_rotation_deg", sampling.max_reference_rotation_rad, 0.0,
+                  180.0);
+  check_range("sampling.parallax_step_ratio", sampling.parallax_step_ratio, 0.0, 10.0);
+  check_range("minimiser.global_deeper_ratio", fast_turns.deeper_ratio, 0.0, 1.0);
+  check_range("uncertainty.scale", uncertainty.scale, 0.0, 1000.0);
+}
+
 VisualCompass::VisualCompass(const CompassParams& params, double initial_heading_rad)
     : params_(params),
       matcher_(params.matcher),
       global_matcher_(make_global_matcher(params)),
       initial_heading_rad_(initial_heading_rad) {
-  if (!(params.sampling.max_reference_rotation_rad >= 0.0) ||
-      !(params.sampling.parallax_step_ratio >= 0.0)) {
-    throw UsageError("the rotation cap of Algorithm 1 needs a rotation and a parallax ratio >= 0");
-  }
-  if (params.sampling.policy == SamplingPolicy::kFixedSkip &&
-      params.sampling.fixed_skip_frames < 0) {
-    throw UsageError("Fx n needs n >= 0 frames skipped, got " +
-                     std::to_string(params.sampling.fixed_skip_frames));
-  }
+  params.check();
 }
 
 VisualCompass::~VisualCompass() = default;
@@ -106,51 +110,12 @@ PairMatch VisualCompass::match_pair(const CompassFrame& first, const CompassFram
   PairMatch& best = take_global ? global : local;
   const PairMatch& other = take_global ? local : global;
   best.evaluations = evaluations;
-  // Two readings far apart: the other one is kept (FastTurns::keep_alternative, the uncertainty).
+  // Two readings far apart: the other one is kept for the uncertainty (match_variance_rad2).
   const double separation_rad = params_.matcher.confidence.competing_separation_rad;
   if (std::abs(signed_difference(other.rotation_rad, best.rotation_rad)) >= separation_rad) {
     best.competing_rotation_rad = other.rotation_rad;
   }
   return best;
-}
-
-PairMatch VisualCompass::match_levelled(const CompassFrame& reference, const CompassFrame& frame,
-                                        int start_shift, double predicted_rotation_rad,
-                                        CompassEstimate& estimate) const {
-  if (!params_.levelling.enabled) {
-    return match_pair(reference, frame, start_shift, predicted_rotation_rad);
-  }
-  PanoramaGeometry geometry;
-  geometry.width_px = frame.width();
-  geometry.height_px = frame.height();
-  geometry.elevation_min_rad = params_.levelling.elevation_min_rad;
-  geometry.elevation_max_rad = params_.levelling.elevation_max_rad;
-  const PairMatch first = match_pair(reference, frame, start_shift, predicted_rotation_rad);
-  const TiltEstimate tilt = estimate_relative_tilt(reference.image(), frame.image(), geometry,
-                                                   first.subpixel_shift_px, params_.levelling.tilt);
-  estimate.pitch_rad = tilt.pitch_rad;
-  estimate.roll_rad = tilt.roll_rad;
-  if (tilt.pitch_rad == 0.0 && tilt.roll_rad == 0.0) return first;
-  const CompassFrame levelled(
-      level_panorama(frame.image(), geometry, tilt.pitch_rad, tilt.roll_rad), frame.index(),
-      frame.source());
-  PairMatch second = match_pair(reference, levelled, first.shift_px, predicted_rotation_rad);
-  second.evaluations += first.evaluations;
-  return second;
-}
-
-double VisualCompass::refined_rotation(const CompassFrame& previous,
-                                       double rotation_ref_previous_rad,
-                                       double shift_ref_previous_px) const {
-  if (!params_.travel.enabled) return rotation_ref_previous_rad;
-  const ColumnMask mask = params_.travel.fit.whole
-                              ? ColumnMask::whole(previous.width())
-                              : matcher_.distance_function(previous.width()).mask();
-  const TravelFit fit = fit_turn_and_travel(reference_->image(), previous.image(), mask,
-                                            shift_ref_previous_px, params_.travel.fit);
-  // Eq. 4 on the change of α: r_rp stays unwrapped.
-  return rotation_ref_previous_rad -
-         rotation_of_shift_px(fit.shift_px - shift_ref_previous_px, previous.width());
 }
 
 CompassEstimate VisualCompass::push(const CompassFrame& frame) {
@@ -166,11 +131,9 @@ CompassEstimate VisualCompass::push(const CompassFrame& frame) {
     reference_heading_rad_ = initial_heading_rad_;
     current_heading_rad_ = initial_heading_rad_;
     previous_heading_rad_ = initial_heading_rad_;
-    alternative_ref_current_rad_.reset();
     reference_variance_rad2_ = 0.0;
     current_variance_rad2_ = 0.0;
     rotation_ref_current_rad_ = 0.0;
-    shift_ref_current_px_ = 0.0;
     estimate.heading_rad = current_heading_rad_;
     estimate.amplitude_norm = 1.0;
     estimate.reference_index = frame.index();
@@ -182,15 +145,12 @@ CompassEstimate VisualCompass::push(const CompassFrame& frame) {
   const CompassFrame previous = *current_;  // line 6
   current_ = frame;                         // line 7
   ++frame_count_;
-  double rotation_ref_previous_rad = rotation_ref_current_rad_;  // line 8
-  const double shift_ref_previous_px = shift_ref_current_px_;
+  const double rotation_ref_previous_rad = rotation_ref_current_rad_;  // line 8
   const double previous_heading_rad = current_heading_rad_;
   const int width = frame.width();
   // The turn expected between the previous frame and this one, for the global fallback's
   // choice (FastTurns): the last frame's.
   const double predicted_turn_rad = last_rotation_rad_;
-  const std::optional<double> alternative_rad = alternative_ref_current_rad_;
-  alternative_ref_current_rad_.reset();
 
   const bool previous_is_reference = frame_count_ - 2 == reference_position_;
   const bool fixed_skip = params_.sampling.policy == SamplingPolicy::kFixedSkip;
@@ -205,43 +165,19 @@ CompassEstimate VisualCompass::push(const CompassFrame& frame) {
     // Line 9, started from the shift of r_rp (§3.5, "In the actual implementation").
     const int start_shift =
         static_cast<int>(std::lround(-shift_px_of_rotation(rotation_ref_previous_rad, width)));
-    match = match_levelled(*reference_, frame, start_shift,
-                           rotation_ref_previous_rad + predicted_turn_rad, estimate);
+    match =
+        match_pair(*reference_, frame, start_shift, rotation_ref_previous_rad + predicted_turn_rad);
     estimate.evaluations = match.evaluations;
-    if (alternative_rad && params_.fast_turns.keep_alternative) {
-      // The previous frame's other reading (FastTurns): line 9 minimised from its shift too.
-      const int other_start =
-          static_cast<int>(std::lround(-shift_px_of_rotation(*alternative_rad, width)));
-      PairMatch other = matcher_.match(*reference_, frame, other_start);
-      estimate.evaluations += other.evaluations;
-      // The lower of the two minima decides which reading the pair (I_r, I_c) agrees with.
-      const PairMatch& lower = other.distance_min < match.distance_min ? other : match;
-      const double to_other = std::abs(signed_difference(lower.rotation_rad, *alternative_rad));
-      const double to_given =
-          std::abs(signed_difference(lower.rotation_rad, rotation_ref_previous_rad));
-      if (to_other < to_given) {
-        rotation_ref_previous_rad = *alternative_rad;
-        if (&lower == &other) {
-          const int evaluations = estimate.evaluations;
-          match = other;
-          estimate.evaluations = evaluations;
-        }
-        estimate.alternative_taken = true;
-      }
-    }
     // Line 10, and the rotation cap (visual_compass.hpp: ours, not the paper's).
     switch_reference = !fixed_skip && (match.amplitude_norm < params_.sampling.threshold_norm_amp ||
                                        beyond_rotation_cap(match, rotation_ref_previous_rad));
   }
   if (switch_reference) {
     if (!previous_is_reference) {
-      reference_variance_rad2_ += current_variance_rad2_;  // var(r_rp) joins var(ω_r)
-      // Line 11, the firewall (with r_rp refined by the turn-and-travel fit).
-      reference_heading_rad_ +=
-          refined_rotation(previous, rotation_ref_previous_rad, shift_ref_previous_px);
+      reference_variance_rad2_ += current_variance_rad2_;   // var(r_rp) joins var(ω_r)
+      reference_heading_rad_ += rotation_ref_previous_rad;  // line 11, the firewall
       const int evaluations = estimate.evaluations;
-      match = match_levelled(previous, frame, 0, predicted_turn_rad,
-                             estimate);  // line 12, started from 0
+      match = match_pair(previous, frame, 0, predicted_turn_rad);  // line 12, started from 0
       estimate.evaluations = evaluations + match.evaluations;
       reference_ = previous;  // line 13
       reference_position_ = frame_count_ - 2;
@@ -260,19 +196,11 @@ CompassEstimate VisualCompass::push(const CompassFrame& frame) {
       estimate.new_reference ? match.rotation_rad
                              : rotation_ref_previous_rad +
                                    signed_difference(match.rotation_rad, rotation_ref_previous_rad);
-  shift_ref_current_px_ = match.subpixel_shift_px;
   current_heading_rad_ = reference_heading_rad_ + rotation_ref_current_rad_;  // line 15
   current_variance_rad2_ = match_variance_rad2(match, width);
-  if (match.competing_rotation_rad) {
-    alternative_ref_current_rad_ =
-        rotation_ref_current_rad_ +
-        signed_difference(*match.competing_rotation_rad, match.rotation_rad);
-  }
   estimate.heading_sigma_rad =
       params_.uncertainty.scale * std::sqrt(reference_variance_rad2_ + current_variance_rad2_);
 
-  estimate.reference_rotation_rad = rotation_ref_current_rad_;
-  estimate.match_variance_rad2 = current_variance_rad2_;
   estimate.heading_rad = current_heading_rad_;
   previous_heading_rad_ = previous_heading_rad;
   estimate.rotation_rad = current_heading_rad_ - previous_heading_rad;
@@ -295,7 +223,6 @@ void VisualCompass::realign(double heading_rad, double sigma_rad, CompassEstimat
   const double variance_rad2 = scale > 0.0 ? (sigma_rad / scale) * (sigma_rad / scale) : 0.0;
   reference_variance_rad2_ = variance_rad2;
   current_variance_rad2_ = 0.0;
-  alternative_ref_current_rad_.reset();
   estimate.heading_rad = current_heading_rad_;
   // The jump is the output's rotation; the fast-turn prediction keeps the compass's own turn.
   estimate.rotation_rad = current_heading_rad_ - previous_heading_rad_;

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <sstream>
 #include <vector>
@@ -175,7 +176,11 @@ double ConfigReader::number(const YAML::Node& node, const std::string& key, doub
                             double max) const {
   double parsed = 0.0;
   if (!node.IsScalar() || !YAML::convert<double>::decode(node, parsed) || !std::isfinite(parsed)) {
-    fail(key, "must be a number in [" + general(min) + ", " + general(max) + "]");
+    // A read without a range (the Params struct's check() has it) says no range.
+    const bool bounded =
+        min > std::numeric_limits<double>::lowest() || max < std::numeric_limits<double>::max();
+    fail(key, bounded ? "must be a number in [" + general(min) + ", " + general(max) + "]"
+                      : "must be a number");
   }
   if (parsed < min || parsed > max) {
     fail(key,
@@ -188,14 +193,39 @@ int ConfigReader::whole_number(const YAML::Node& node, const std::string& key, i
                                int max) const {
   int parsed = 0;
   if (!node.IsScalar() || !YAML::convert<int>::decode(node, parsed)) {
-    fail(key,
-         "must be a whole number in [" + std::to_string(min) + ", " + std::to_string(max) + "]");
+    const bool bounded =
+        min > std::numeric_limits<int>::min() || max < std::numeric_limits<int>::max();
+    fail(key, bounded ? "must be a whole number in [" + std::to_string(min) + ", " +
+                            std::to_string(max) + "]"
+                      : "must be a whole number");
   }
   if (parsed < min || parsed > max) {
     fail(key, "= " + std::to_string(parsed) + " is out of range [" + std::to_string(min) + ", " +
                   std::to_string(max) + "]");
   }
   return parsed;
+}
+
+void ConfigReader::read(const std::string& key, double& value) const {
+  if (const std::optional<YAML::Node> node = lookup(key)) {
+    value = number(*node, key, std::numeric_limits<double>::lowest(),
+                   std::numeric_limits<double>::max());
+  }
+}
+
+void ConfigReader::read(const std::string& key, int& value) const {
+  if (const std::optional<YAML::Node> node = lookup(key)) {
+    value =
+        whole_number(*node, key, std::numeric_limits<int>::min(), std::numeric_limits<int>::max());
+  }
+}
+
+void ConfigReader::read_deg(const std::string& key, double& value_rad) const {
+  const std::optional<YAML::Node> node = lookup(key);
+  if (!node) return;
+  double degrees = 0.0;
+  read(key, degrees);
+  value_rad = deg_to_rad(degrees);
 }
 
 void ConfigReader::read(const std::string& key, double& value, double min, double max) const {

@@ -28,20 +28,10 @@ RowFormat row_format_of(const std::string& name) {
 CompassRowWriter::CompassRowWriter(std::ostream& out, RowFormat format, bool with_truth,
                                    bool with_map)
     : out_(out), format_(format), with_truth_(with_truth), with_map_(with_map) {
-  columns_ = {"frame",
-              "source",
-              "time_s",
-              "heading_deg",
-              "heading_unwrapped_deg",
-              "rotation_deg",
-              "amplitude_norm",
-              "reference_frame",
-              "confidence",
-              "shift_px",
-              "evaluations",
-              "pitch_deg",
-              "roll_deg",
-              "heading_sigma_deg"};
+  columns_ = {
+      "frame",        "source",           "time_s",          "heading_deg", "heading_unwrapped_deg",
+      "rotation_deg", "amplitude_norm",   "reference_frame", "confidence",  "shift_px",
+      "evaluations",  "heading_sigma_deg"};
   if (with_truth_)
     columns_.insert(columns_.end(), {"truth_heading_deg", "error_deg", "distance_m"});
   if (with_map_) columns_.push_back("realigned_place");
@@ -59,8 +49,7 @@ void CompassRowWriter::write(const CompassFrame& row) {
       shortest(rad_to_deg(wrap_angle(e.heading_rad))), shortest(rad_to_deg(e.heading_rad)),
       shortest(rad_to_deg(e.rotation_rad)), fixed(e.amplitude_norm, 4),
       std::to_string(e.reference_index), e.flags.describe(), fixed(e.shift_px, 4),
-      std::to_string(e.evaluations), fixed(rad_to_deg(e.pitch_rad), 4),
-      fixed(rad_to_deg(e.roll_rad), 4), fixed(rad_to_deg(e.heading_sigma_rad), 4)};
+      std::to_string(e.evaluations), fixed(rad_to_deg(e.heading_sigma_rad), 4)};
   if (with_truth_) {
     if (row.truth) {
       if (last_truth_) {

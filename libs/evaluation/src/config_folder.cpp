@@ -29,10 +29,6 @@ compass::CompassConfig load_compass_config(const std::filesystem::path& config_d
   compass::CompassConfig compass;
   compass::load_compass_config(config, compass);
   config.require_all_known();
-  // Levelling needs the rows' elevations, which are the camera's (camera.yaml).
-  const PanoramaGeometry camera = load_camera_config(config_dir).panorama;
-  compass.compass.levelling.elevation_min_rad = camera.elevation_min_rad;
-  compass.compass.levelling.elevation_max_rad = camera.elevation_max_rad;
   return compass;
 }
 

@@ -208,9 +208,6 @@ class WorldRun {
         truth.push_back({frame->truth->heading_rad, frame->truth->floor_position(), frame->time_s});
         truth_heading_rad.push_back(frame->truth->heading_rad);
       }
-      for (std::size_t i = 0; i < estimates.size(); ++i) {
-        run.revise(estimates[i], static_cast<int>(i));  // the window's final headings
-      }
       const CompassEvaluation evaluation =
           evaluate_compass(estimates, truth, run.reference_count());
       const fs::path plot = dir_ / (name + ".compass.png");

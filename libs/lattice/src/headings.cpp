@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <set>
 #include <utility>
 
@@ -73,8 +72,8 @@ double circular_median(const std::vector<double>& angles_rad) {
 
 std::vector<std::optional<double>> synchronise_headings(
     const memory::VisualMemory& memory, std::vector<std::optional<double>> headings,
-    const std::vector<std::vector<SimilarPlace>>& ranking, int neighbours, double straight_turn_rad,
-    bool one_turn_per_stretch_pair) {
+    const std::vector<std::vector<SimilarPlace>>& ranking, int neighbours,
+    double straight_turn_rad) {
   const int count = static_cast<int>(headings.size());
   for (int i = 0; i < count; ++i) {
     if (!headings[i]) return headings;
@@ -93,9 +92,6 @@ std::vector<std::optional<double>> synchronise_headings(
     problem.AddResidualBlock(turn_cost(corrections_turn, stddev_rad), &loss,
                              &correction[stretch[a]], &correction[stretch[b]]);
   };
-  // one_turn_per_stretch_pair: the phases' turns between two stretches, as the corrections' turn
-  // from the lower stretch to the higher, gathered for their median.
-  std::map<std::pair<int, int>, std::vector<double>> stretch_pair_turns;
   std::set<std::pair<int, int>> phased;
   const auto add_phase_turn = [&](int a, int b) {
     if (a == b || stretch[a] == stretch[b] ||
@@ -104,16 +100,7 @@ std::vector<std::optional<double>> synchronise_headings(
     }
     const signature::PhaseHeading turn =
         signature::relative_heading(memory.place(a).signature, memory.place(b).signature);
-    if (!one_turn_per_stretch_pair) {
-      add(a, b, turn.turn_rad, kPhaseTurnStddevRad);
-      return;
-    }
-    const double corrections_turn = signed_difference(turn.turn_rad, *headings[b] - *headings[a]);
-    if (stretch[a] < stretch[b]) {
-      stretch_pair_turns[{stretch[a], stretch[b]}].push_back(corrections_turn);
-    } else {
-      stretch_pair_turns[{stretch[b], stretch[a]}].push_back(-corrections_turn);
-    }
+    add(a, b, turn.turn_rad, kPhaseTurnStddevRad);
   };
   for (const memory::VisualMemory::EdgeRef& edge : memory.edges()) {
     const int a = static_cast<int>(edge.from), b = static_cast<int>(edge.to);
@@ -125,10 +112,6 @@ std::vector<std::optional<double>> synchronise_headings(
     for (const SimilarPlace& similar : most_similar_first(ranking[a], neighbours)) {
       add_phase_turn(a, similar.place);
     }
-  }
-  for (const auto& [stretches, turns] : stretch_pair_turns) {
-    problem.AddResidualBlock(turn_cost(circular_median(turns), kPhaseTurnStddevRad), &loss,
-                             &correction[stretches.first], &correction[stretches.second]);
   }
   if (!problem.HasParameterBlock(&correction[stretch[0]])) return headings;
   problem.SetParameterBlockConstant(&correction[stretch[0]]);

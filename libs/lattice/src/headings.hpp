@@ -23,14 +23,11 @@ namespace omninav::lattice::detail {
 
 // `headings` in the lattice frame (lattice_headings), every place with one; `ranking` each
 // place's most similar places, of which the first `neighbours` are used. Returns the headings
-// unchanged when a place has none. `one_turn_per_stretch_pair`: the phases' turns between two
-// stretches count as one measurement, their median, rather than one each: their errors are not
-// independent (the same two rows seen from nearby places), and counted one by one a small
-// shared bias outweighs the compass's turn across the bend and adds up from row to row.
+// unchanged when a place has none.
 std::vector<std::optional<double>> synchronise_headings(
     const memory::VisualMemory& memory, std::vector<std::optional<double>> headings,
-    const std::vector<std::vector<SimilarPlace>>& ranking, int neighbours, double straight_turn_rad,
-    bool one_turn_per_stretch_pair);
+    const std::vector<std::vector<SimilarPlace>>& ranking, int neighbours,
+    double straight_turn_rad);
 
 // The median of angles: the median of their differences from their circular mean, about it.
 double circular_median(const std::vector<double>& angles_rad);

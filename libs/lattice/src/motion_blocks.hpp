@@ -13,18 +13,13 @@
 namespace omninav::lattice::detail {
 
 // One MotionResidual per motion over `positions` (which must outlive `problem`), all sharing
-// `loss` (nullptr: plain least squares). `bearings`: a bearing-only motion becomes a
-// BearingResidual; otherwise (the start's linear problem) every motion keeps its length.
+// `loss` (nullptr: plain least squares).
 inline void add_motion_blocks(ceres::Problem& problem,
                               const std::vector<MotionMeasurement>& motions,
-                              std::vector<Eigen::Vector2d>& positions, ceres::LossFunction* loss,
-                              bool bearings = false) {
+                              std::vector<Eigen::Vector2d>& positions, ceres::LossFunction* loss) {
   for (const MotionMeasurement& motion : motions) {
-    ceres::CostFunction* cost =
-        bearings && motion.bearing_only
-            ? BearingResidual::Create(motion.direction_rad, motion.direction_stddev_rad)
-            : MotionResidual::Create(motion.direction_rad, motion.length_m,
-                                     motion.direction_stddev_rad, motion.length_stddev_m);
+    ceres::CostFunction* cost = MotionResidual::Create(
+        motion.direction_rad, motion.length_m, motion.direction_stddev_rad, motion.length_stddev_m);
     problem.AddResidualBlock(cost, loss, positions[motion.from].data(),
                              positions[motion.to].data());
   }

@@ -3,9 +3,7 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <optional>
-#include <queue>
 #include <set>
 #include <tuple>
 #include <utility>
@@ -48,9 +46,6 @@ std::optional<DirectionFit> fit_direction(const memory::VisualMemory& memory,
   return DirectionFit{wrap_angle(there + 0.5 * signed_difference(back, there)),
                       std::max(forward.residual, backward.residual)};
 }
-
-// Pairs across two pieces agree on where one lies from the other within this many steps.
-constexpr double kAgreementSteps = 1.5;
 
 // A step between places whose headings differ by more than this went round a bend.
 constexpr double kStraightTurnRad = 0.35;  // 20°
@@ -113,7 +108,7 @@ std::vector<std::optional<double>> motion_headings(
   }
   if (!compass) return headings;
   return synchronise_headings(memory, std::move(headings), ranking, params.motion_neighbours,
-                              kStraightTurnRad, params.one_phase_turn_per_stretch_pair);
+                              kStraightTurnRad);
 }
 
 // measure_motions, as its steps: the candidates (steps, listed pairs, neighbours), the
@@ -139,9 +134,7 @@ class MotionMeasurer {
     const std::vector<Candidate> dropped = keep_all_but_look_alikes(candidates);
     result_.look_alikes_dropped = static_cast<int>(dropped.size());
     result_.pieces = joined_.count();
-    std::vector<Candidate> fitted;  // pairs across pieces fitted while joining by agreement
-    if (joined_.count() > 1 && params_.joins_by_agreement) fitted = join_by_agreement(dropped);
-    if (joined_.count() > 1) join_what_is_apart(dropped, fitted);
+    if (joined_.count() > 1) join_what_is_apart(dropped);
     return result_;
   }
 
@@ -158,11 +151,8 @@ class MotionMeasurer {
 
   // A motion to a most similar place: its length the calibrated distance, held loosely.
   std::optional<Candidate> neighbour(int a, int b, double pair_dissimilarity) {
-    std::optional<Candidate> candidate =
-        fit(a, b, calibration_.distance_m(a, b, pair_dissimilarity),
-            params_.neighbour_motion_length_stddev, false);
-    if (candidate) candidate->motion.bearing_only = params_.neighbour_bearings_only;
-    return candidate;
+    return fit(a, b, calibration_.distance_m(a, b, pair_dissimilarity),
+               params_.neighbour_motion_length_stddev, false);
   }
 
   // A stream's steps, an unordered input's listed pairs that look one step apart, and each
@@ -246,115 +236,15 @@ class MotionMeasurer {
     return dropped;
   }
 
-  // Each place's position within its piece: dead reckoning along the kept motions (breadth
-  // first from the piece's first place, which stays at the origin).
-  std::vector<Eigen::Vector2d> positions_within_pieces() const {
-    const int count = static_cast<int>(ranking_.size());
-    std::vector<std::vector<std::pair<int, Eigen::Vector2d>>> links(count);
-    for (const MotionMeasurement& motion : result_.motions) {
-      links[motion.from].emplace_back(motion.to, displacement(motion));
-      links[motion.to].emplace_back(motion.from, -displacement(motion));
-    }
-    std::vector<Eigen::Vector2d> positions(count, Eigen::Vector2d::Zero());
-    std::vector<bool> placed(count, false);
-    for (int root = 0; root < count; ++root) {
-      if (placed[root]) continue;
-      placed[root] = true;
-      std::queue<int> queue;
-      queue.push(root);
-      while (!queue.empty()) {
-        const int place = queue.front();
-        queue.pop();
-        for (const auto& [next, step] : links[place]) {
-          if (placed[next]) continue;
-          placed[next] = true;
-          positions[next] = positions[place] + step;
-          queue.push(next);
-        }
-      }
-    }
-    return positions;
-  }
-
-  // Joining by agreement: every fitted pair across two pieces says where one piece lies from
-  // the other (its motion, against the places' positions within their pieces); a look-alike's
-  // says it alone, while truly near pairs agree. Two pieces are joined, by all the pairs that
-  // agree (within agreement_steps), when at least two do; the best-supported first.
-  // Returns the pairs it fitted (besides the dropped ones).
-  std::vector<Candidate> join_by_agreement(const std::vector<Candidate>& dropped) {
-    std::vector<Candidate> across = dropped;
-    for (int a = 0; a < static_cast<int>(ranking_.size()); ++a) {
-      for (const SimilarPlace& similar : ranking_[a]) {
-        if (joined_.joined(a, similar.place)) continue;
-        if (auto candidate = neighbour(a, similar.place, similar.dissimilarity)) {
-          across.push_back(*candidate);
-        }
-      }
-    }
-    const std::vector<Eigen::Vector2d> positions = positions_within_pieces();
-    // (first piece, second piece) → the second's offset from the first, per pair across
-    std::map<std::pair<int, int>, std::vector<std::pair<Eigen::Vector2d, const Candidate*>>>
-        offsets;
-    for (const Candidate& candidate : across) {
-      const MotionMeasurement& motion = candidate.motion;
-      int first = joined_.find(motion.from), second = joined_.find(motion.to);
-      if (first == second) continue;
-      Eigen::Vector2d offset = positions[motion.from] + displacement(motion) - positions[motion.to];
-      if (first > second) {
-        std::swap(first, second);
-        offset = -offset;
-      }
-      offsets[{first, second}].emplace_back(offset, &candidate);
-    }
-    const double tolerance = kAgreementSteps * calibration_.step_m;
-    struct Join {
-      std::size_t support;
-      std::vector<const Candidate*> pairs;
-    };
-    std::vector<Join> joins;
-    for (const auto& [pieces, pairs] : offsets) {
-      Join best{0, {}};
-      for (const auto& [offset, candidate] : pairs) {
-        Join agreeing{0, {}};
-        for (const auto& [other, other_candidate] : pairs) {
-          if ((other - offset).norm() <= tolerance) agreeing.pairs.push_back(other_candidate);
-        }
-        agreeing.support = agreeing.pairs.size();
-        if (agreeing.support > best.support) best = std::move(agreeing);
-      }
-      if (best.support >= 2) joins.push_back(std::move(best));
-    }
-    std::stable_sort(joins.begin(), joins.end(),
-                     [](const Join& x, const Join& y) { return x.support > y.support; });
-    for (const Join& join : joins) {
-      const MotionMeasurement& first = join.pairs.front()->motion;
-      if (joined_.joined(first.from, first.to)) continue;
-      for (const Candidate* candidate : join.pairs) {
-        result_.motions.push_back(candidate->motion);
-        ++result_.joins;
-        result_.look_alikes_dropped -= candidate < across.data() + dropped.size();
-      }
-      joined_.join(first.from, first.to);
-      if (joined_.count() == 1) break;
-    }
-    return {across.begin() + static_cast<std::ptrdiff_t>(dropped.size()), across.end()};
-  }
-
   // Joining: the most similar pairs first (or, joins_by_residual, the best-fitting first),
   // among the dropped motions and each place's ranked places (those not tried yet are fitted
   // now, or when joining by residual, all of them first).
-  void join_what_is_apart(const std::vector<Candidate>& dropped,
-                          const std::vector<Candidate>& fitted) {
+  void join_what_is_apart(const std::vector<Candidate>& dropped) {
     std::vector<std::tuple<double, int, int, std::optional<Candidate>>> joins;
     const auto order = [&](const Candidate& candidate, double pair_dissimilarity) {
       return params_.joins_by_residual ? candidate.residual : pair_dissimilarity;
     };
     for (const Candidate& candidate : dropped) {
-      const double pair_dissimilarity = dissimilarity_(candidate.motion.from, candidate.motion.to);
-      joins.emplace_back(order(candidate, pair_dissimilarity), candidate.motion.from,
-                         candidate.motion.to, candidate);
-    }
-    for (const Candidate& candidate : fitted) {
       const double pair_dissimilarity = dissimilarity_(candidate.motion.from, candidate.motion.to);
       joins.emplace_back(order(candidate, pair_dissimilarity), candidate.motion.from,
                          candidate.motion.to, candidate);

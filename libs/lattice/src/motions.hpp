@@ -1,5 +1,5 @@
 #pragma once
-// The motions of the lattice (001_5bb151a4e28490b4.txt §3.4): which pairs of places get one, what
+// The motions of the lattice (Menegatti et al. 2004, §3.4): which pairs of places get one, what
 // each measures and how far it is trusted.
 //
 // Every motion is the direction from one place to another fitted on the two signatures both

@@ -5,12 +5,12 @@
 #include <set>
 #include <tuple>
 
-#include "distance_information.hpp"
 #include "motions.hpp"
 #include "omninav/core/angles.hpp"
 #include "omninav/core/config.hpp"
 #include "omninav/core/errors.hpp"
 #include "omninav/core/log.hpp"
+#include "omninav/core/param_check.hpp"
 #include "omninav/core/statistics.hpp"
 #include "omninav/lattice/similar_places.hpp"
 #include "omninav/signature/plateau.hpp"
@@ -65,33 +65,52 @@ std::vector<std::optional<double>> lattice_headings(const memory::VisualMemory& 
   return headings;
 }
 
+void OrganiseParams::check() const {
+  check_range("organise.step_m", step_m, 0.0, 100.0);
+  check_range("organise.neighbours", neighbours, 1, 1000);
+  check_range("organise.range_fraction", range_fraction, 0.1, 0.99);
+  check_range("organise.at_least_beyond_steps", at_least_beyond_steps, 1.0, 1000.0);
+  check_range("organise.motion_neighbours", motion_neighbours, 0, 100);
+  check_range("organise.step_likeness", step_likeness, 1.0, 10.0);
+  check_range("organise.look_alike_residual", look_alike_residual, 1.0, 100.0);
+  check_range("organise.step_check_steps", step_check_steps, 0, 1000);
+  check_range("organise.step_check_sigmas", step_check_sigmas, 0.1, 100.0);
+  check_range("organise.motion_direction_stddev_deg", motion_direction_stddev_deg, 0.1, 90.0);
+  check_range("organise.motion_length_stddev", motion_length_stddev, 0.01, 10.0);
+  check_range("organise.neighbour_motion_length_stddev", neighbour_motion_length_stddev, 0.01,
+              10.0);
+  check_range("organise.spring_weight", lattice.spring_weight, 0.0, 1.0);
+  check_range("organise.min_stiffness", lattice.min_stiffness, 1e-9, 0.5);
+  check_range("organise.loss_scale_m", lattice.loss_scale_m, 1e-4, 100.0);
+  check_range("organise.motion_loss_scale", lattice.motion_loss_scale, 0.01, 100.0);
+  check_range("organise.max_iterations", lattice.max_iterations, 1, 100000);
+  check_range("organise.max_motions_off", max_motions_off, 0.0, 1.0);
+}
+
 void load_organise_params(const ConfigReader& section, OrganiseParams& params) {
-  section.read("step_m", params.step_m, 0.0, 100.0);
-  section.read("neighbours", params.neighbours, 1, 1000);
-  section.read("range_fraction", params.range_fraction, 0.1, 0.99);
-  section.read("at_least_beyond_steps", params.at_least_beyond_steps, 1.0, 1000.0);
+  section.read("step_m", params.step_m);
+  section.read("neighbours", params.neighbours);
+  section.read("range_fraction", params.range_fraction);
+  section.read("at_least_beyond_steps", params.at_least_beyond_steps);
   section.read("motion_constraints", params.motion_constraints);
-  section.read("motion_neighbours", params.motion_neighbours, 0, 100);
+  section.read("motion_neighbours", params.motion_neighbours);
   section.read("steps_along_heading", params.steps_along_heading);
   section.read("synchronise_compass_headings", params.synchronise_compass_headings);
-  section.read("one_phase_turn_per_stretch_pair", params.one_phase_turn_per_stretch_pair);
-  section.read("step_likeness", params.step_likeness, 1.0, 10.0);
-  section.read("look_alike_residual", params.look_alike_residual, 1.0, 100.0);
-  section.read("step_check_steps", params.step_check_steps, 0, 1000);
-  section.read("step_check_sigmas", params.step_check_sigmas, 0.1, 100.0);
-  section.read("motion_direction_stddev_deg", params.motion_direction_stddev_deg, 0.1, 90.0);
-  section.read("motion_length_stddev", params.motion_length_stddev, 0.01, 10.0);
-  section.read("neighbour_motion_length_stddev", params.neighbour_motion_length_stddev, 0.01, 10.0);
-  section.read("neighbour_bearings_only", params.neighbour_bearings_only);
-  section.read("spring_weight_from_map", params.spring_weight_from_map);
+  section.read("step_likeness", params.step_likeness);
+  section.read("look_alike_residual", params.look_alike_residual);
+  section.read("step_check_steps", params.step_check_steps);
+  section.read("step_check_sigmas", params.step_check_sigmas);
+  section.read("motion_direction_stddev_deg", params.motion_direction_stddev_deg);
+  section.read("motion_length_stddev", params.motion_length_stddev);
+  section.read("neighbour_motion_length_stddev", params.neighbour_motion_length_stddev);
   section.read("joins_by_residual", params.joins_by_residual);
-  section.read("joins_by_agreement", params.joins_by_agreement);
-  section.read("spring_weight", params.lattice.spring_weight, 0.0, 1.0);
-  section.read("min_stiffness", params.lattice.min_stiffness, 1e-9, 0.5);
-  section.read("loss_scale_m", params.lattice.loss_scale_m, 1e-4, 100.0);
-  section.read("motion_loss_scale", params.lattice.motion_loss_scale, 0.01, 100.0);
-  section.read("max_iterations", params.lattice.max_iterations, 1, 100000);
-  section.read("max_motions_off", params.max_motions_off, 0.0, 1.0);
+  section.read("spring_weight", params.lattice.spring_weight);
+  section.read("min_stiffness", params.lattice.min_stiffness);
+  section.read("loss_scale_m", params.lattice.loss_scale_m);
+  section.read("motion_loss_scale", params.lattice.motion_loss_scale);
+  section.read("max_iterations", params.lattice.max_iterations);
+  section.read("max_motions_off", params.max_motions_off);
+  check_loaded(section.source_name(), [&] { params.check(); });
 }
 
 memory::LatticeQuality measure_quality(const std::vector<Eigen::Vector2d>& positions,
@@ -164,6 +183,7 @@ void calibrate(const memory::VisualMemory& memory, const PlaceDissimilarities& d
 }  // namespace
 
 OrganiseResult organise(memory::VisualMemory& memory, const OrganiseParams& params) {
+  params.check();
   const int count = static_cast<int>(memory.place_count());
   if (count < 2)
     throw UsageError("organise: the map has " + std::to_string(count) +
@@ -200,15 +220,11 @@ OrganiseResult organise(memory::VisualMemory& memory, const OrganiseParams& para
 
   LatticeParams lattice = params.lattice;
   lattice.correlation_range_m = calibration.correlation_range_m;
-  result.gap_correlation = detail::dissimilarity_gap_correlation(memory, dissimilarity, 3);
-  if (params.spring_weight_from_map && result.gap_correlation) {
-    lattice.spring_weight *= std::clamp(*result.gap_correlation, 0.0, 1.0);
-  }
   result.lattice = solve_lattice(count, result.springs, result.motions, lattice);
   memory.set_lattice_positions(result.lattice.positions);
   result.quality = measure_quality(result.lattice.positions, result.motions, result.motion_joins,
                                    calibration.step_m, params.max_motions_off);
-  // Several motions may join two pieces (joins_by_agreement): count the pieces themselves.
+  // The pieces the checked motions left, not the joins added (the verdict is about the former).
   result.quality.pieces = pieces;
   result.quality.trustworthy = pieces == 1 && result.quality.motions_off <= params.max_motions_off;
   memory.set_lattice_quality(result.quality);
@@ -220,10 +236,7 @@ OrganiseResult organise(memory::VisualMemory& memory, const OrganiseParams& para
            std::to_string(result.motion_joins) + " added to join the lattice); quality: " +
            std::to_string(result.quality.motions_off) + " of motions off, residual " +
            std::to_string(result.quality.motion_residual_steps) + " steps, " +
-           std::to_string(result.quality.pieces) + " piece(s); dissimilarity against gap: rho " +
-           (result.gap_correlation ? std::to_string(*result.gap_correlation) : "none") +
-           ", spring weight " + std::to_string(lattice.spring_weight) + "; " +
-           result.lattice.summary);
+           std::to_string(result.quality.pieces) + " piece(s); " + result.lattice.summary);
   return result;
 }
 

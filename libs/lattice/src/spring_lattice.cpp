@@ -117,7 +117,7 @@ LatticeResult solve_lattice(int place_count, const std::vector<SpringMeasurement
   problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   ceres::Problem problem(problem_options);
   result.springs_kept = add_springs(problem, springs, params, &spring_loss, result.positions);
-  detail::add_motion_blocks(problem, motions, result.positions, &motion_loss, true);
+  detail::add_motion_blocks(problem, motions, result.positions, &motion_loss);
   for (int place = 0; place < place_count; ++place) {
     if (!problem.HasParameterBlock(result.positions[place].data())) {
       throw UsageError("lattice: place " + std::to_string(place) +

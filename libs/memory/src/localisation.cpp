@@ -8,6 +8,7 @@
 #include "omninav/core/angles.hpp"
 #include "omninav/core/config.hpp"
 #include "omninav/core/errors.hpp"
+#include "omninav/core/param_check.hpp"
 #include "omninav/core/statistics.hpp"
 #include "omninav/signature/dissimilarity.hpp"
 #include "omninav/signature/phase_heading.hpp"
@@ -16,10 +17,17 @@ namespace omninav::memory {
 
 void load_localisation_params(const ConfigReader& section, LocalisationParams& params) {
   signature::load_hierarchy_params(section, params.hierarchy);
-  section.read("top_k", params.top_k, 1, 100000);
-  section.read("fine_candidates", params.fine_candidates, 0, 100000);
-  section.read("fine_rotational_weight", params.fine_rotational_weight, 0.0, 1000.0);
-  section.read("learn_line_weights", params.learn_line_weights);
+  section.read("top_k", params.top_k);
+  section.read("fine_candidates", params.fine_candidates);
+  section.read("fine_rotational_weight", params.fine_rotational_weight);
+  check_loaded(section.source_name(), [&] { params.check(); });
+}
+
+void LocalisationParams::check() const {
+  hierarchy.check();
+  check_range("localisation.top_k", top_k, 1, 100000);
+  check_range("localisation.fine_candidates", fine_candidates, 0, 100000);
+  check_range("localisation.fine_rotational_weight", fine_rotational_weight, 0.0, 1000.0);
 }
 
 std::string to_string(PositionFrame frame) {
@@ -75,64 +83,6 @@ double typical_spacing(const std::vector<Eigen::Vector2d>& points) {
   return nearest_distance_median(points, 1);
 }
 
-std::vector<double> learn_line_weights(const VisualMemory& memory, int components) {
-  const std::size_t n = memory.place_count();
-  if (n < 4) return {};
-  const int lines = memory.place(0).signature.lines();
-  components = std::min(components, memory.place(0).signature.components);
-  // Near pairs: places one after the other; far pairs: places half the listing apart. At most
-  // kPairs of each, spread evenly over the map, so that large maps cost no more.
-  constexpr std::size_t kPairs = 2000;
-  const std::size_t step = std::max<std::size_t>(1, n / kPairs);
-  std::vector<std::vector<double>> near(static_cast<std::size_t>(lines));
-  std::vector<std::vector<double>> far(static_cast<std::size_t>(lines));
-  const auto add_pair = [&](std::size_t a, std::size_t b, std::vector<std::vector<double>>& to) {
-    const signature::Signature& sa = memory.place(static_cast<PlaceIndex>(a)).signature;
-    const signature::Signature& sb = memory.place(static_cast<PlaceIndex>(b)).signature;
-    for (int line = 0; line < lines; ++line) {
-      double sum = 0.0;
-      for (int k = 0; k < components; ++k) {
-        sum += std::fabs(static_cast<double>(sa.magnitude[sa.at(line, k)]) -
-                         static_cast<double>(sb.magnitude[sb.at(line, k)]));
-      }
-      to[static_cast<std::size_t>(line)].push_back(sum);
-    }
-  };
-  for (std::size_t i = 0; i + 1 < n; i += step) add_pair(i, i + 1, near);
-  for (std::size_t i = 0; i < n; i += step) add_pair(i, (i + n / 2) % n, far);
-  std::vector<double> weights(static_cast<std::size_t>(lines), 0.0);
-  double total = 0.0;
-  for (std::size_t line = 0; line < weights.size(); ++line) {
-    const double far_m = median(far[line]);
-    if (!(far_m > 0.0)) continue;  // a line that never changes says nothing
-    const double near_m = std::max(median(near[line]), 1e-3 * far_m);
-    weights[line] = std::max(0.0, far_m - near_m) / (near_m * far_m);
-    total += weights[line];
-  }
-  if (!(total > 0.0)) return {};  // nothing tells near from far: every line alike
-  for (double& w : weights) w *= static_cast<double>(weights.size()) / total;
-  return weights;
-}
-
-double line_weighted_scale(const VisualMemory& memory, int components,
-                           std::span<const double> line_weights) {
-  const std::size_t n = memory.place_count();
-  if (n < 2 || line_weights.empty()) return 1.0;
-  const int m = std::min(components, memory.place(0).signature.components);
-  const signature::ComponentWeights& alpha = memory.parameters().weights;
-  constexpr std::size_t kPairs = 2000;  // as learn_line_weights
-  const std::size_t step = std::max<std::size_t>(1, n / kPairs);
-  std::vector<double> plain, weighted;
-  for (std::size_t i = 0; i + 1 < n; i += step) {
-    const signature::Signature& a = memory.place(static_cast<PlaceIndex>(i)).signature;
-    const signature::Signature& b = memory.place(static_cast<PlaceIndex>(i + 1)).signature;
-    plain.push_back(signature::dissimilarity(a, b, m, alpha));
-    weighted.push_back(signature::dissimilarity(a, b, m, alpha, line_weights));
-  }
-  const double weighted_m = median(weighted);
-  return weighted_m > 0.0 ? median(plain) / weighted_m : 1.0;
-}
-
 namespace {
 
 // The exponent of the weights between places, (least Dis / Dis)^p. Chosen across the zoo leaving
@@ -170,7 +120,7 @@ Eigen::Vector2d between_places(const std::vector<PlaceMatch>& best,
 
 // The fine level's order: each of the first fine_magnitude.size() matches scores
 // `rotational_weight` times its rotational dissimilarity over the least among them plus its
-// (line-weighted) magnitude dissimilarity over the least among them, lowest first; the rest keep
+// magnitude dissimilarity over the least among them, lowest first; the rest keep
 // their order behind.
 void rerank_fine(std::vector<PlaceMatch>& best, const std::vector<double>& fine_magnitude,
                  double rotational_weight) {
@@ -210,17 +160,12 @@ Localiser::Localiser(const VisualMemory& memory, LocalisationParams params)
              memory.parameters().signature.colour == signature::ColourMode::kLuminance ? 1 : 3,
              params_.hierarchy.levels, memory.parameters().weights),
       extractor_(memory.parameters().signature) {
+  params_.check();
   if (params_.hierarchy.levels.back() > memory.parameters().signature.components) {
     throw UsageError("the finest level compares " +
                      std::to_string(params_.hierarchy.levels.back()) +
                      " components but the map's signatures hold " +
                      std::to_string(memory.parameters().signature.components));
-  }
-  if (params_.learn_line_weights) {
-    line_weights_ = learn_line_weights(memory, params_.hierarchy.levels.back());
-    index_.set_line_weights(line_weights_);
-    recognition_scale_ =
-        line_weighted_scale(memory, params_.hierarchy.levels.back(), line_weights_);
   }
   index_.reserve(memory.place_count());
   for (PlaceIndex i = 0; i < memory.place_count(); ++i) index_.add(memory.place(i).signature);
@@ -268,15 +213,9 @@ Localisation Localiser::finish(const signature::Signature& query,
     match.place = c.place;
     match.similarity = c.similarity;
     const Place& place = memory_.place(c.place);
-    // Eq. 6 with the map's weights but not the learned line weights, so that it compares with
-    // the map's links (navigation's match limit).
-    match.dissimilarity =
-        line_weights_.empty()
-            ? c.dissimilarity
-            : signature::dissimilarity(place.signature, query, m, memory_.parameters().weights);
+    match.dissimilarity = c.dissimilarity;  // Eq. 6 with the map's weights
     match.dissimilarity_per_value =
-        (line_weights_.empty() ? c.dissimilarity : c.dissimilarity * recognition_scale_) /
-        (static_cast<double>(place.signature.lines()) * m);
+        c.dissimilarity / (static_cast<double>(place.signature.lines()) * m);
     // The place's signature is `from`, the query `to`: turn = heading(query) − heading(place).
     const signature::PhaseHeading heading = signature::relative_heading(
         place.signature, query, std::min(place.signature.components, query.components));
@@ -285,8 +224,8 @@ Localisation Localiser::finish(const signature::Signature& query,
     if (place.heading_rad) match.heading_rad = wrap_angle(*place.heading_rad + heading.turn_rad);
     if (result.best.size() < fine) {
       match.rotational_dissimilarity = signature::rotational_dissimilarity(
-          place.signature, query, heading.turn_rad, m, memory_.parameters().weights, line_weights_);
-      fine_magnitude.push_back(c.dissimilarity);  // with the line weights
+          place.signature, query, heading.turn_rad, m, memory_.parameters().weights);
+      fine_magnitude.push_back(c.dissimilarity);
     }
     result.best.push_back(match);
   }

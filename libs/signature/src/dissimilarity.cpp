@@ -60,27 +60,17 @@ int compared_components(const Signature& a, const Signature& b, int components) 
   return m;
 }
 
-// Line weights are one per line or none (every line 1). Throws UsageError otherwise.
-void check_line_weights(std::span<const double> line_weights, int lines) {
-  if (!line_weights.empty() && line_weights.size() != static_cast<std::size_t>(lines)) {
-    throw UsageError(std::to_string(line_weights.size()) + " line weights for signatures of " +
-                     std::to_string(lines) + " lines");
-  }
-}
-
 }  // namespace
 
 double dissimilarity(const Signature& a, const Signature& b, int components,
-                     const ComponentWeights& weights, std::span<const double> line_weights) {
+                     const ComponentWeights& weights) {
   const int m = compared_components(a, b, components);
-  check_line_weights(line_weights, a.lines());
   double total = 0.0;
   for (int k = 0; k < m; ++k) {
     double sum_k = 0.0;
     for (int line = 0; line < a.lines(); ++line) {
-      const double term = std::fabs(static_cast<double>(a.magnitude[a.at(line, k)]) -
-                                    static_cast<double>(b.magnitude[b.at(line, k)]));
-      sum_k += line_weights.empty() ? term : line_weights[static_cast<std::size_t>(line)] * term;
+      sum_k += std::fabs(static_cast<double>(a.magnitude[a.at(line, k)]) -
+                         static_cast<double>(b.magnitude[b.at(line, k)]));
     }
     total += weights[k] * sum_k;
   }
@@ -88,10 +78,8 @@ double dissimilarity(const Signature& a, const Signature& b, int components,
 }
 
 double rotational_dissimilarity(const Signature& from, const Signature& to, double turn_rad,
-                                int components, const ComponentWeights& weights,
-                                std::span<const double> line_weights) {
+                                int components, const ComponentWeights& weights) {
   const int m = compared_components(from, to, components);
-  check_line_weights(line_weights, from.lines());
   double total = 0.0;
   for (int k = 0; k < m; ++k) {
     // |b − e^{−ik·turn}·a|² = |a|² + |b|² − 2|a||b|·cos(φ_b − φ_a + k·turn).
@@ -102,8 +90,7 @@ double rotational_dissimilarity(const Signature& from, const Signature& to, doub
       const double b = to.magnitude[to.at(line, k)];
       const double angle = static_cast<double>(to.phase_rad[to.at(line, k)]) -
                            static_cast<double>(from.phase_rad[from.at(line, k)]) + k_turn;
-      const double term = std::sqrt(std::max(0.0, a * a + b * b - 2.0 * a * b * std::cos(angle)));
-      sum_k += line_weights.empty() ? term : line_weights[static_cast<std::size_t>(line)] * term;
+      sum_k += std::sqrt(std::max(0.0, a * a + b * b - 2.0 * a * b * std::cos(angle)));
     }
     total += weights[k] * sum_k;
   }

@@ -6,6 +6,7 @@
 #include "omninav/core/best_k.hpp"
 #include "omninav/core/config.hpp"
 #include "omninav/core/errors.hpp"
+#include "omninav/core/param_check.hpp"
 #include "omninav/core/parse.hpp"
 
 namespace omninav::signature {
@@ -41,8 +42,20 @@ void load_hierarchy_params(const ConfigReader& section, HierarchyParams& params)
   } catch (const UsageError& error) {
     throw ConfigError(error.what());
   }
-  section.read("candidate_similarity", params.candidate_similarity, 0.0, 1000.0);
-  section.read("max_probes", params.max_probes, 0, 100000);
+  section.read("candidate_similarity", params.candidate_similarity);
+  section.read("max_probes", params.max_probes);
+  check_loaded(section.source_name(), [&] { params.check(); });
+}
+
+void HierarchyParams::check() const {
+  if (levels.empty()) throw UsageError("key 'localisation.levels': no levels given");
+  for (std::size_t l = 0; l < levels.size(); ++l) {
+    if (levels[l] < 1 || (l > 0 && levels[l] <= levels[l - 1])) {
+      throw UsageError("key 'localisation.levels' must be increasing and each at least 1");
+    }
+  }
+  check_range("localisation.candidate_similarity", candidate_similarity, 0.0, 1000.0);
+  check_range("localisation.max_probes", max_probes, 0, 100000);
 }
 
 SignatureIndex::SignatureIndex(int rows, int channels, std::vector<int> levels,
@@ -86,28 +99,12 @@ Eigen::RowVectorXf SignatureIndex::query_band(const Signature& query, std::size_
   const int count = levels_[level] - first;
   Eigen::RowVectorXf out(static_cast<Eigen::Index>(lines_) * count);
   for (int line = 0; line < lines_; ++line) {
-    const double line_weight =
-        line_weights_.empty() ? 1.0 : line_weights_[static_cast<std::size_t>(line)];
     for (int j = 0; j < count; ++j) {
       out[static_cast<Eigen::Index>(line) * count + j] =
-          static_cast<float>(line_weight * weights_[first + j]) *
-          query.magnitude[query.at(line, first + j)];
+          static_cast<float>(weights_[first + j]) * query.magnitude[query.at(line, first + j)];
     }
   }
   return out;
-}
-
-void SignatureIndex::set_line_weights(std::vector<double> line_weights) {
-  if (size_ > 0) throw UsageError("line weights are set before the first place is added");
-  if (!line_weights.empty() && line_weights.size() != static_cast<std::size_t>(lines_)) {
-    throw UsageError(std::to_string(line_weights.size()) + " line weights for an index of " +
-                     std::to_string(lines_) + " lines");
-  }
-  if (std::any_of(line_weights.begin(), line_weights.end(),
-                  [](double w) { return !(w >= 0.0) || !std::isfinite(w); })) {
-    throw UsageError("line weights must be finite and at least 0");
-  }
-  line_weights_ = std::move(line_weights);
 }
 
 std::uint32_t SignatureIndex::add(const Signature& signature) {

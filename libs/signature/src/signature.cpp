@@ -12,6 +12,7 @@
 #include "omninav/core/errors.hpp"
 #include "omninav/core/fftw_plans.hpp"
 #include "omninav/core/panorama.hpp"
+#include "omninav/core/param_check.hpp"
 #include "panorama_lines.hpp"
 
 namespace omninav::signature {
@@ -26,12 +27,17 @@ ColourMode colour_mode_from_string(const std::string& text) {
   throw UsageError("colour mode '" + text + "' is not one of: luminance, per_channel");
 }
 
+void SignatureParams::check() const {
+  check_range("signature.components", components, 1, 4096);
+}
+
 void load_signature_params(const ConfigReader& section, SignatureParams& params) {
-  section.read("components", params.components, 1, 4096);
+  section.read("components", params.components);
   std::string colour = to_string(params.colour);
   section.read("colour", colour, {"luminance", "per_channel"});
   params.colour = colour_mode_from_string(colour);
   section.read("normalise_brightness", params.normalise_brightness);
+  check_loaded(section.source_name(), [&] { params.check(); });
 }
 
 int pair_components(const Signature& a, const Signature& b, int components,
@@ -88,10 +94,7 @@ struct SignatureExtractor::Workspace {
 
 SignatureExtractor::SignatureExtractor(SignatureParams params, SignaturePath path)
     : params_(params), path_(path), work_(std::make_unique<Workspace>()) {
-  if (params_.components < 1) {
-    throw UsageError("a signature needs at least one component, got " +
-                     std::to_string(params_.components));
-  }
+  params_.check();
 }
 
 SignatureExtractor::~SignatureExtractor() = default;
@@ -156,7 +159,7 @@ void SignatureExtractor::run_fft() {
   if (work.fft_width != work.width || work.fft_lines != work.lines) {
     // `lines` real transforms of `width` points, line after line, from the process-wide cache.
     // FFTW_ESTIMATE: the plan depends on the sizes only, never on timing, so the same input
-    // gives bit-identical signatures in every run (DESIGN.md, Determinism).
+    // gives bit-identical signatures in every run (docs/design.md, Determinism).
     work.plan = fftw::lines_r2c_float({work.width, work.lines, 0, fftw::Planning::kEstimate});
     work.out =
         fftw::Buffer<fftwf_complex>(static_cast<std::size_t>(work.width / 2 + 1) * work.lines);

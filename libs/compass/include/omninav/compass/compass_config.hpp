@@ -1,7 +1,7 @@
 #pragma once
 // Reading config/compass.yaml into the compass's parameters. Every key is optional (absent keys
 // keep the defaults of the Params structs, which are those of Table 2 of
-// 000_9e80abd5855643af.txt); unknown keys are the caller's ConfigReader::require_all_known().
+// Labrosse 2006); unknown keys are the caller's ConfigReader::require_all_known().
 
 #include <optional>
 
@@ -23,11 +23,10 @@ struct CompassConfig {
   MinWarpingParams min_warping;
 };
 
-// Reads the sections distance, minimiser, phase, subpixel, sampling, confidence, tilt,
-// travel_fit, uncertainty, window, min_warping and input (the tilt's elevations come from
-// camera.yaml, set by the caller). Throws ConfigError naming the key, the file and the valid range
-// or choices, and UsageError for a combination that cannot work (the fft minimiser with the l1
-// metric).
+// Reads the sections distance, minimiser, phase, subpixel, sampling, confidence, uncertainty,
+// min_warping and input, then checks the values (CompassParams::check, MinWarpingParams::check).
+// Throws ConfigError naming the file, the key and the valid range or choices, or the
+// combination that cannot work (the fft minimiser with the l1 metric).
 void load_compass_config(const ConfigReader& config, CompassConfig& out);
 
 }  // namespace omninav::compass

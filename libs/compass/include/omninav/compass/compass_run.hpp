@@ -2,20 +2,19 @@
 // The visual compass over a sequence of panoramas as `omninav compass` runs it, and
 // `omninav evaluate` with it: every panorama resampled to `width_px` columns first when a width
 // is given (all of the sequence must share one width), the compass started at the first frame's
-// true heading when it has one (000_9e80abd5855643af.txt §4.1), else at 0. With
-// compass.yaml's window on, the headings are the multi-baseline window's (heading_window.hpp).
+// true heading when it has one (Labrosse 2006, §4.1), else at 0.
 
 #include <memory>
 #include <optional>
 #include <string>
 
-#include "omninav/compass/heading_window.hpp"
 #include "omninav/compass/visual_compass.hpp"
 
 namespace omninav::compass {
 
 class CompassRun {
  public:
+  // Throws UsageError for parameters out of range (CompassParams::check).
   CompassRun(CompassParams params, std::optional<int> width_px);
 
   // The next frame's estimate. Throws InputError naming `source` for an empty image or one
@@ -24,12 +23,7 @@ class CompassRun {
                        std::optional<double> truth_heading_rad);
 
   // VisualCompass::realign on the last frame pushed (its estimate, `estimate`, is updated).
-  // Throws UsageError when the window is on (it has no absolute prior yet).
   void realign(double heading_rad, double sigma_rad, CompassEstimate& estimate);
-  // The estimate of the frame at `position` (0 for the first pushed) with the window's final
-  // heading, and its rotation from the previous frame's final heading; unchanged without the
-  // window (its first estimate is final).
-  void revise(CompassEstimate& estimate, int position) const;
 
   bool started() const { return compass_ != nullptr; }
   int reference_count() const { return compass_ ? compass_->reference_count() : 0; }
@@ -40,7 +34,6 @@ class CompassRun {
   std::optional<int> width_px_;
   std::optional<int> input_width_px_;
   std::unique_ptr<VisualCompass> compass_;
-  std::unique_ptr<HeadingWindow> window_;  // params.window.enabled
 };
 
 }  // namespace omninav::compass

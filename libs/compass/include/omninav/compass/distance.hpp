@@ -1,13 +1,13 @@
 #pragma once
 // The distance between two panoramas as a function of the column shift of the second one:
-// Eqs. 1-2 of 000_9e80abd5855643af.txt (Fig. 3's distance() in 004_5a2a3172f8969a85.txt).
+// Eqs. 1-2 of Labrosse 2006 (Fig. 3's distance() in Labrosse 2004).
 //
 // SHIFT CONVENTION. Shifting the second image I_j by α columns is core's roll_columns(I_j, α):
 // the content at column c moves to column c + α (mod W), the image the robot would see after
 // turning counter-clockwise by α·360/W degrees. So
 //     d(I_i, I_j, α) = sqrt( Σ_c m(c − α) Σ_rows,channels (I_j(c − α) − I_i(c))² )      (Eq. 2)
 // with the mask m of field_of_view.hpp moving with I_j. The minimum α_m "un-rotates" I_j onto
-// I_i, and the robot's rotation from I_i to I_j is ρ = −α_m·360/W (Eq. 4). With DESIGN.md's
+// I_i, and the robot's rotation from I_i to I_j is ρ = −α_m·360/W (Eq. 4). With docs/design.md's
 // convention (a counter-clockwise turn moves content to higher columns) ρ is counter-clockwise
 // positive: if I_j = roll_columns(I_i, s), the minimum is at α = −s and ρ = +s·360/W, the turn
 // that made I_j. Tests check this against rendered ground truth.
@@ -36,7 +36,7 @@ std::string to_string(Metric metric);
 using Cost = std::int64_t;
 
 struct DistanceParams {
-  Metric metric = Metric::kL2;  // Eq. 1 of 000_9e80abd5855643af.txt
+  Metric metric = Metric::kL2;  // Eq. 1 of Labrosse 2006
   FieldOfViewParams field_of_view;
 };
 

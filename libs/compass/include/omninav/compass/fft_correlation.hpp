@@ -1,8 +1,9 @@
 #pragma once
 // The whole distance function d(I_i, I_j, α), α = 0..W−1, in O(H·W·log W) by masked circular
-// cross-correlation with FFTW: what lets the compass run at 3 pixels per degree (000 §3.4.1
-// found it the most accurate resolution and could not afford it). fft_correlation.cpp derives
-// it and bounds its error; minimiser (c) evaluates exactly the shifts that may be the minimum.
+// cross-correlation with FFTW: what lets the compass run at 3 pixels per degree (Labrosse 2006,
+// §3.4.1 found it the most accurate resolution and could not afford it). fft_correlation.cpp
+// derives it and bounds its error; minimiser (c) evaluates exactly the shifts that may be the
+// minimum.
 
 #include <vector>
 

@@ -1,5 +1,5 @@
 #pragma once
-// The field of view the distance function looks at (000_9e80abd5855643af.txt §3.4.3): the whole
+// The field of view the distance function looks at (Labrosse 2006, §3.4.3): the whole
 // panorama, or two bands of width f centred on the robot's front and back, where a forward or
 // backward translation moves the image least (Fig. 10; f = 60°, Table 2).
 //
@@ -29,7 +29,7 @@ namespace omninav::compass {
 struct FieldOfViewParams {
   // true: the front and back bands of §3.4.3 (Table 2); false: the whole panorama (§3.2).
   bool front_back = true;
-  // f, the width of each band, radians (60°, §3.4.3 and Table 2 of 000_9e80abd5855643af.txt).
+  // f, the width of each band, radians (60°, §3.4.3 and Table 2 of Labrosse 2006).
   double band_width_rad = 60.0 * 3.14159265358979323846 / 180.0;
 };
 

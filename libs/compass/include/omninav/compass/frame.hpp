@@ -3,13 +3,13 @@
 // block (1 channel, or 3 in OpenCV's BGR order), and carrying the caches that belong to the
 // image itself, so that work done on a frame is done once however many pairs it is part of:
 //   - its FFT spectra for the masked cross-correlation (fft_correlation.hpp): the spectra of
-//     its rows "as the first image" and "as the second image" of a pair (000 Eq. 2), each
-//     computed at most once, on first use. Algorithm 1 compares the current frame with the
+//     its rows "as the first image" and "as the second image" of a pair (Labrosse 2006, Eq. 2),
+//     each computed at most once, on first use. Algorithm 1 compares the current frame with the
 //     reference and, on a switch, the previous frame with the current one: every frame plays
 //     both roles, and these caches are the "cache keyed by frame" that makes each transform
 //     happen once;
 //   - the low-frequency components of its rows for the phase estimate (phase.hpp);
-//   - its own amplitude A(I, I) (000 Eq. 8's normaliser), per distance function;
+//   - its own amplitude A(I, I) (Labrosse 2006, Eq. 8's normaliser), per distance function;
 //   - a column-major copy of its pixels for the fast distance kernel (distance.hpp).
 // The pixels never change after construction. Copies share the pixels and the caches. The
 // caches are filled under a mutex, so const use from several threads is safe.

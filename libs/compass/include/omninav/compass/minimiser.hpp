@@ -1,19 +1,20 @@
 #pragma once
-// Ways of finding the shift that minimises d(I_i, I_j, α) (000 Eq. 5), interchangeable behind
-// one interface so that tests and benchmarks run every variant on the same pairs and the
+// Ways of finding the shift that minimises d(I_i, I_j, α) (Labrosse 2006, Eq. 5), interchangeable
+// behind one interface so that tests and benchmarks run every variant on the same pairs and the
 // exhaustive search checks the others (STYLE.md, "BoB robotics"):
 //
-//   exhaustive  (a) every one of the W shifts (Fig. 3 of 004_5a2a3172f8969a85.txt): the oracle.
+//   exhaustive  (a) every one of the W shifts (Fig. 3 of Labrosse 2004): the oracle.
 //               It uses DistanceFunction::reference_cost, the plain transcription of Eq. 2,
 //               unless built with the fast kernel (for benchmarks).
-//   local_scan  (b) the minimisation of 000 §3.3.4: descent from a start value, then eight
+//   local_scan  (b) the minimisation of Labrosse 2006, §3.3.4: descent from a start value, then
+//   eight
 //               values spanning 20° centred on the local minimum; when one of them is lower the
 //               descent restarts from it. Finds the global minimum when the start is good
 //               (Algorithm 1 starts from the previous rotation) or when seeded by the phase.
 //   fft         (c) every d(α) at once by masked circular cross-correlation in single
 //               precision, within a stated bound (fft_correlation.cpp derives both), then the
 //               shifts that may be the minimum evaluated exactly: the same minimum and cost.
-//   phase       (d) the Fourier-phase estimate of 001_5bb151a4e28490b4.txt §2.1 (phase.hpp):
+//   phase       (d) the Fourier-phase estimate of Menegatti et al. 2004, §2.1 (phase.hpp):
 //               no distance minimisation at all; its integer shift is the rounded estimate.
 //
 // (a), (b) and (c) return the same integer minimum in the order of cost_table.hpp whenever (b)
@@ -43,12 +44,11 @@ enum class FftPlanning {
 struct MinimiserParams {
   MinimiserKind kind = MinimiserKind::kLocalScan;  // "local + regular scanning", Table 2
   // (b): the regular scan after each descent: scan_values values spanning scan_span_rad,
-  // centred on the local minimum (eight values spanning 20°, 000 §3.3.4), at 360 columns; the
-  // count grows with the width so that the values stay as many columns apart (24 at 1080).
+  // centred on the local minimum (eight values spanning 20°, Labrosse 2006, §3.3.4), at 360
+  // columns; the count grows with the width so that the values stay as many columns apart (24 at
+  // 1080).
   int scan_values = 8;
   double scan_span_rad = 20.0 * 3.14159265358979323846 / 180.0;
-  // (b): start from the phase estimate (d) instead of the given start value.
-  bool seed_with_phase = false;
   // (a): use the fast kernel instead of the plain oracle code (benchmarks only).
   bool exhaustive_fast_kernel = false;
   // (c): how FFTW plans. The minimum and its cost are exact either way, so results do not

@@ -2,7 +2,7 @@
 // The rotation between two panoramas, with the sub-pixel minimum, the amplitudes and a
 // confidence: everything Algorithm 1 (visual_compass.hpp) needs from one pair I_i, I_j.
 //
-// Amplitudes (000_9e80abd5855643af.txt §3.4.2):
+// Amplitudes (Labrosse 2006, §3.4.2):
 //   A(I_i, I_j)  = d(a_m + W/2) − d(a_m)                 pixel resolution, Eq. 9
 //   𝒜(I_i, I_j)  = d(α_m + W/2) − d_m                    sub-pixel, Eq. 12; d at the fractional
 //                                                        shift α_m + W/2 is interpolated linearly
@@ -64,6 +64,11 @@ struct PairMatcherParams {
   MinimiserParams minimiser;
   SubpixelParams subpixel;
   ConfidenceParams confidence;
+
+  // The ranges of compass.yaml's distance, minimiser, phase, subpixel and confidence sections,
+  // and the combinations that cannot work (fft needs l2). Throws UsageError naming the key
+  // (core/param_check.hpp); PairMatcher's constructor calls it.
+  void check() const;
 };
 
 struct PairMatch {

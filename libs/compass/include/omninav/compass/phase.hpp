@@ -1,6 +1,6 @@
 #pragma once
 // The rotation between two panoramas from the phase of their row spectra: the Shift Theorem of
-// 001_5bb151a4e28490b4.txt §2.1, Eq. 1, F{f(x − a)} = e^{−j2πas} F{f(x)}: shifting a row by a
+// Menegatti et al. 2004, §2.1, Eq. 1, F{f(x − a)} = e^{−j2πas} F{f(x)}: shifting a row by a
 // columns turns the phase of its k-th Fourier component (k cycles per W columns) by
 // −2π·k·a/W and leaves the magnitudes alone.
 //
@@ -23,8 +23,8 @@
 namespace omninav::compass {
 
 struct PhaseParams {
-  // K, the highest component used; capped at W/2 − 1. 001 §2.1 keeps the first 15 components
-  // for its signatures; the rotation needs fewer.
+  // K, the highest component used; capped at W/2 − 1. Menegatti et al. 2004, §2.1 keeps the first
+  // 15 components for its signatures; the rotation needs fewer.
   int components = 8;
 };
 

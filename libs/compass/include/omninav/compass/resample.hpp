@@ -1,8 +1,8 @@
 #pragma once
 // Changing the number of columns of a panorama, for running the compass at another angular
-// resolution than the camera's (000_9e80abd5855643af.txt §3.4.1: 1 to 3 pixels per degree).
+// resolution than the camera's (Labrosse 2006, §3.4.1: 1 to 3 pixels per degree).
 //
-// Columns are resampled circularly (column W−1 is next to column 0) and keep DESIGN.md's
+// Columns are resampled circularly (column W−1 is next to column 0) and keep docs/design.md's
 // azimuths: column c of the result looks where column c·W_in/W_out of the input looks (column
 // centres at integer positions, so the front stays at 0.25·W). Each output column is a
 // weighted mean of input columns under a triangle ("tent") of half-width max(1, W_in/W_out)

@@ -1,5 +1,5 @@
 #pragma once
-// The sub-pixel minimum of the distance function, 000_9e80abd5855643af.txt §3.4.2, Eqs. 7-12,
+// The sub-pixel minimum of the distance function, Labrosse 2006, §3.4.2, Eqs. 7-12,
 // from the pixel-resolution minimum d_0 = d(a_m) and its neighbours d_− = d(a_m − 1),
 // d_+ = d(a_m + 1) (so d_0 ≤ d_−, d_+). Offsets are in columns, relative to a_m.
 //
@@ -26,7 +26,7 @@
 namespace omninav::compass {
 
 enum class SubpixelMode {
-  kNone,       // the pixel-resolution minimum (000 Eqs. 5-6)
+  kNone,       // the pixel-resolution minimum (Labrosse 2006, Eqs. 5-6)
   kParabolic,  // parabolic interpolation only
   kLinear,     // linear extrapolation only
   kMixture,    // Eqs. 10-11 (Table 2)

@@ -1,5 +1,5 @@
 #pragma once
-// The visual compass: Algorithm 1 of 000_9e80abd5855643af.txt §3.5, and its fixed-skip variant
+// The visual compass: Algorithm 1 of Labrosse 2006, §3.5, and its fixed-skip variant
 // "Fx n" (§4.3), over a sequence of panoramas pushed one at a time.
 //
 // Algorithm 1, as implemented (ω: orientations, r: rotations, all counter-clockwise positive):
@@ -37,7 +37,7 @@
 // replaced by "I_c is more than n + 1 frames after I_r". The reference frames are then frames
 // 0, n+1, 2(n+1), ...; each is measured against the one before it, and every frame in between
 // against the latest reference. Fx 0 compares successive frames: the 2004 compass (Fig. 3 of
-// 004_5a2a3172f8969a85.txt) when used with the exhaustive minimiser and no sub-pixel fit.
+// Labrosse 2004) when used with the exhaustive minimiser and no sub-pixel fit.
 
 #include <memory>
 #include <optional>
@@ -45,8 +45,6 @@
 
 #include "omninav/compass/frame.hpp"
 #include "omninav/compass/pair_matcher.hpp"
-#include "omninav/compass/tilt.hpp"
-#include "omninav/compass/travel_fit.hpp"
 
 namespace omninav::compass {
 
@@ -58,7 +56,7 @@ enum class SamplingPolicy {
 struct SamplingParams {
   SamplingPolicy policy = SamplingPolicy::kThreshold;
   // t, Algorithm 1 line 1 and Table 2: the median normalised amplitude at the best skip + 1 on
-  // CIRCLE1 (Table 1 of 000_9e80abd5855643af.txt).
+  // CIRCLE1 (Table 1 of Labrosse 2006).
   double threshold_norm_amp = 0.6055;
   // n of "Fx n": frames skipped between references.
   int fixed_skip_frames = 3;
@@ -71,29 +69,6 @@ struct SamplingParams {
   // (PairMatch::self_step), the most a pure rotation leaves (above). 1: the bound itself, not a
   // value fitted to a scene.
   double parallax_step_ratio = 1.0;
-};
-
-// Levelling each frame against its reference before matching (tilt.hpp, docs/compass.md
-// "Tilt"): the frame is levelled against the reference of line 9 (or the previous frame of
-// line 12) and matched again. The frames are kept as they came: levelling a frame that later
-// becomes a reference would chain the tilt estimates, and their small biases (forward motion
-// reads as pitch, docs/compass.md) would add up along the route.
-struct TiltLevellingParams {
-  bool enabled = false;  // measured off by default: see docs/compass.md "Tilt"
-  TiltParams tilt;
-  // The elevations the panoramas' rows cover (camera.yaml's panorama section); their size is
-  // the frames'.
-  double elevation_min_rad = deg_to_rad(-30.0);
-  double elevation_max_rad = deg_to_rad(15.0);
-};
-
-// The turn fitted together with the parallax of the displacement (travel_fit.hpp) where it
-// accumulates: when a reference is replaced, r_rp (line 11's rotation from the old reference to
-// the frame that becomes the new one) is refined by fit_turn_and_travel before it is added to
-// ω_r. Frames in between keep line 9's estimate: their error does not accumulate.
-struct TravelFitting {
-  bool enabled = false;  // measured on the zoo: docs/compass.md "Turn and travel together"
-  TravelFitParams fit;
 };
 
 // Fast turns (ours; docs/compass.md "Fast turns"). The zoo's wanders turn 15-30° between
@@ -117,15 +92,6 @@ struct FastTurns {
   // grass's aliases lie at 0.67-0.99 of it. 0: off. Chosen across the zoo, leaving one family out
   // (compass.yaml).
   double deeper_ratio = 0.6;
-  // Two readings until the next frame decides (ours; docs/compass.md "Two readings"). When the
-  // match that gave r_rc had another reading (PairMatch::competing_rotation_rad: the candidate
-  // the global fallback rejected, or a competing minimum), the next frame's line 9 is also
-  // minimised from that reading's shift against the same reference; when that descent ends
-  // lower and nearer the other reading than the first, the other reading was the right one: r_rp
-  // becomes it before line 11 adds it to ω_r. A single pair cannot tell a 105° turn in one frame
-  // from a wrong minimum; two pairs with a common reference can. No threshold: the lower distance
-  // decides.
-  bool keep_alternative = false;  // measured on the zoo: docs/compass.md "Two readings"
 };
 
 // The heading's standard deviation (ours; docs/compass.md "Uncertainty"). Each match's variance
@@ -138,32 +104,15 @@ struct UncertaintyParams {
   double scale = 0.472;  // compass.yaml's uncertainty.scale
 };
 
-// The multi-baseline window (ours; heading_window.hpp, docs/compass.md "Many baselines"). Each
-// new frame is matched against its reference (Algorithm 1's match) and against up to
-// `keyframes` earlier keyframes (frames that served as a reference) while their normalised
-// amplitude still passes Table 2's t; every match is a relative heading with the uncertainty
-// model's variance, and the headings of the last `length_frames` frames are solved together as a
-// robust least-squares problem (Ceres, Cauchy loss of scale `loss_scale` match standard
-// deviations); older headings are fixed.
-struct WindowParams {
-  bool enabled = false;     // compass.yaml's window.enabled (measured: docs/compass.md)
-  int keyframes = 1;        // K, earlier keyframes matched besides the reference
-  int length_frames = 10;   // N, the headings solved together
-  double loss_scale = 1.0;  // the Cauchy loss's scale, in match standard deviations
-  // Keyframe matches beyond the rotation cap with parallax (long baselines, biased by the
-  // parallax of the turn as the cap's hops are not) count only where the baselines together
-  // disagree with Algorithm 1's reading by confidence.competing_separation (two readings) or more.
-  bool gate_long_baselines = false;
-};
-
 struct CompassParams {
   PairMatcherParams matcher;
   SamplingParams sampling;
-  TiltLevellingParams levelling;
-  TravelFitting travel;
   FastTurns fast_turns;
   UncertaintyParams uncertainty;
-  WindowParams window;
+
+  // The ranges of compass.yaml's keys for these (the matcher's too). Throws UsageError naming
+  // the key (core/param_check.hpp); the loader and VisualCompass's constructor call it.
+  void check() const;
 };
 
 // What the compass says about one frame.
@@ -175,30 +124,19 @@ struct CompassEstimate {
   int reference_index = 0;      // CompassFrame::index() of the reference I_r used
   bool new_reference = false;   // the reference changed at this frame (lines 11-13)
   double shift_px = 0.0;        // α_m of that pair (sub-pixel)
-  // With levelling: the frame's tilt relative to the reference of the match that gave r_rc
-  // (tilt.hpp); 0 without.
-  double pitch_rad = 0.0;
-  double roll_rad = 0.0;
   ConfidenceFlags flags;
   int evaluations = 0;  // distance evaluations spent on this frame
   // The heading's standard deviation, radians (UncertaintyParams): 0 for the first frame, then
   // growing with every reference change.
   double heading_sigma_rad = 0.0;
-  // The other reading of r_rc replaced the one given for the previous frame (FastTurns).
-  bool alternative_taken = false;
   // The heading was set from outside after the match (VisualCompass::realign: a recognised
   // place of a map).
   bool realigned = false;
-  // The measurement behind the heading, for the multi-baseline window (heading_window.hpp): r_rc,
-  // the rotation from the reference frame (reference_index) to this one, unwrapped, and the
-  // variance of the match that gave it (match_variance_rad2, before the scale).
-  double reference_rotation_rad = 0.0;
-  double match_variance_rad2 = 0.0;
 };
 
 class VisualCompass {
  public:
-  // Throws UsageError for impossible parameters (see make_minimiser).
+  // Throws UsageError for parameters out of range (CompassParams::check).
   explicit VisualCompass(const CompassParams& params, double initial_heading_rad = 0.0);
   ~VisualCompass();
   VisualCompass(const VisualCompass&) = delete;
@@ -209,7 +147,7 @@ class VisualCompass {
   CompassEstimate push(const CompassFrame& frame);
 
   // Re-aligns the last frame pushed on a heading measured otherwise (a place of a map recognised
-  // in it, 000_9e80abd5855643af.txt's abstract: "only requiring infrequent re-alignment, for
+  // in it, Labrosse 2006's abstract: "only requiring infrequent re-alignment, for
   // example when re-localising in a topological map"), with that measure's standard deviation.
   // ω_r moves so that ω_c = heading_rad (unwrapped next to ω_c); the chain's variance restarts
   // from sigma_rad, so later frames grow from it. `estimate`, the last push's, is updated: its
@@ -229,14 +167,6 @@ class VisualCompass {
   // The match of the local minimiser, or the global search's where it is poor (FastTurns).
   PairMatch match_pair(const CompassFrame& first, const CompassFrame& second, int start_shift,
                        double predicted_rotation_rad) const;
-  // The match of lines 9 and 12; with levelling, of the frame levelled against `reference`
-  // (the tilt goes into `estimate`).
-  PairMatch match_levelled(const CompassFrame& reference, const CompassFrame& frame,
-                           int start_shift, double predicted_rotation_rad,
-                           CompassEstimate& estimate) const;
-  // r_rp refined by the turn-and-travel fit of (I_r, I_p) (TravelFitting).
-  double refined_rotation(const CompassFrame& previous, double rotation_ref_previous_rad,
-                          double shift_ref_previous_px) const;
 
   CompassParams params_;
   PairMatcher matcher_;
@@ -249,14 +179,11 @@ class VisualCompass {
   int reference_count_ = 0;
   double reference_heading_rad_ = 0.0;     // ω_r
   double rotation_ref_current_rad_ = 0.0;  // r_rc
-  double shift_ref_current_px_ = 0.0;      // α_m of the match that gave r_rc
   double current_heading_rad_ = 0.0;       // ω_c
   double last_rotation_rad_ = 0.0;         // ω_c − ω_p of the last frame (FastTurns)
   double previous_heading_rad_ = 0.0;      // ω_p, the frame before the last (realign)
-  // The other reading of r_rc, unwrapped like r_rc, while the reference has not changed since.
-  std::optional<double> alternative_ref_current_rad_;
-  double reference_variance_rad2_ = 0.0;  // var(ω_r): the r_rp of every reference change
-  double current_variance_rad2_ = 0.0;    // var(r_rc)
+  double reference_variance_rad2_ = 0.0;   // var(ω_r): the r_rp of every reference change
+  double current_variance_rad2_ = 0.0;     // var(r_rc)
 };
 
 // A match's variance, radians² (UncertaintyParams), before the scale.

@@ -1,5 +1,5 @@
 #pragma once
-// The one set of angle helpers used everywhere (DESIGN.md, Conventions: Angles).
+// The one set of angle helpers used everywhere (docs/design.md, Conventions: Angles).
 // Radians inside the libraries, degrees only at the edges; never compare raw angles across
 // the ±180° seam, difference them with signed_difference().
 

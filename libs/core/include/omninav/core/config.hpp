@@ -1,5 +1,5 @@
 #pragma once
-// Strict YAML configuration (DESIGN.md, Conventions: Config). A component's parameters are a
+// Strict YAML configuration (docs/design.md, Conventions: Config). A component's parameters are a
 // `struct ...Params` with documented defaults; its loader asks a ConfigReader for each key it
 // knows. A key the file lacks keeps the struct's default; a key nobody asked for, a value of the
 // wrong type or out of range is a ConfigError naming the file, the key and the valid range.
@@ -31,6 +31,11 @@ class ConfigReader {
   ConfigReader section(const std::string& key) const;
 
   // Each read leaves `value` untouched when the key is absent.
+  // Without a range: the type is checked here, the range by the Params struct's check()
+  // (param_check.hpp).
+  void read(const std::string& key, double& value) const;
+  void read(const std::string& key, int& value) const;
+  void read_deg(const std::string& key, double& value_rad) const;
   void read(const std::string& key, double& value, double min, double max) const;
   void read(const std::string& key, int& value, int min, int max) const;
   void read(const std::string& key, bool& value) const;

@@ -1,6 +1,6 @@
 #pragma once
 // Typed exceptions thrown by the libraries and caught once, at main, where they become a
-// one-line message and a non-zero exit status (DESIGN.md, Conventions: Errors).
+// one-line message and a non-zero exit status (docs/design.md, Conventions: Errors).
 
 #include <filesystem>
 #include <stdexcept>

@@ -1,7 +1,7 @@
 #pragma once
 // FFTW plans made once per process and shared by every library that transforms panorama lines
 // (libs/compass: the masked cross-correlation and the Fourier phase; libs/signature: Fourier
-// signatures). One cache, below both (DESIGN.md: core ← compass, signature).
+// signatures). One cache, below both (docs/design.md: core ← compass, signature).
 //
 // FFTW's planner is not thread-safe: every plan is made under one process-wide mutex, once per
 // shape, and kept until the process exits (a plan handed out must stay valid for everyone

@@ -1,5 +1,5 @@
 #pragma once
-// Every file omninav writes is written whole or not at all (DESIGN.md, Conventions: Errors).
+// Every file omninav writes is written whole or not at all (docs/design.md, Conventions: Errors).
 //
 //   OutputFile csv(path);            // a unique temporary beside `path`
 //   csv.stream() << text;            // or hand csv.temporary() to a writer that wants a path

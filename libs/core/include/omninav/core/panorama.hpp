@@ -1,6 +1,6 @@
 #pragma once
 // The panorama: an unwrapped omnidirectional image, a W×H cv::Mat of 8-bit pixels (1 channel,
-// or 3 in OpenCV's BGR order), with the column convention of DESIGN.md:
+// or 3 in OpenCV's BGR order), with the column convention of docs/design.md:
 //   - the robot's front is at column 0.25·W and its back at 0.75·W;
 //   - column 0 is the robot's left, and the azimuth relative to the robot (counter-clockwise
 //     positive, 0 straight ahead) decreases as the column index grows:
@@ -53,10 +53,10 @@ void require_panorama(const cv::Mat& panorama, const std::string& what);
 
 // The vertical layout of a panorama: its size and the elevations its rows cover, linear in
 // elevation (equiangular), row 0 at the top. Used by the renderer; real unwrapped panoramas
-// only approximate it (the mirror's profile is not modelled, 000_9e80abd5855643af.txt §3.1).
+// only approximate it (the mirror's profile is not modelled, Labrosse 2006, §3.1).
 struct PanoramaGeometry {
-  int width_px = 360;  // one column per degree (000_9e80abd5855643af.txt §3.1)
-  int height_px = 45;  // rows
+  int width_px = 360;                            // one column per degree (Labrosse 2006, §3.1)
+  int height_px = 45;                            // rows
   double elevation_min_rad = deg_to_rad(-30.0);  // bottom edge of the last row
   double elevation_max_rad = deg_to_rad(15.0);   // top edge of the first row
 

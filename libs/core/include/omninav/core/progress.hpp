@@ -1,6 +1,6 @@
 #pragma once
 // A progress line on stderr for long loops, drawn only when stderr is a terminal, so that CI
-// logs and redirected output stay clean (DESIGN.md, Conventions: Output).
+// logs and redirected output stay clean (docs/design.md, Conventions: Output).
 
 #include <chrono>
 #include <cstddef>

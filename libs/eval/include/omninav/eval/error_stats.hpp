@@ -1,7 +1,7 @@
 #pragma once
-// Error statistics for evaluation tables (DESIGN.md, Evaluation): the count, max |e|, mean,
+// Error statistics for evaluation tables (docs/design.md, Evaluation): the count, max |e|, mean,
 // standard deviation and RMS of a set of errors, as in the "Max.", "Mean" and "Std. dev."
-// columns of Tables 3 and 4 of 000_9e80abd5855643af.txt.
+// columns of Tables 3 and 4 of Labrosse 2006.
 //
 // Angular errors are e = wrap(estimate − truth) to (−π, π] (omninav::signed_difference), so an
 // estimate of 179° against a truth of −179° is an error of −2°, never 358°.
@@ -35,7 +35,7 @@ ErrorStats angular_error_stats(std::span<const double> estimates_rad,
 ErrorStats error_stats(std::span<const double> errors);
 
 // The same statistics converted from radians to degrees, for tables and CSV (degrees at the
-// edges, DESIGN.md Conventions).
+// edges, docs/design.md Conventions).
 ErrorStats in_degrees(const ErrorStats& stats_rad);
 
 }  // namespace omninav::eval

@@ -1,6 +1,6 @@
 #pragma once
 // Small PNG plots drawn with OpenCV: error curves (LinePlot) and 2-D point sets with edges, such
-// as a lattice over the true grid (PointsPlot). Our dependency stack (DESIGN.md, Debian
+// as a lattice over the true grid (PointsPlot). Our dependency stack (docs/design.md, Debian
 // packages) has no plotting library, and evaluation pictures only need lines, points, ticks
 // and text, so they are drawn here with cv::line / cv::putText (cv::FONT_HERSHEY_SIMPLEX,
 // anti-aliased with cv::LINE_AA). Images are BGR, CV_8UC3.

@@ -1,8 +1,8 @@
 #pragma once
 // 2-D similarity (Procrustes) alignment, for comparing a lattice with the truth
-// (DESIGN.md, Evaluation: "RMSE of node positions after a similarity alignment to the truth,
+// (docs/design.md, Evaluation: "RMSE of node positions after a similarity alignment to the truth,
 // in units of the reference spacing, interior and boundary nodes reported apart"; the lattice
-// figures of 001_5bb151a4e28490b4.txt §3, Figs. 15 and 17).
+// figures of Menegatti et al. 2004, §3, Figs. 15 and 17).
 //
 // A lattice relaxed from distances alone is defined up to rotation, translation, scale and
 // also reflection, so reflection can be allowed; a lattice constrained by motion directions
@@ -53,7 +53,7 @@ double rmse_over(std::span<const Eigen::Vector2d> aligned, std::span<const Eigen
                  std::span<const std::size_t> subset);
 
 // rmse_over(...) / spacing: the error in units of the reference grid spacing (e.g. the 30 cm
-// grid of 001_5bb151a4e28490b4.txt §3.3), given in the unit of `truth`. Throws UsageError
+// grid of Menegatti et al. 2004, §3.3), given in the unit of `truth`. Throws UsageError
 // unless spacing > 0.
 double rmse_in_spacing(std::span<const Eigen::Vector2d> aligned,
                        std::span<const Eigen::Vector2d> truth, std::span<const std::size_t> subset,

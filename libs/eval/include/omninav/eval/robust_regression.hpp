@@ -1,7 +1,7 @@
 #pragma once
 // Robust linear regression y = a + b·x, for the trend of the compass error: its slope against
 // time (°/s) and against distance travelled (°/m), the last two columns of Tables 3 and 4 of
-// 000_9e80abd5855643af.txt.
+// Labrosse 2006.
 //
 // Which estimator: the paper says only "the slope of the robust linear regression of the
 // error as a function of time and distance travelled" (§4, before Table 3) and does not name

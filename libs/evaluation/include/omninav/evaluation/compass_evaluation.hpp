@@ -1,6 +1,6 @@
 #pragma once
 // The evaluation of a visual compass run against ground truth, as Tables 3 and 4 of the compass
-// paper (Labrosse 2006, 000_9e80abd5855643af.txt) and DESIGN.md (Evaluation) define it:
+// paper (Labrosse 2006) and docs/design.md (Evaluation) define it:
 //   e = estimate − truth, wrapped to (−180°, 180°] per frame;
 //   "Nb (total)": reference frames used, out of all frames;
 //   Max. |e|, Mean, Std. dev. over the whole sequence (not only its end, §4.3);

@@ -34,7 +34,7 @@ RowFormat row_format_of(const std::string& name);  // "csv" or "jsonl"; UsageErr
 // that a program reading a live run (`omninav compass --input camera:0 --out -`) sees every
 // frame when it is computed. The columns: frame, source, time_s, heading_deg,
 // heading_unwrapped_deg, rotation_deg, amplitude_norm, reference_frame, confidence, shift_px,
-// evaluations, pitch_deg, roll_deg, heading_sigma_deg (the heading's standard deviation,
+// evaluations, heading_sigma_deg (the heading's standard deviation,
 // compass.yaml's uncertainty); with `with_truth` also truth_heading_deg, error_deg and
 // distance_m (travelled over the frames with truth), empty for a frame without truth; with
 // `with_map` last realigned_place (CompassFrame::realigned_place, empty when none).

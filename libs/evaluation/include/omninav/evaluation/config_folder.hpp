@@ -33,8 +33,7 @@ sim::WorldsConfig load_worlds_config(const std::filesystem::path& config_dir,
                                      const PanoramaGeometry& panorama);
 
 // <config_dir>/compass.yaml: sections distance, minimiser, phase, subpixel, sampling,
-// confidence, input and tilt (libs/compass/.../compass_config.hpp), with the levelling's
-// elevations from camera.yaml.
+// confidence, uncertainty, min_warping and input (libs/compass/.../compass_config.hpp).
 compass::CompassConfig load_compass_config(const std::filesystem::path& config_dir);
 
 // <config_dir>/memory.yaml: sections signature, exploration and localisation

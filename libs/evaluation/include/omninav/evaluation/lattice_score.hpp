@@ -1,5 +1,5 @@
 #pragma once
-// How good a lattice is, when the map has ground truth (DESIGN.md, Evaluation: Lattice): the
+// How good a lattice is, when the map has ground truth (docs/design.md, Evaluation: Lattice): the
 // RMSE of the places after a similarity (Procrustes) alignment to the truth, in units of the
 // reference spacing, interior and boundary places apart; and whether neighbours fold over.
 

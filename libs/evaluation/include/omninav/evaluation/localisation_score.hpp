@@ -12,7 +12,7 @@
 
 namespace omninav::evaluation {
 
-// Localisation against ground truth (DESIGN.md, Evaluation): the share of queries whose best
+// Localisation against ground truth (docs/design.md, Evaluation): the share of queries whose best
 // place lies within one grid spacing of the truth; per level, the share whose candidate set
 // contains the true nearest place and the mean size of the set; and the query heading's error
 // when places have headings. Queries "between the grid points" are scored: those within half a

@@ -16,7 +16,7 @@ struct SuiteParams {
   // (Rays per pixel are worlds.yaml's, as `navigate` has no option for them.)
   int width_px = 360;
   int height_px = 45;
-  // Compass routes (000_9e80abd5855643af.txt Tables 3-4).
+  // Compass routes (Labrosse 2006, Tables 3-4).
   double fps = 10.0;                // frames per second of every route
   double rotate_turns = 3.0;        // on-the-spot rotation
   double rotate_rate_deg_s = 30.0;  // its turning speed

@@ -1,6 +1,6 @@
 #pragma once
-// A CSV of images with ground-truth poses (DESIGN.md, Data formats: Input sequences): one header
-// row naming the columns, in any order, extra columns ignored.
+// A CSV of images with ground-truth poses (docs/design.md, Data formats: Input sequences): one
+// header row naming the columns, in any order, extra columns ignored.
 //   required: file (relative to the CSV's folder, or absolute), x_m, y_m, heading_deg
 //             (counter-clockwise from +x, REP 103)
 //   optional: z_m (else 0), time_s (else no capture time), and the robot's own odometry

@@ -1,5 +1,5 @@
 #pragma once
-// A folder of image files read in natural order (DESIGN.md, Data formats: Input sequences).
+// A folder of image files read in natural order (docs/design.md, Data formats: Input sequences).
 // Such a folder knows neither capture times nor poses.
 
 #include <filesystem>

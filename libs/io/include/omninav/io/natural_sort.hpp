@@ -1,5 +1,5 @@
 #pragma once
-// Natural order of file names, so that a folder of frames reads img2 before img10 (DESIGN.md,
+// Natural order of file names, so that a folder of frames reads img2 before img10 (docs/design.md,
 // Data formats: a folder of images, natural sort).
 
 #include <filesystem>

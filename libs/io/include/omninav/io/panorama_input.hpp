@@ -1,7 +1,7 @@
 #pragma once
 // The frames of an input as panoramas, for every command that reads images: any input
 // open_sequence reads, or a single image file, with raw omnidirectional images unwrapped on
-// the fly (omni::Unwrapper, DESIGN.md's Data formats) when the input says it needs it (a BoB
+// the fly (omni::Unwrapper, docs/design.md's Data formats) when the input says it needs it (a BoB
 // database with needsUnwrapping) or the caller asks.
 // A camera too: "camera:0" (camera_sequence.hpp).
 

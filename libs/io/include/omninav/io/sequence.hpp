@@ -1,5 +1,5 @@
 #pragma once
-// Readers of image sequences (DESIGN.md, Data formats: Input sequences). Every reader checks
+// Readers of image sequences (docs/design.md, Data formats: Input sequences). Every reader checks
 // its input and throws InputError naming the file (and line, for text files) on bad input:
 // unreadable or corrupt image, mixed image sizes, empty folder, missing CSV column,
 // non-numeric field, database entries whose image files are missing.

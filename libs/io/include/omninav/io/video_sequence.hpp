@@ -1,5 +1,5 @@
 #pragma once
-// A video file read with cv::VideoCapture (DESIGN.md, Data formats: Input sequences). Capture
+// A video file read with cv::VideoCapture (docs/design.md, Data formats: Input sequences). Capture
 // times come from the frame rate the container declares; a video has no poses.
 
 #include <filesystem>

@@ -1,5 +1,5 @@
 #pragma once
-// Organising a visual memory into a lattice (001_5bb151a4e28490b4.txt §3): distances estimated
+// Organising a visual memory into a lattice (Menegatti et al. 2004, §3): distances estimated
 // from similarity (calibrated without ground truth), springs between places, motion directions
 // from the phases, solved by spring_lattice.hpp, and the positions written into the places.
 
@@ -41,9 +41,6 @@ struct OrganiseParams {
   // between consecutive places and the phases' turns between each place and its most similar
   // places (src/headings.hpp): the compass jumps where a robot turns on the spot.
   bool synchronise_compass_headings = true;
-  // There, the phases' turns between two stretches count as one measurement (their median), not
-  // one per pair of places (src/headings.hpp).
-  bool one_phase_turn_per_stretch_pair = false;
   // A neighbour motion whose fit leaves more than this many times the map's median residual
   // is a look-alike's and is dropped (motions.hpp).
   double look_alike_residual = 1.5;
@@ -58,28 +55,22 @@ struct OrganiseParams {
   // saturates beyond about one step (two steps read as 1.4-1.6), so their direction is what
   // they contribute and their length is held loosely.
   double neighbour_motion_length_stddev = 1.0;
-  // Motions to most similar places (and the joins) keep their direction only, as bearings
-  // (BearingResidual): a neighbour two steps away in the right direction is then consistent.
-  bool neighbour_bearings_only = false;
-  // The springs' stiffness times how much the dissimilarity says about distance on this map:
-  // Spearman's ρ between the gaps of consecutive places (1..3 steps) and their dissimilarity
-  // (src/distance_information.hpp), clamped to [0, 1]. false: lattice.spring_weight as it is.
-  bool spring_weight_from_map = false;
   // Pieces that the checked motions leave apart are joined by the pairs across whose fit
   // explains the two views best (the smallest residual), not by the most similar pairs.
   bool joins_by_residual = true;
-  // Before that, pieces are joined where at least two pairs across agree on where one lies
-  // from the other (motions.cpp); a look-alike's pair agrees with nothing.
-  bool joins_by_agreement = false;
   LatticeParams lattice;  // correlation_range_m is set by the calibration
   // The verdict of the lattice quality (LatticeQuality, measured without ground truth): the
   // lattice is not trustworthy when more than this share of its motions point more than 45°
   // away from where the lattice puts their places, or when the motions that survived the
   // look-alike checks left the places in more than one piece (joined by look-alikes only).
   double max_motions_off = 0.02;
+
+  // The ranges of lattice.yaml's organise section (the lattice's keys too). Throws UsageError
+  // naming the key (core/param_check.hpp); the loader and organise() call it.
+  void check() const;
 };
 
-// Reads the `organise:` section of lattice.yaml.
+// Reads the `organise:` section of lattice.yaml, then checks it (OrganiseParams::check).
 void load_organise_params(const ConfigReader& section, OrganiseParams& params);
 
 // How dissimilarity maps to distance, calibrated on the map itself (our reading of Fig. 7 and
@@ -116,8 +107,6 @@ struct OrganiseResult {
   std::vector<MotionMeasurement> motions;
   int look_alikes_dropped = 0;  // neighbour motions dropped as look-alikes (src/motions.hpp)
   int motion_joins = 0;         // motions added to join places the others left apart
-  // Spearman's ρ between consecutive places' gaps and dissimilarity (src/distance_information.hpp)
-  std::optional<double> gap_correlation;
   LatticeResult lattice;
   memory::LatticeQuality quality;  // also stored in the map (VisualMemory::lattice_quality)
 };

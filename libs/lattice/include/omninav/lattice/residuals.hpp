@@ -9,7 +9,7 @@
 
 namespace omninav::lattice {
 
-// A spring between two places (001_5bb151a4e28490b4.txt §3.2): its force is proportional to the
+// A spring between two places (Menegatti et al. 2004, §3.2): its force is proportional to the
 // difference between the places' distance on the lattice and the spring's rest length, the
 // distance estimated from their similarity. Residual: √K · (|p_a − p_b| − rest_length).
 class SpringResidual {
@@ -41,7 +41,7 @@ class SpringResidual {
   const bool at_least_;
 };
 
-// A motion between two places measured from the Fourier phases (001_5bb151a4e28490b4.txt
+// A motion between two places measured from the Fourier phases (Menegatti et al. 2004,
 // §3.4: the direction) together with its length (the exploration's step, or the spring's
 // length): a spring that also knows which way it points. Residuals, in standard deviations:
 // along the measured direction u, (Δ·u − length) / σ_length; across it, (Δ·u⊥) / (σ_direction ·
@@ -79,44 +79,6 @@ class MotionResidual {
   const double length_m_;
   const double along_weight_;
   const double across_weight_;
-};
-
-// A bearing without a length (translation averaging, Wilson & Snavely 2014; bearing-only network
-// localisation): the unit vector from one place to the other on the lattice against the measured
-// direction u, (Δ/|Δ| − u) / σ_direction, two residuals. Beyond Fig. 7's linear range the
-// calibrated distance of a most similar place saturates at about one step, so a neighbour two
-// steps away in the right direction is consistent with a bearing and wrong with a length; the
-// scale comes from the steps (or listed pairs) and the springs. The residual is bounded (at most
-// 2/σ, a reversed direction), so it cannot fling places away; it does not care how far apart
-// the two places are, so it cannot collapse them either, as long as something else holds the
-// scale.
-class BearingResidual {
- public:
-  BearingResidual(double direction_rad, double direction_stddev_rad)
-      : cos_(std::cos(direction_rad)),
-        sin_(std::sin(direction_rad)),
-        weight_(1.0 / direction_stddev_rad) {}
-
-  template <typename T>
-  bool operator()(const T* const from, const T* const to, T* residual) const {
-    const T dx = to[0] - from[0];
-    const T dy = to[1] - from[1];
-    // Nudged off zero like SpringResidual's length: the derivative of √ at 0 is infinite.
-    const T length = ceres::sqrt(dx * dx + dy * dy + T(1e-12));
-    residual[0] = T(weight_) * (dx / length - T(cos_));
-    residual[1] = T(weight_) * (dy / length - T(sin_));
-    return true;
-  }
-
-  static ceres::CostFunction* Create(double direction_rad, double direction_stddev_rad) {
-    return new ceres::AutoDiffCostFunction<BearingResidual, 2, 2, 2>(
-        new BearingResidual(direction_rad, direction_stddev_rad));
-  }
-
- private:
-  const double cos_;
-  const double sin_;
-  const double weight_;
 };
 
 }  // namespace omninav::lattice

@@ -1,6 +1,6 @@
 #pragma once
 // The dissimilarities the lattice needs between the places of a visual memory (Eq. 2/6 of
-// 001_5bb151a4e28490b4.txt, the map's own components and weights), without the n × n matrix of
+// Menegatti et al. 2004, the map's own components and weights), without the n × n matrix of
 // all pairs: 10,000 places would make that 10⁸ values (800 MB) and 5·10⁷ comparisons. The
 // lattice needs each place's few most similar places (springs, motions, its local step), the
 // pairs of consecutive places, and one statistic of all pairs (the plateau of Fig. 7).

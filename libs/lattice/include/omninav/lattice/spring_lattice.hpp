@@ -1,5 +1,5 @@
 #pragma once
-// The spring-model lattice of 001_5bb151a4e28490b4.txt §3.2-3.4 as one Ceres least-squares
+// The spring-model lattice of Menegatti et al. 2004, §3.2-3.4 as one Ceres least-squares
 // problem: places are 2-D points; springs between pairs pull them to the distances estimated
 // from their similarity, stiff when short and nearly slack when long (Eq. 5); the directions of
 // motion between consecutive places (§3.4) keep periodic places from folding the lattice.
@@ -33,10 +33,6 @@ struct MotionMeasurement {
   // Between consecutive places of a stream: the robot went from one to the other, so the two
   // are surely near; the start is built on such steps (initial_positions).
   bool step = false;
-  // Only the direction is trusted (BearingResidual): the length is the calibrated distance of a
-  // most similar place, which saturates beyond about one step. The start still uses the length
-  // (a linear problem needs one).
-  bool bearing_only = false;
 };
 
 struct LatticeParams {

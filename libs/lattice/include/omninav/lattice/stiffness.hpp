@@ -1,5 +1,5 @@
 #pragma once
-// The spring coefficient of 001_5bb151a4e28490b4.txt Eq. 5, K(x) = exp(E(x)·log 0.1 / E(x₁)):
+// The spring coefficient of Menegatti et al. 2004, Eq. 5, K(x) = exp(E(x)·log 0.1 / E(x₁)):
 // a spring whose estimated length x is near the correlation range x₁ is unreliable and pulls
 // with at most a tenth of a short spring's force (§3.2, Fig. 12).
 //

@@ -1,5 +1,5 @@
 #pragma once
-// Exporting a map for other tools (DESIGN.md, Data formats: Maps): places and edges as CSV
+// Exporting a map for other tools (docs/design.md, Data formats: Maps): places and edges as CSV
 // (one header row, units in the column names, degrees at the edges), or the whole graph as
 // GraphML written by Boost.Graph's write_graphml. Missing values are empty CSV fields and NaN
 // in GraphML.

@@ -1,5 +1,5 @@
 #pragma once
-// Localising a query image in the visual memory (001_5bb151a4e28490b4.txt §2.2-2.3): the
+// Localising a query image in the visual memory (Menegatti et al. 2004, §2.2-2.3): the
 // hierarchical search of signature/hierarchy.hpp over the map's places, then for the best
 // places the query's heading relative to each (phases, Eq. 1) and, when the places have
 // positions (lattice, else ground truth), a position estimate.
@@ -35,28 +35,24 @@ struct LocalisationParams {
   // the least among the candidates). Chosen across the zoo (docs/memory.md): 1 gains more in
   // the field but loses look-alike desks in the office; 0.5 loses nowhere.
   double fine_rotational_weight = 0.5;
-  // Beyond the papers: weight each line (panorama row × channel) of every comparison by how
-  // well it tells near places from far ones in this map (learn_line_weights); false = every
-  // line 1, as Eq. 6. Off by default: beyond the fine level it gains a point at most, and it
-  // changes which place an off-map view matches so that a robot off the office map is led to
-  // the look-alike desks beyond it (docs/memory.md).
-  bool learn_line_weights = false;
+
+  // The ranges of memory.yaml's localisation section (the hierarchy's too). Throws UsageError
+  // naming the key (core/param_check.hpp); the loader and Localiser's constructor call it.
+  void check() const;
 };
 
 // Reads the `localisation:` section of memory.yaml (levels, candidate_similarity, max_probes,
-// top_k, fine_candidates, fine_rotational_weight, learn_line_weights).
+// top_k, fine_candidates, fine_rotational_weight).
 void load_localisation_params(const ConfigReader& section, LocalisationParams& params);
 
 // One of the best places for a query, best first in Localisation::best.
 struct PlaceMatch {
   PlaceIndex place = 0;
-  double dissimilarity = 0.0;  // Eq. 6 (the map's weights, no line weights) at the finest level
-  double similarity = 0.0;     // Eq. 3, 0..1000, of the finest level's (line-weighted) Dis
+  double dissimilarity = 0.0;  // Eq. 6 (the map's weights) at the finest level
+  double similarity = 0.0;     // Eq. 3, 0..1000, of the finest level's Dis
   // The finest level's dissimilarity (Eq. 2/6) per compared value (lines × components), grey
   // levels: unlike the similarity, which Eq. 3 rescales so that the best place always scores
   // 1000, it tells whether the query matches any place at all.
-  // With learned line weights it is the line-weighted Dis put on Eq. 6's scale
-  // (line_weighted_scale), so that it keeps telling near from far as the ranking does.
   double dissimilarity_per_value = 0.0;
   // heading(query) − heading(place), from the phases, counter-clockwise positive.
   double relative_heading_rad = 0.0;
@@ -101,26 +97,8 @@ std::optional<std::pair<PositionFrame, std::vector<Eigen::Vector2d>>> place_posi
     const VisualMemory& memory);
 
 // The median distance from each point to its nearest other: a grid's spacing ("one grid
-// spacing" of DESIGN.md's evaluation). 1 for fewer than two points.
+// spacing" of docs/design.md's evaluation). 1 for fewer than two points.
 double typical_spacing(const std::vector<Eigen::Vector2d>& points);
-
-// A weight per line (rows × channels) learned from the map without ground truth: places listed
-// one after the other (a stream's consecutive places, a grid database's consecutive images) are
-// near, places half the listing apart mostly far. With N and F a line's median magnitude
-// difference (Eq. 2 over the first `components`) over near and far pairs, its weight is
-// max(0, F − N) / (N·F): 1/F puts every line on the scale of its own variation (per-row
-// normalisation) and (F − N)/N is how far above the noise between neighbours that variation
-// lies. Rows of grass a few centimetres from a 10 cm camera change as much between neighbours
-// as across the map and get ~0; the horizon gets the most. Scaled to a mean of 1. Empty (every
-// line alike) for fewer than 4 places or when no line tells near from far. At most 2,000 pairs
-// of each kind, spread over the map.
-std::vector<double> learn_line_weights(const VisualMemory& memory, int components);
-
-// The factor that puts line-weighted dissimilarities on the scale of Eq. 6's: the median Eq. 6
-// dissimilarity between places listed one after the other (near, as learn_line_weights takes
-// them) over their median line-weighted one. 1 without weights or for fewer than two places.
-double line_weighted_scale(const VisualMemory& memory, int components,
-                           std::span<const double> line_weights);
 
 class Localiser {
  public:
@@ -143,8 +121,6 @@ class Localiser {
   const signature::SignatureIndex& index() const { return index_; }
   const VisualMemory& memory() const { return memory_; }
   const LocalisationParams& params() const { return params_; }
-  // The learned line weights in use (empty: every line 1).
-  const std::vector<double>& line_weights() const { return line_weights_; }
 
  private:
   std::size_t searched_top() const;  // top_k, or the fine level's candidates when more
@@ -155,9 +131,7 @@ class Localiser {
   signature::SignatureIndex index_;
   signature::SignatureExtractor extractor_;  // the map's signature parameters
   std::optional<std::pair<PositionFrame, std::vector<Eigen::Vector2d>>> positions_;
-  std::vector<double> line_weights_;
-  double recognition_scale_ = 1.0;  // line_weighted_scale of line_weights_
-  double spacing_m_ = 1.0;          // typical_spacing of the positions
+  double spacing_m_ = 1.0;  // typical_spacing of the positions
 };
 
 }  // namespace omninav::memory

@@ -1,5 +1,5 @@
 #pragma once
-// The map store (DESIGN.md, Data formats: Maps; maps/README.md describes the schema): a visual
+// The map store (docs/design.md, Data formats: Maps; maps/README.md describes the schema): a visual
 // memory kept in one SQLite file holding the places, edges, lattice positions, runs, the
 // parameters used and a schema version. The memory (visual_memory.hpp) is the data; the store
 // reads and writes it, and remembers what of it the file already holds.

@@ -1,6 +1,6 @@
 #pragma once
 // config/memory.yaml: the signature, exploration and localisation parameters in one file
-// (DESIGN.md, Conventions: Config). The file documents every key with its unit, range and
+// (docs/design.md, Conventions: Config). The file documents every key with its unit, range and
 // source.
 
 #include "omninav/memory/exploration.hpp"

@@ -3,8 +3,8 @@
 //
 // The unwrapping is the one of the papers: a line from the mirror's centre is swept round the
 // raw image, one panorama column per direction, and pixels are taken along it at regular
-// radii between an inner and an outer circle (000_9e80abd5855643af.txt §3.1, Fig. 4;
-// 004_5a2a3172f8969a85.txt §5). The mirror's profile is not modelled, so rows are linear in
+// radii between an inner and an outer circle (Labrosse 2006, §3.1, Fig. 4;
+// Labrosse 2004, §5). The mirror's profile is not modelled, so rows are linear in
 // radius, not in elevation: the `panorama:` elevations of camera.yaml are only approximated.
 //
 // Raw image geometry (all in OpenCV pixel coordinates: x to the right, y down, the centre of
@@ -13,24 +13,24 @@
 //     SCREEN from the image's "up" (−y) direction: φ = 0 up, 90° left, 180° down, 270° right.
 //     The point at radius ρ and angle φ is (x, y) = (cx − ρ·sin φ, cy − ρ·cos φ).
 //   - `front_offset` is the φ at which the robot's front lies (0: front at the top of the raw
-//     image, as in 000 §3.1).
+//     image, as in Labrosse 2006, §3.1).
 //   - flip = false: the raw image looks like a view of the robot from above: the robot's left
 //     lies 90° counter-clockwise (on screen) from its front, i.e. φ = front_offset + azimuth.
 //     flip = true: the raw image is the mirror image of that, the left lies 90° clockwise from
 //     the front, φ = front_offset − azimuth. A camera looking up at a mirror (or a fisheye
 //     looking up) sees the mirrored view, hence "right and left are inverted in
-//     omni-directional images" (000 §3.1): such cameras need flip = true unless their
+//     omni-directional images" (Labrosse 2006, §3.1): such cameras need flip = true unless their
 //     firmware already mirrors the image.
 //   (azimuth: relative to the robot, counter-clockwise from above, 0 ahead, +90° its left.)
 //
-// The panorama follows DESIGN.md (omninav/core/panorama.hpp): column c looks along azimuth
+// The panorama follows docs/design.md (omninav/core/panorama.hpp): column c looks along azimuth
 // π/2 − 2π·c/W, front at 0.25·W, left at column 0. Row r samples the radius
 //   ρ(r) = outer − (r + 0.5)·(outer − inner)/H   when outer_radius_at_top (row 0 near the rim),
 //   ρ(r) = inner + (r + 0.5)·(outer − inner)/H   otherwise,
 // i.e. row centres split the annulus into H equal rings.
 //
 // Rotations. When the robot turns counter-clockwise by δ, every azimuth decreases by δ, so the
-// panorama content moves to higher columns by δ·W/2π (DESIGN.md) and the raw-image content
+// panorama content moves to higher columns by δ·W/2π (docs/design.md) and the raw-image content
 // rotates by δ CLOCKWISE on screen when flip = false, COUNTER-CLOCKWISE when flip = true.
 // Equivalently: rotating the raw image counter-clockwise (on screen) by k rolls the panorama by
 //   −k·W/360 columns (flip = false)   or   +k·W/360 columns (flip = true).
@@ -55,8 +55,10 @@ enum class LengthUnits {
 };
 
 enum class Interpolation {
-  kNearest,   // nearest raw pixel: the papers' "not smooth" unwrapping (000 §3.1, 004 §5)
-  kBilinear,  // the four nearest raw pixels: the "smooth version" (004 §5; 000 footnote 2)
+  kNearest,   // nearest raw pixel: the papers' "not smooth" unwrapping (Labrosse 2006, §3.1,
+              // Labrosse 2004, §5)
+  kBilinear,  // the four nearest raw pixels: the "smooth version" (Labrosse 2004, §5; Labrosse
+              // 2006, footnote 2)
 };
 
 // The `unwrap:` section of camera.yaml (config/camera.yaml documents each key the same way).
@@ -78,20 +80,23 @@ struct UnwrapParams {
   // PixPro's published 0.09375 / 0.49028 = 0.19 (shared/data/README.md).
   double inner_fraction_of_outer = 0.2;
   // Output size, pixels. Default: the panorama geometry's (camera.yaml `panorama:`, 360×45, one
-  // column per degree as in 000 §3.1); unwrap_params_for() copies it from a PanoramaGeometry.
+  // column per degree as in Labrosse 2006, §3.1); unwrap_params_for() copies it from a
+  // PanoramaGeometry.
   int width_px = PanoramaGeometry{}.width_px;
   int height_px = PanoramaGeometry{}.height_px;
   // Bilinear by default: as cheap as nearest with precomputed maps, and less aliased. The
-  // papers found nearest no worse for the compass (000 footnote 2); choose it to reproduce them.
+  // papers found nearest no worse for the compass (Labrosse 2006, footnote 2); choose it to
+  // reproduce them.
   Interpolation interpolation = Interpolation::kBilinear;
-  // Mirror the raw image left/right (see the top of this file); 000 §3.1's camera needs true.
+  // Mirror the raw image left/right (see the top of this file); Labrosse 2006, §3.1's camera needs
+  // true.
   bool flip = false;
   // φ of the robot's front in the raw image, counter-clockwise on screen from "up", radians
-  // (degrees in camera.yaml). 0: front at the top of the raw image, as in 000 §3.1.
+  // (degrees in camera.yaml). 0: front at the top of the raw image, as in Labrosse 2006, §3.1.
   double front_offset_rad = 0.0;
   // Top panorama row at the outer radius: far and/or tall things at the top, as for a convex
-  // mirror seen from below (000 §3.1). A fisheye looking up sees the zenith at the centre of
-  // the raw image: set false for it.
+  // mirror seen from below (Labrosse 2006, §3.1). A fisheye looking up sees the zenith at the
+  // centre of the raw image: set false for it.
   bool outer_radius_at_top = true;
 };
 

@@ -1,5 +1,5 @@
 #pragma once
-// The picture of a lattice (Figs. 14-17 of 001_5bb151a4e28490b4.txt): its springs, and beside
+// The picture of a lattice (Figs. 14-17 of Menegatti et al. 2004): its springs, and beside
 // it, when the map has ground truth, the truth with the lattice aligned over it.
 
 #include <Eigen/Core>

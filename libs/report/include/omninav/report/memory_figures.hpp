@@ -1,5 +1,5 @@
 #pragma once
-// Pictures of the visual memory, after the figures of 001_5bb151a4e28490b4.txt:
+// Pictures of the visual memory, after the figures of Menegatti et al. 2004:
 //   - Figs. 8-10, a localisation: every place at its position (lattice, else ground truth),
 //     coloured by its similarity to the query at each level, the candidate set shaded;
 //   - Figs. 5-7 from a map of a grid with ground truth, whose source images are read again:

@@ -1,5 +1,5 @@
 #pragma once
-// Pictures of navigation: a route plan, like Fig. 18 of 001_5bb151a4e28490b4.txt (`omninav
+// Pictures of navigation: a route plan, like Fig. 18 of Menegatti et al. 2004 (`omninav
 // route`), and one navigation run (path.png and trial_<i>.png of `omninav navigate`).
 
 #include <Eigen/Core>

@@ -1,5 +1,5 @@
 #pragma once
-// Comparing signatures (001_5bb151a4e28490b4.txt §2.2).
+// Comparing signatures (Menegatti et al. 2004, §2.2).
 //
 // Eq. 2, the dissimilarity, the L1 distance between the magnitudes:
 //     Dis(O_i, O_j) = Σ_{y<l} Σ_{k<m} |F_iy(k) − F_jy(k)|
@@ -41,11 +41,8 @@ std::string to_string(const ComponentWeights& weights);
 
 // Eq. 2 / Eq. 6 over the first `components` components of both (−1: all of them). Throws
 // UsageError when the two differ in lines or have fewer components than asked for.
-// `line_weights`, when not empty, weights each line's terms (one per line, ≥ 0), as the search
-// index's SignatureIndex::set_line_weights does.
 double dissimilarity(const Signature& a, const Signature& b, int components = -1,
-                     const ComponentWeights& weights = {},
-                     std::span<const double> line_weights = {});
+                     const ComponentWeights& weights = {});
 
 // Beyond the papers: the dissimilarity of the coefficients themselves, magnitudes and phases,
 // once `from` is turned by `turn_rad` (phase_heading.hpp's sign: heading(to) − heading(from)):
@@ -53,13 +50,11 @@ double dissimilarity(const Signature& a, const Signature& b, int components = -1
 // Eq. 2 compares magnitudes only, which forgets where along the horizon each row's structure
 // lies, so places whose rows hold the same mix of features in another arrangement look alike;
 // the phases, aligned by the turn, keep the arrangement. By Parseval it is the image-space
-// distance of the low-pass panoramas at that rotation (the visual compass's, 000 §2), in L1 over
-// the coefficients. ≥ Eq. 6's value for the same weights (|a − b| ≥ ||a| − |b||). Throws as
+// distance of the low-pass panoramas at that rotation (the visual compass's, Labrosse 2006, §2), in
+// L1 over the coefficients. ≥ Eq. 6's value for the same weights (|a − b| ≥ ||a| − |b||). Throws as
 // dissimilarity().
-// `line_weights`, when not empty, weights each line's terms (one per line, ≥ 0).
 double rotational_dissimilarity(const Signature& from, const Signature& to, double turn_rad,
-                                int components = -1, const ComponentWeights& weights = {},
-                                std::span<const double> line_weights = {});
+                                int components = -1, const ComponentWeights& weights = {});
 
 // Eq. 3 for one value, given the range of the reference set; clamped to [0, 1000]. A
 // degenerate range (max ≤ min) gives 1000.

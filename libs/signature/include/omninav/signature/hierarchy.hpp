@@ -1,5 +1,5 @@
 #pragma once
-// Hierarchical localisation (001_5bb151a4e28490b4.txt §2.3, Figs. 9-10): comparing only the
+// Hierarchical localisation (Menegatti et al. 2004, §2.3, Figs. 9-10): comparing only the
 // first few Fourier components matches a query with every place of a wide neighbourhood,
 // comparing more narrows it down. Level l compares the first m_l components (e.g. 2, 5, 15);
 // its candidate set is the places whose similarity (Eq. 3) reaches a threshold.
@@ -34,14 +34,19 @@ class ConfigReader;
 namespace omninav::signature {
 
 struct HierarchyParams {
-  // Components compared at each level, increasing; 001 §2.1 Fig. 6 compares 2, 5 and 15
-  // (and more); the finest must not exceed the map's signature components.
+  // Components compared at each level, increasing; Menegatti et al. 2004, §2.1 Fig. 6 compares 2, 5
+  // and 15 (and more); the finest must not exceed the map's signature components.
   std::vector<int> levels{2, 5, 15};
   // Similarity (Eq. 3, 0..1000) a place must reach at a level to be a candidate, the same at
   // every level: higher levels are more discriminating, so their sets shrink (Fig. 9).
   double candidate_similarity = 800.0;
   // Places carried through every level to estimate Max Dis (see above).
   int max_probes = 16;
+
+  // The ranges of memory.yaml's localisation.levels (increasing, each ≥ 1),
+  // candidate_similarity (0..1000) and max_probes (0..100000). Throws UsageError naming the key
+  // (core/param_check.hpp); the loader and memory::Localiser's constructor call it.
+  void check() const;
 };
 
 // Reads `levels` ("2,5,15"), `candidate_similarity` and `max_probes` of a `localisation:`
@@ -80,10 +85,6 @@ class SignatureIndex {
   // components.
   std::uint32_t add(const Signature& signature);
   void reserve(std::size_t places);
-  // Beyond the papers: a weight per line (rows × channels, each ≥ 0) on top of Eq. 6's per
-  // component, folded into the stored magnitudes like those (memory/localisation.hpp learns
-  // them from the map). Before the first add(); throws UsageError otherwise or on a bad size.
-  void set_line_weights(std::vector<double> line_weights);
 
   std::size_t size() const { return size_; }
   const std::vector<int>& levels() const { return levels_; }
@@ -113,8 +114,7 @@ class SignatureIndex {
   int lines_;
   std::vector<int> levels_;
   ComponentWeights weights_;
-  std::vector<double> line_weights_;  // empty: every line 1
-  std::vector<Band> bands_;           // capacity rows; the first size_ are places
+  std::vector<Band> bands_;  // capacity rows; the first size_ are places
   std::size_t size_ = 0;
 };
 

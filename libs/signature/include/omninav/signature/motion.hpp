@@ -1,5 +1,5 @@
 #pragma once
-// The direction of motion between two places, from the Fourier phases (001_5bb151a4e28490b4.txt
+// The direction of motion between two places, from the Fourier phases (Menegatti et al. 2004,
 // §3.4: "if we also include the phase component of the Fourier transform, we can obtain
 // qualitative information about the agent's motion direction"). The paper gives no formula;
 // this is ours.
@@ -7,7 +7,7 @@
 // Model. Let the robot move a short distance d in direction φ (relative to its heading at
 // `from`, counter-clockwise) and turn by τ. A thing at bearing θ and distance r is then seen at
 // bearing θ + (d/r)·sin(θ − φ) − τ: things ahead (θ = φ) and behind stay put, things abeam
-// move backwards the most. In the column angle u = 2π·x/W = π/2 − θ (DESIGN.md's columns) the
+// move backwards the most. In the column angle u = 2π·x/W = π/2 − θ (docs/design.md's columns) the
 // content at u in `from` appears at u + D(u) in `to`, with
 //     D(u) = τ − ρ·cos(u + φ) = a + b·cos u + c·sin u,   ρ = d/r,
 // so τ = a, ρ = √(b² + c²) and φ = atan2(c, −b): three linear parameters, taken to be the same

@@ -1,8 +1,8 @@
 #pragma once
-// The heading from the phases (001_5bb151a4e28490b4.txt §2.1, Eq. 1; §3.4).
+// The heading from the phases (Menegatti et al. 2004, §2.1, Eq. 1; §3.4).
 //
 // The shift theorem: when the robot turns counter-clockwise on the spot by δ, every row moves
-// by s = δ·W/2π columns towards higher columns (DESIGN.md), f'(x) = f(x − s), and so
+// by s = δ·W/2π columns towards higher columns (docs/design.md), f'(x) = f(x − s), and so
 //     F'(k) = e^{−2πi·k·s/W} F(k) = e^{−i·k·δ} F(k):
 // component k's phase drops by k·δ and its magnitude stays. (Eq. 1 writes e^{−j2πas} with s the
 // frequency and a the shift; for the DFT of a row of W columns the frequency is k/W.)
@@ -24,7 +24,7 @@ namespace omninav::signature {
 
 struct PhaseHeading {
   // heading(to) − heading(from): the counter-clockwise turn that takes the view of `from` to
-  // the view of `to`, radians in (−π, π] (REP 103 sign, DESIGN.md).
+  // the view of `to`, radians in (−π, π] (REP 103 sign, docs/design.md).
   double turn_rad = 0.0;
   // C(turn) / Σ_k Σ_y |F_y(k)|·|F'_y(k)|, in [−1, 1]: 1 when `to` is exactly `from` turned.
   double confidence = 0.0;

@@ -1,5 +1,5 @@
 #pragma once
-// The plateau of Fig. 7 (001_5bb151a4e28490b4.txt §3.2): the dissimilarity of two views grows
+// The plateau of Fig. 7 (Menegatti et al. 2004, §3.2): the dissimilarity of two views grows
 // with the distance between them and then saturates. The papers show the curve and give no
 // formula; we read its level as the 90th percentile of the dissimilarity over pairs of a map's
 // places (the lattice's calibration, lattice/organise.hpp) or of a stream's frames (exploration's

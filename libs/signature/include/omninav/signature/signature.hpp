@@ -1,5 +1,5 @@
 #pragma once
-// The Fourier signature of a panorama (001_5bb151a4e28490b4.txt §2.1): the 1-D discrete Fourier
+// The Fourier signature of a panorama (Menegatti et al. 2004, §2.1): the 1-D discrete Fourier
 // transform of every row of the panoramic cylinder, of which only the first m components are
 // kept. Their magnitudes do not change when the robot turns on the spot (a turn only shifts the
 // rows circularly, Eq. 1): they say *where* the robot is. Their phases change by k·δ for a turn
@@ -40,7 +40,8 @@ ColourMode colour_mode_from_string(const std::string& text);
 
 struct SignatureParams {
   // m, components kept per line: "we represent the omnidirectional image with just the 15
-  // values of the first 15 Fourier components" (001 §2.1, Figs. 5-6). Range 1..W/2+1.
+  // values of the first 15 Fourier components" (Menegatti et al. 2004, §2.1, Figs. 5-6).
+  // Range 1..W/2+1.
   int components = 15;
   // Luminance rows (the paper's grey images) or each colour channel apart; docs/memory.md
   // measures which localises better.
@@ -50,6 +51,10 @@ struct SignatureParams {
   // multiplies a channel's every component by one gain, which this cancels exactly (short of
   // clipping); docs/memory.md measures what it costs and what it buys. The paper: false.
   bool normalise_brightness = true;
+
+  // The range of memory.yaml's signature.components (1..4096). Throws UsageError naming the key
+  // (core/param_check.hpp); the loader and SignatureExtractor's constructor call it.
+  void check() const;
 };
 
 // Reads the `signature:` section of memory.yaml (keys components, colour,

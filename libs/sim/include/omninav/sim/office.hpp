@@ -2,7 +2,7 @@
 // An open-plan office laid out periodically: rows of identical desks (with a screen and a
 // chair) at a regular pitch, and square columns at a regular pitch in the aisles, under a
 // regular grid of ceiling lights. Places one desk pitch apart look nearly the same: the
-// perceptual aliasing of 001_5bb151a4e28490b4.txt §3.4. `clutter` puts a random object on a
+// perceptual aliasing of Menegatti et al. 2004, §3.4. `clutter` puts a random object on a
 // share of the desks, breaking the symmetry a little (0 = perfectly periodic).
 // Desks and columns are obstacles. Seeded and deterministic.
 

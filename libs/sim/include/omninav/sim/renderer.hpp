@@ -1,6 +1,6 @@
 #pragma once
 // The panoramic renderer: draws the panorama a camera at any pose (x, y, z, heading, pitch,
-// roll) sees in a World, with the column convention of DESIGN.md and the rows of a
+// roll) sees in a World, with the column convention of docs/design.md and the rows of a
 // PanoramaGeometry. Rays are cast with Intel Embree (Debian's libembree-dev): a well-kept BVH
 // and intersection kernel, far faster than anything we would write.
 //

@@ -1,5 +1,5 @@
 #pragma once
-// A world the renderer can draw: textured triangles in metres, z up (DESIGN.md, Worlds).
+// A world the renderer can draw: textured triangles in metres, z up (docs/design.md, Worlds).
 // Both the built-in room (room.hpp) and Wavefront OBJ files (load_obj_world) become one.
 
 #include <array>
