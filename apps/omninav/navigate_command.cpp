@@ -199,9 +199,10 @@ void add_navigate_command(CLI::App& app, const GlobalOptions& global) {
   auto options = std::make_shared<NavigateOptions>();
   CLI::App* command = app.add_subcommand(
       "navigate",
-      "Drive a robot to the place of a goal image, reactively: grab a panorama, localise it in "
-      "the organised memory, read the heading against the place, turn to the place's direction "
-      "towards the goal, step, repeat (Menegatti et al. 2004, §3.5). The robot is a virtual "
+      "Drive a robot to the place of a goal image: grab a panorama, update the belief over "
+      "the map's places with it, read the heading against the belief's place, turn to that "
+      "place's direction towards the goal over the map's confirmed links, step, repeat "
+      "(Menegatti et al. 2004, §3.5; docs/navigation.md). The robot is a virtual "
       "one in a rendered --world, or stands on the images of a grid --database (a step goes to "
       "the nearest grid image, a turn rolls the panorama). Writes steps.csv (true pose, place "
       "matched, heading estimate and error) and path.png. With --trials N: N seeded random "

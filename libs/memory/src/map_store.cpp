@@ -527,7 +527,8 @@ void append(const VisualMemory& memory, const std::filesystem::path& file,
     // Version 2 to 3: the places' odometry, none for the places already there.
     if (version < 3) {
       db.exec(
-          "CREATE TABLE place_odometry (place_id INTEGER PRIMARY KEY REFERENCES places(id), "
+          "CREATE TABLE IF NOT EXISTS place_odometry (place_id INTEGER PRIMARY KEY REFERENCES "
+          "places(id), "
           "x_m REAL NOT NULL, y_m REAL NOT NULL, heading_rad REAL NOT NULL)");
       db.prepare("UPDATE schema_version SET version = ?, written_by = ?")
           .bind(1, kMapSchemaVersion)

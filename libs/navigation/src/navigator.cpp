@@ -136,7 +136,7 @@ class NavigationRun {
       home(step, view);
       return;
     }
-    follow_route(step, place, in_place);
+    follow_route(step, place, in_place, view);
   }
 
   // The view's heading relative to every place that holds some of the belief (and to `place`),
@@ -179,10 +179,16 @@ class NavigationRun {
   // what the map's links do not show (furniture, a wall between grid neighbours): the links
   // that lead the way it tried, from every place the belief holds, are dropped and the plan is
   // made again without them.
-  void follow_route(NavigationStep& step, int place, double in_place) {
+  void follow_route(NavigationStep& step, int place, double in_place, const cv::Mat& view) {
     const double direction =
         plan_.reaches_goal(place) ? plan_.direction_in_place_rad[place] : in_place;
     step.turn_rad = signed_difference(direction + sidestep_turn(sidestep_), in_place);
+    // At the goal's place by the belief, not yet sure enough to home: the goal image says
+    // which way the goal lies (the goal's place has no direction of its own).
+    if (place == plan_.goal && homing_) {
+      const GoalCue cue = homing_(view);
+      step.turn_rad = wrap_angle((cue.valid ? cue.bearing_rad : 0.0) + sidestep_turn(sidestep_));
+    }
     check_progress(place);
     drive(step.turn_rad, params_.step_m);
     since_progress_m_ += driven_;

@@ -1,5 +1,5 @@
 #pragma once
-// Navigation trials over seeded random start and goal poses: the evaluation of DESIGN.md
+// Navigation trials over seeded random start and goal poses: the evaluation of docs/design.md
 // ("share of start/goal pairs reached, and path length"), whose target is at least 95% of 100
 // random pairs in the built-in room reached with a mean path at most 1.5 times the straight
 // line. The trials read ground truth (the goal's pose, the robot's true path) only to score;

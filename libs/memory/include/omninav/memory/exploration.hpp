@@ -1,5 +1,5 @@
 #pragma once
-// Exploration (001_5bb151a4e28490b4.txt §3.1): a stream of panoramas becomes places of the
+// Exploration (Menegatti et al. 2004, §3.1): a stream of panoramas becomes places of the
 // visual memory. A frame becomes a new place when
 //   - it is the first of the run, or
 //   - its dissimilarity to the last place, per compared value, reaches
@@ -31,12 +31,13 @@
 // headings, because the compass does worse there (below). The map says which, per place.
 //
 // heading_source "compass": every frame of a stream, place or not,
-// goes through the visual compass (Algorithm 1 of 000_9e80abd5855643af.txt, libs/compass), and a
+// goes through the visual compass (Labrosse 2006, Algorithm 1; libs/compass), and a
 // place keeps the compass heading of its frame. Where the compass's 0 lies is a choice of gauge:
 //   - exploring into a map whose places have headings: the new run starts at the heading of the
 //     existing place most like its first frame plus their relative heading from the phases
-//     (001 Eq. 1), so that the runs share one heading frame;
-//   - otherwise at the first frame's ground-truth heading when the input has one (as 000 §4.1
+//     (Menegatti et al. 2004, Eq. 1), so that the runs share one heading frame;
+//   - otherwise at the first frame's ground-truth heading when the input has one (as Labrosse 2006,
+//   §4.1,
 //     does "to allow comparison"; it only places 0, so that headings can be checked against the
 //     truth), else at 0: the first frame's front.
 // Every change of heading after that is measured by the compass alone.

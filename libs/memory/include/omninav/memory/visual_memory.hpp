@@ -1,5 +1,5 @@
 #pragma once
-// The visual memory (001_5bb151a4e28490b4.txt §2-3): places, each a reference image reduced to
+// The visual memory (Menegatti et al. 2004, §2-3): places, each a reference image reduced to
 // its Fourier signature, and edges between places met one after the other. In memory it is a
 // Boost.Graph adjacency_list whose vertex i is place i (places are only ever appended, so a
 // place's index, its vertex and its id in the map file are one number). It is data only: the
@@ -86,7 +86,7 @@ struct MapParameters {
 };
 
 // How far a lattice can be trusted, from the map alone: the motions measured between places
-// (001 §3.4, the directions from the phases) against the lattice they were solved into.
+// (Menegatti et al. 2004, §3.4, the directions from the phases) against the lattice they were solved into.
 struct LatticeQuality {
   int motions = 0;  // motions compared (steps, listed pairs and kept neighbour motions)
   // Median over the motions of |lattice displacement − measured motion| in steps.

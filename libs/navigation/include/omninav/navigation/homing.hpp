@@ -1,6 +1,6 @@
 #pragma once
 // Homing on the goal image itself, once the navigator has recognised the goal's place: beyond
-// 001_5bb151a4e28490b4.txt §3.5, whose robot stops on recognising that place. The place's
+// Menegatti et al. 2004, §3.5, whose robot stops on recognising that place. The place's
 // image was taken up to half a cell's diagonal from the goal and the robot recognises it from
 // anywhere in its cell, so stopping there can leave the robot a whole spacing from the goal
 // (docs/navigation.md). The view and the goal image are compared directly: the magnitudes'
