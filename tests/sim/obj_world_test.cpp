@@ -116,6 +116,29 @@ TEST(ObjWorld, VerticesThatAreNotFinitePositionsAreRefused) {
   }
 }
 
+TEST(ObjWorld, TextureCoordinatesThatAreNotFiniteOrFarBeyondTheTextureAreRefused) {
+  // (1e30 once reached the renderer's float-to-int wrapping: undefined behaviour, found by the
+  // obj fuzz target.)
+  TempFolder folder;
+  for (const std::string bad : {"nan", "inf", "1e30", "-2e6"}) {
+    SCOPED_TRACE(bad);
+    std::ofstream(folder.path() / "bad.obj")
+        << "v 0 0 0\nv 1 0 0\nv 0 1 1\nvt 0 0\nvt " << bad << " 0\nvt 1 1\nf 1/1 2/2 3/3\n";
+    try {
+      load_obj_world(folder.path() / "bad.obj");
+      ADD_FAILURE() << "loaded";
+    } catch (const InputError& error) {
+      EXPECT_NE(std::string(error.what()).find("bad.obj:5: texture coordinate '" + bad + "'"),
+                std::string::npos)
+          << error.what();
+    }
+  }
+  // A texture repeated many times is fine.
+  std::ofstream(folder.path() / "tiled.obj")
+      << "v 0 0 0\nv 1 0 0\nv 0 1 1\nvt 0 0\nvt 1000 0\nvt 1 1\nf 1/1 2/2 3/3\n";
+  EXPECT_NO_THROW(load_obj_world(folder.path() / "tiled.obj"));
+}
+
 TEST(ObjWorld, AFileThatIsNoRegularFileIsNamedForWhatItIs) {
   TempFolder folder;
   const std::filesystem::path fifo = folder.path() / "world.obj";

@@ -25,23 +25,35 @@ cv::Vec3f to_world(const float* xyz, const ObjWorldParams& params) {
   return {xyz[0] * scale, xyz[1] * scale, xyz[2] * scale};
 }
 
+// The largest texture coordinate accepted: a texture repeats, and beyond a float's 2^24 its
+// fraction (where in the texture a point lies) is lost; the renderer wraps with integers.
+constexpr double kMaxTextureCoordinate = 1e6;
+
 // tinyobjloader reads a coordinate it cannot parse ("nan", "inf") as 0, silently: the vertex
-// lines ("v x y z [w]") are checked first, each coordinate a finite number.
+// lines ("v x y z [w]") are checked first, each coordinate a finite number, and the texture
+// coordinate lines ("vt u v [w]"), each within ±kMaxTextureCoordinate.
 void check_vertex_lines(const std::filesystem::path& obj_file) {
   std::ifstream stream(obj_file, std::ios::binary);
   std::string line;
   for (int number = 1; std::getline(stream, line); ++number) {
     std::istringstream fields(line);
     std::string tag;
-    if (!(fields >> tag) || tag != "v") continue;
+    if (!(fields >> tag) || (tag != "v" && tag != "vt")) continue;
+    const bool texture = tag == "vt";
     std::string field;
-    for (int axis = 0; axis < 3 && fields >> field; ++axis) {
+    for (int axis = 0; axis < (texture ? 2 : 3) && fields >> field; ++axis) {
       double value = 0.0;
       const auto [end, error] = std::from_chars(field.data(), field.data() + field.size(), value);
       if (error != std::errc() || end != field.data() + field.size() || !std::isfinite(value)) {
+        throw InputError(obj_file.string() + ":" + std::to_string(number) + ": " +
+                         (texture ? "texture" : "vertex") + " coordinate '" +
+                         printable_name(field) + "' is not a finite number");
+      }
+      if (texture && std::abs(value) > kMaxTextureCoordinate) {
         throw InputError(obj_file.string() + ":" + std::to_string(number) +
-                         ": vertex coordinate '" + printable_name(field) +
-                         "' is not a finite number");
+                         ": texture coordinate '" + printable_name(field) +
+                         "' is beyond ±1e6 (a texture repeats; no renderer can place a point "
+                         "that far along it)");
       }
     }
   }
