@@ -57,7 +57,8 @@ inline RoomMap* build_room_map() {
   // Headings from the truth: these tests isolate navigation from the visual compass too.
   memory::ExplorationParams exploration;
   exploration.heading_source = memory::HeadingPolicy::kTruth;
-  memory::Explorer explorer(map->memory, exploration, "rendered grid", "test");
+  memory::Explorer explorer(map->memory, exploration, "rendered grid", "test",
+                           memory::FrameOrder::kUnordered);  // a grid database, not a stream
   int index = 0;
   for (int iy = 0; iy < 8; ++iy) {
     for (int ix = 0; ix < 10; ++ix) {

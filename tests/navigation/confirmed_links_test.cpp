@@ -1,0 +1,66 @@
+// The confirmed links of a rendered grid of the built-in room, judged against the renderer's
+// poses (tests/support/room_navigation_map.hpp).
+#include "omninav/navigation/confirmed_links.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <set>
+
+#include "omninav/core/angles.hpp"
+#include "support/room_navigation_map.hpp"
+
+namespace omninav::testing {
+namespace {
+
+using navigation::LinkKind;
+using navigation::MeasuredLink;
+
+TEST_F(RoomNavigation, GridLinksJoinNeighboursInTheDatabasesDirection) {
+  const std::vector<MeasuredLink> links =
+      navigation::confirmed_links(map().memory, map().places, navigation::LinkParams{});
+  ASSERT_FALSE(links.empty());
+  std::set<int> linked;
+  for (const MeasuredLink& link : links) {
+    EXPECT_EQ(link.kind, LinkKind::kGrid);
+    const auto [a, b] = link.places;
+    const CameraPose& pa = map().grid[a].pose;
+    const CameraPose& pb = map().grid[b].pose;
+    const double distance = std::hypot(pb.x_m - pa.x_m, pb.y_m - pa.y_m);
+    // Grid neighbours (the 8-neighbourhood), or the nearest pair joining two pieces.
+    EXPECT_LE(distance, 3.0 * kRoomGridSpacing_m) << a << "-" << b;
+    EXPECT_NEAR(link.length_m, distance, 1e-9);
+    // The direction at each end, relative to that place's heading, is the true one.
+    const double direction = std::atan2(pb.y_m - pa.y_m, pb.x_m - pa.x_m);
+    EXPECT_NEAR(
+        signed_difference(link.direction_at_first_rad + map().places[a].heading_rad, direction),
+        0.0, 1e-6);
+    EXPECT_NEAR(signed_difference(link.direction_at_second_rad + map().places[b].heading_rad,
+                                  wrap_angle(direction + kPi)),
+                0.0, 1e-6);
+    linked.insert(a);
+    linked.insert(b);
+  }
+  // Every place can be planned to and from.
+  EXPECT_EQ(linked.size(), map().memory.place_count());
+  const navigation::RoutePlan plan = navigation::plan_to_goal(map().places, links, 0);
+  for (std::size_t place = 0; place < map().places.size(); ++place) {
+    EXPECT_TRUE(plan.reaches_goal(static_cast<int>(place))) << place;
+  }
+}
+
+TEST_F(RoomNavigation, GridChecksThatNoPairPassesStillLeaveOneConnectedGraph) {
+  navigation::LinkParams strict;
+  strict.grid_direction_deg = 0.0;  // no fitted motion agrees that exactly
+  const std::vector<MeasuredLink> links =
+      navigation::confirmed_links(map().memory, map().places, strict);
+  // The pieces are joined, by as few links as a tree needs.
+  EXPECT_EQ(links.size(), map().memory.place_count() - 1);
+  const navigation::RoutePlan plan = navigation::plan_to_goal(map().places, links, 0);
+  for (std::size_t place = 0; place < map().places.size(); ++place) {
+    EXPECT_TRUE(plan.reaches_goal(static_cast<int>(place))) << place;
+  }
+}
+
+}  // namespace
+}  // namespace omninav::testing
