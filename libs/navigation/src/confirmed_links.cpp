@@ -271,11 +271,7 @@ std::vector<MeasuredLink> revisit_links(const memory::VisualMemory& memory,
       d[i][j] = d[j][i] = static_cast<float>(per_value(memory, members[i], members[j]));
     }
   }
-  std::vector<double> steps;
-  for (const MeasuredLink& link : travelled) {
-    steps.push_back(per_value(memory, link.places.first, link.places.second));
-  }
-  const double limit = params.revisit_ratio * median(steps);
+  const double limit = params.revisit_ratio * *median_dissimilarity_per_value(memory, travelled);
   const int half = params.revisit_run / 2;
   // The index in `members` of stream c's place k: streams are stored one after the other.
   std::vector<int> first_of(chains.size(), 0);
@@ -351,6 +347,16 @@ std::vector<MeasuredLink> revisit_links(const memory::VisualMemory& memory,
 }
 
 }  // namespace
+
+std::optional<double> median_dissimilarity_per_value(const memory::VisualMemory& memory,
+                                                     const std::vector<MeasuredLink>& links) {
+  if (links.empty()) return std::nullopt;
+  std::vector<double> values;
+  for (const MeasuredLink& link : links) {
+    values.push_back(per_value(memory, link.places.first, link.places.second));
+  }
+  return median(std::move(values));
+}
 
 std::vector<MeasuredLink> confirmed_links(const memory::VisualMemory& memory,
                                           const std::vector<PlaceNode>& places,

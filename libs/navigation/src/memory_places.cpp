@@ -142,19 +142,12 @@ GoalNavigationSetup goal_navigation_setup(const memory::VisualMemory& memory,
         "the map has no confirmed links (a single place, or an unordered input without grid "
         "positions): the robot cannot plan a route and drives on its belief alone");
   }
-  const double values = static_cast<double>(memory.place(0).signature.size());
-  std::vector<double> steps;
   for (std::size_t i = 0; i < memory.place_count(); ++i) {
     setup.signatures.push_back(memory.place(i).signature);
   }
   setup.weights = memory.parameters().weights;
-  for (const MeasuredLink& link : setup.links) {
-    steps.push_back(signature::dissimilarity(setup.signatures[link.places.first],
-                                             setup.signatures[link.places.second], -1,
-                                             setup.weights) /
-                    values);
-  }
-  if (!steps.empty() && median(steps) > 0.0) setup.link_dissimilarity = median(std::move(steps));
+  const std::optional<double> link = median_dissimilarity_per_value(memory, setup.links);
+  if (link && *link > 0.0) setup.link_dissimilarity = *link;
   // The extractor is shared by the copies of the setup: one navigation at a time.
   auto extractor = std::make_shared<signature::SignatureExtractor>(memory.parameters().signature);
   setup.signature_of = [extractor](const cv::Mat& panorama) {

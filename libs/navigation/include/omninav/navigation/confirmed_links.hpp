@@ -19,6 +19,7 @@
 //     other, and the motion fitted between the two places agrees from both ends. Direction from
 //     that fit, length one spacing.
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -62,6 +63,11 @@ void load_link_params(const ConfigReader& section, LinkParams& params);
 std::vector<MeasuredLink> confirmed_links(const memory::VisualMemory& memory,
                                           const std::vector<PlaceNode>& places,
                                           const LinkParams& params);
+
+// The median over `links` of their places' mean dissimilarity per value (Eq. 6, the map's
+// weights): what one link's length costs in appearance. None without links.
+std::optional<double> median_dissimilarity_per_value(const memory::VisualMemory& memory,
+                                                     const std::vector<MeasuredLink>& links);
 
 // "travelled", "grid", "revisit".
 std::string to_string(LinkKind kind);
