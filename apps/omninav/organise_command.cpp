@@ -41,20 +41,28 @@ void run_organise(const GlobalOptions& global, const OrganiseOptions& options) {
                   << "\n"
                   << "  scale:    " << fixed(calibration.step_m, 3)
                   << " m between consecutive places ("
-                  << lattice::to_string(calibration.step_source) << "), dissimilarity "
-                  << fixed(calibration.step_dissimilarity, 3)
-                  << " per step (median of the places' own), plateau "
-                  << fixed(calibration.plateau_dissimilarity, 3) << "\n"
-                  << "  springs:  " << organised.lattice.springs_kept << " kept of "
-                  << organised.lattice.springs_given << " offered, of "
-                  << organised.lattice.place_pairs
-                  << " pairs of places (x1 = " << fixed(calibration.correlation_range_m, 3)
-                  << " m; weaker than K = " << fixed(params.lattice.min_stiffness, 3)
-                  << " dropped), " << organised.lattice.motion_constraints
-                  << " motions (directions from the phases"
-                  << (params.steps_along_heading ? "; a stream's steps along the headings" : "")
-                  << ")\n"
-                  << "  solver:   " << organised.lattice.summary << "\n";
+                  << lattice::to_string(calibration.step_source) << ")";
+  if (organised.travelled_links > 0) {
+    summary(global) << "\n  pose graph: " << organised.travelled_links
+                    << " travelled links (odometry), " << organised.revisits
+                    << " revisits confirmed by sequence matching, "
+                    << organised.revisits_switched_off
+                    << " of them switched off as contradicting the rest\n";
+  } else {
+    summary(global) << ", dissimilarity " << fixed(calibration.step_dissimilarity, 3)
+                    << " per step (median of the places' own), plateau "
+                    << fixed(calibration.plateau_dissimilarity, 3) << "\n"
+                    << "  springs:  " << organised.lattice.springs_kept << " kept of "
+                    << organised.lattice.springs_given << " offered, of "
+                    << organised.lattice.place_pairs
+                    << " pairs of places (x1 = " << fixed(calibration.correlation_range_m, 3)
+                    << " m; weaker than K = " << fixed(params.lattice.min_stiffness, 3)
+                    << " dropped), " << organised.lattice.motion_constraints
+                    << " motions (directions from the phases"
+                    << (params.steps_along_heading ? "; a stream's steps along the headings" : "")
+                    << ")\n";
+  }
+  summary(global) << "  solver:   " << organised.lattice.summary << "\n";
   // The quality needs no ground truth: the lattice against the motions it was solved from.
   const memory::LatticeQuality& quality = organised.quality;
   summary(global) << "  quality:  " << quality.motions << " motions, median residual "

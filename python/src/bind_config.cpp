@@ -171,7 +171,9 @@ void bind_navigation_config(py::module_& m) {
       .def_readwrite("match_dissimilarity_ratio", &RouteParams::match_dissimilarity_ratio);
 
   using navigation::LinkParams;
-  py::class_<LinkParams>(m, "LinkParams", "navigation.yaml's links section (confirmed links).")
+  py::class_<LinkParams>(
+      m, "LinkParams",
+      "lattice.yaml's links section: the confirmed links of the lattice and the plan.")
       .def_readwrite("grid_agreement_ratio", &LinkParams::grid_agreement_ratio)
       .def_readwrite("grid_direction_deg", &LinkParams::grid_direction_deg)
       .def_readwrite("revisit_run", &LinkParams::revisit_run)
@@ -201,8 +203,8 @@ void bind_navigation_config(py::module_& m) {
   using evaluation::NavigationConfig;
   py::class_<NavigationConfig>(
       m, "NavigationConfig",
-      "config/navigation.yaml's route, links, belief and navigator sections, read as `omninav "
-      "route` and "
+      "config/navigation.yaml's route, belief and navigator sections and lattice.yaml's links, "
+      "read as `omninav route` and "
       "`omninav navigate` read them (its robot and trials sections are the simulator's).")
       .def(py::init<>())
       .def_static(
@@ -211,7 +213,9 @@ void bind_navigation_config(py::module_& m) {
             return evaluation::load_navigation_config(config_dir_or_default(config_dir));
           },
           py::arg("config_dir") = py::none(),
-          "Reads <config_dir>/navigation.yaml. Raises ConfigError naming the file and key.")
+          "Reads <config_dir>/navigation.yaml and lattice.yaml's links. Raises ConfigError naming "
+          "the "
+          "file and key.")
       .def_readwrite("route", &NavigationConfig::route)
       .def_readwrite("links", &NavigationConfig::links)
       .def_readwrite("belief", &NavigationConfig::belief)

@@ -1,13 +1,12 @@
 // The confirmed links of a rendered grid of the built-in room, judged against the renderer's
 // poses (tests/support/room_navigation_map.hpp).
-#include "omninav/navigation/confirmed_links.hpp"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <set>
 
 #include "omninav/core/angles.hpp"
+#include "omninav/navigation/memory_places.hpp"
 #include "support/room_navigation_map.hpp"
 
 namespace omninav::testing {
@@ -18,7 +17,7 @@ using navigation::MeasuredLink;
 
 TEST_F(RoomNavigation, GridLinksJoinNeighboursInTheDatabasesDirection) {
   const std::vector<MeasuredLink> links =
-      navigation::confirmed_links(map().memory, map().places, navigation::LinkParams{});
+      navigation::map_links(map().memory, map().places, navigation::LinkParams{});
   ASSERT_FALSE(links.empty());
   std::set<int> linked;
   for (const MeasuredLink& link : links) {
@@ -52,8 +51,7 @@ TEST_F(RoomNavigation, GridLinksJoinNeighboursInTheDatabasesDirection) {
 TEST_F(RoomNavigation, GridChecksThatNoPairPassesStillLeaveOneConnectedGraph) {
   navigation::LinkParams strict;
   strict.grid_direction_deg = 0.0;  // no fitted motion agrees that exactly
-  const std::vector<MeasuredLink> links =
-      navigation::confirmed_links(map().memory, map().places, strict);
+  const std::vector<MeasuredLink> links = navigation::map_links(map().memory, map().places, strict);
   // The pieces are joined, by as few links as a tree needs.
   EXPECT_EQ(links.size(), map().memory.place_count() - 1);
   const navigation::RoutePlan plan = navigation::plan_to_goal(map().places, links, 0);

@@ -16,7 +16,8 @@
 
 namespace omninav::testing {
 
-// Each pose of the trajectory rendered, with the pose as the frame's truth.
+// Each pose of the trajectory rendered, with the pose as the frame's truth (and the odometry
+// beside it when the spec has odometry_noise).
 inline std::vector<io::Frame> rendered_frames(const sim::World& world,
                                               const sim::RenderParams& render,
                                               const std::string& trajectory_spec,
@@ -28,6 +29,7 @@ inline std::vector<io::Frame> rendered_frames(const sim::World& world,
     frames[i].index = static_cast<int>(i);
     frames[i].image = renderer.render(trajectory.poses[i].pose);
     frames[i].truth = trajectory.poses[i].pose;
+    frames[i].odometry = trajectory.poses[i].odometry;  // when the spec asks for odometry
     frames[i].source = source + "#" + std::to_string(i);
   }
   return frames;

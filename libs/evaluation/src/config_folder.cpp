@@ -50,6 +50,9 @@ void use_compass_config(const std::filesystem::path& config_dir,
 lattice::OrganiseParams load_lattice_config(const std::filesystem::path& config_dir) {
   const ConfigReader config = ConfigReader::from_file(config_dir / "lattice.yaml");
   lattice::OrganiseParams params;
+  // The organise section last: its loader checks the whole (OrganiseParams::check).
+  lattice::load_link_params(config.section("links"), params.links);
+  lattice::load_driven_params(config.section("driven"), params.driven);
   lattice::load_organise_params(config.section("organise"), params);
   config.require_all_known();
   return params;
@@ -59,7 +62,8 @@ NavigationConfig load_navigation_config(const std::filesystem::path& config_dir)
   const ConfigReader config = ConfigReader::from_file(config_dir / "navigation.yaml");
   NavigationConfig navigation;
   navigation::load_route_params(config.section("route"), navigation.route);
-  navigation::load_link_params(config.section("links"), navigation.links);
+  // The confirmed links are the lattice's (lattice.yaml): the plan runs over the same graph.
+  navigation.links = load_lattice_config(config_dir).links;
   navigation::load_belief_params(config.section("belief"), navigation.belief);
   navigation::load_navigator_params(config.section("navigator"), navigation.navigator);
   sim::load_robot_params(config.section("robot"), navigation.robot);

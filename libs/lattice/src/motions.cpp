@@ -11,8 +11,8 @@
 #include "headings.hpp"
 #include "omninav/core/angles.hpp"
 #include "omninav/core/statistics.hpp"
-#include "omninav/signature/motion.hpp"
 #include "place_sets.hpp"
+#include "two_way_fit.hpp"
 
 namespace omninav::lattice::detail {
 namespace {
@@ -35,16 +35,10 @@ std::optional<DirectionFit> fit_direction(const memory::VisualMemory& memory,
                                           const std::vector<std::optional<double>>& headings, int a,
                                           int b) {
   if (!headings[a] || !headings[b]) return std::nullopt;
-  const double turn = signed_difference(*headings[b], *headings[a]);
-  const signature::MotionEstimate forward =
-      signature::estimate_motion(memory.place(a).signature, memory.place(b).signature, -1, turn);
-  const signature::MotionEstimate backward =
-      signature::estimate_motion(memory.place(b).signature, memory.place(a).signature, -1, -turn);
-  if (!forward.valid || !backward.valid) return std::nullopt;
-  const double there = wrap_angle(*headings[a] + forward.bearing_rad);
-  const double back = wrap_angle(*headings[b] + backward.bearing_rad + kPi);
-  return DirectionFit{wrap_angle(there + 0.5 * signed_difference(back, there)),
-                      std::max(forward.residual, backward.residual)};
+  const std::optional<TwoWayFit> fit =
+      fit_two_way(memory, a, b, signed_difference(*headings[b], *headings[a]));
+  if (!fit) return std::nullopt;
+  return DirectionFit{wrap_angle(*headings[a] + fit->direction_at_a_rad), fit->residual};
 }
 
 // A step between places whose headings differ by more than this went round a bend.

@@ -5,6 +5,7 @@
 #include <set>
 #include <tuple>
 
+#include "driven_lattice.hpp"
 #include "motions.hpp"
 #include "omninav/core/angles.hpp"
 #include "omninav/core/config.hpp"
@@ -85,6 +86,16 @@ void OrganiseParams::check() const {
   check_range("organise.motion_loss_scale", lattice.motion_loss_scale, 0.01, 100.0);
   check_range("organise.max_iterations", lattice.max_iterations, 1, 100000);
   check_range("organise.max_motions_off", max_motions_off, 0.0, 1.0);
+  check_range("driven.odometry_noise", driven.odometry_noise, 1e-4, 1.0);
+  check_range("driven.visual_turn_stddev_deg", driven.visual_turn_stddev_deg, 0.01, 180.0);
+  driven.solver.check();
+}
+
+void load_driven_params(const ConfigReader& section, DrivenLatticeParams& params) {
+  section.read("odometry_noise", params.odometry_noise);
+  section.read("visual_turn_stddev_deg", params.visual_turn_stddev_deg);
+  section.read("switch_prior_stddev", params.solver.switch_prior_stddev);
+  section.read("max_iterations", params.solver.max_iterations);
 }
 
 void load_organise_params(const ConfigReader& section, OrganiseParams& params) {
@@ -156,10 +167,9 @@ constexpr std::size_t kPlateauPairs = std::size_t{1} << 20;
 // (the first), the motions and the springs (the first few of each list).
 using Ranking = std::vector<std::vector<SimilarPlace>>;
 
-void calibrate(const memory::VisualMemory& memory, const PlaceDissimilarities& dissimilarity,
-               const Ranking& ranking, const OrganiseParams& params,
-               DistanceCalibration& calibration) {
-  std::tie(calibration.step_m, calibration.step_source) = scale_of(memory, params);
+// Calibrates distance against dissimilarity at the scale already in `calibration`.
+void calibrate(const PlaceDissimilarities& dissimilarity, const Ranking& ranking,
+               const OrganiseParams& params, DistanceCalibration& calibration) {
   for (const std::vector<SimilarPlace>& similar : ranking) {
     calibration.local_step_dissimilarity.push_back(similar.front().dissimilarity);
   }
@@ -189,16 +199,24 @@ OrganiseResult organise(memory::VisualMemory& memory, const OrganiseParams& para
     throw UsageError("organise: the map has " + std::to_string(count) +
                      " place(s); a lattice needs two");
   OrganiseResult result;
-  const PlaceDissimilarities dissimilarity(memory);
   DistanceCalibration& calibration = result.calibration;
+  std::tie(calibration.step_m, calibration.step_source) = scale_of(memory, params);
+  const bool driven = detail::driven_with_odometry(memory);
+  const PlaceDissimilarities dissimilarity(memory);
   const Ranking ranking =
       dissimilarity.most_similar(std::max({1, params.neighbours, params.motion_neighbours}));
-  calibrate(memory, dissimilarity, ranking, params, calibration);
+  try {
+    calibrate(dissimilarity, ranking, params, calibration);
+  } catch (const UsageError& error) {
+    if (!driven) throw;
+    // A map made by driving needs the calibration only for its springs, weak constraints.
+    log_warning(std::string(error.what()) + "; the pose graph goes without springs");
+  }
 
   // Springs (Eq. 4): each place to its most similar places, once per pair; those beyond the
   // range where the calibrated distance follows the truth only push.
   std::set<std::pair<int, int>> sprung;
-  for (int a = 0; a < count; ++a) {
+  for (int a = 0; calibration.correlation_range_m > 0.0 && a < count; ++a) {
     for (const SimilarPlace& similar : most_similar_first(ranking[a], params.neighbours)) {
       const int b = similar.place;
       if (sprung.insert({std::min(a, b), std::max(a, b)}).second) {
@@ -207,6 +225,17 @@ OrganiseResult organise(memory::VisualMemory& memory, const OrganiseParams& para
             {a, b, length_m, length_m > params.at_least_beyond_steps * calibration.step_m});
       }
     }
+  }
+  if (driven) {
+    detail::organise_driven(memory, params, result);
+    memory.set_lattice_quality(result.quality);
+    log_info("organise: a pose graph of " + std::to_string(result.travelled_links) +
+             " travelled links and " + std::to_string(result.revisits) + " revisits (" +
+             std::to_string(result.revisits_switched_off) + " switched off); quality: " +
+             std::to_string(result.quality.motions_off) + " of motions off, residual " +
+             std::to_string(result.quality.motion_residual_steps) + " steps, " +
+             std::to_string(result.quality.pieces) + " piece(s); " + result.lattice.summary);
+    return result;
   }
   int pieces = 1;
   if (params.motion_constraints) {

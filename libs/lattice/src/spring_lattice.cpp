@@ -40,11 +40,9 @@ std::size_t add_springs(ceres::Problem& problem, const std::vector<SpringMeasure
                         const LatticeParams& params, ceres::LossFunction* loss,
                         std::vector<Eigen::Vector2d>& positions) {
   std::size_t kept = 0;
-  const double negligible = negligible_length_m(params.correlation_range_m, params.min_stiffness);
   for (const SpringMeasurement& spring : springs) {
-    if (spring.a == spring.b || spring.length_m > negligible) continue;  // Eq. 5: K < min_stiffness
-    const double stiffness =
-        params.spring_weight * spring_stiffness(spring.length_m, params.correlation_range_m);
+    const double stiffness = used_stiffness(spring, params);
+    if (stiffness <= 0.0) continue;
     problem.AddResidualBlock(SpringResidual::Create(spring.length_m, stiffness, spring.at_least),
                              loss, positions[spring.a].data(), positions[spring.b].data());
     ++kept;
@@ -91,6 +89,12 @@ ceres::Solver::Options solver_options(const LatticeParams& params) {
 }
 
 }  // namespace
+
+double used_stiffness(const SpringMeasurement& spring, const LatticeParams& params) {
+  const double negligible = negligible_length_m(params.correlation_range_m, params.min_stiffness);
+  if (spring.a == spring.b || spring.length_m > negligible) return 0.0;  // Eq. 5: K < min_stiffness
+  return params.spring_weight * spring_stiffness(spring.length_m, params.correlation_range_m);
+}
 
 LatticeResult solve_lattice(int place_count, const std::vector<SpringMeasurement>& springs,
                             const std::vector<MotionMeasurement>& motions,

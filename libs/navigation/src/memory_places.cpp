@@ -113,9 +113,17 @@ double map_spacing(const memory::VisualMemory& memory, const std::vector<PlaceNo
   return lattice_spacing(places);
 }
 
+std::vector<MeasuredLink> map_links(const memory::VisualMemory& memory,
+                                    const std::vector<PlaceNode>& places,
+                                    const LinkParams& params) {
+  std::vector<double> headings;
+  for (const PlaceNode& place : places) headings.push_back(place.heading_rad);
+  return lattice::confirmed_links(memory, headings, map_spacing(memory, places), params);
+}
+
 RoutePlan plan_route(const memory::VisualMemory& memory, const std::vector<PlaceNode>& places,
                      const LinkParams& links, int goal) {
-  return plan_to_goal(places, confirmed_links(memory, places, links), goal);
+  return plan_to_goal(places, map_links(memory, places, links), goal);
 }
 
 GoalNavigationSetup goal_navigation_setup(const memory::VisualMemory& memory,
@@ -136,7 +144,7 @@ GoalNavigationSetup goal_navigation_setup(const memory::VisualMemory& memory,
   if (navigator.homing_stop_spacings > 0.0 && spacing_m > 0.0) {
     setup.navigator.homing_stop_m = navigator.homing_stop_spacings * spacing_m;
   }
-  setup.links = confirmed_links(memory, setup.places, links);
+  setup.links = map_links(memory, setup.places, links);
   if (setup.links.empty()) {
     log_warning(
         "the map has no confirmed links (a single place, or an unordered input without grid "
@@ -146,7 +154,7 @@ GoalNavigationSetup goal_navigation_setup(const memory::VisualMemory& memory,
     setup.signatures.push_back(memory.place(i).signature);
   }
   setup.weights = memory.parameters().weights;
-  const std::optional<double> link = median_dissimilarity_per_value(memory, setup.links);
+  const std::optional<double> link = lattice::median_dissimilarity_per_value(memory, setup.links);
   if (link && *link > 0.0) setup.link_dissimilarity = *link;
   // The extractor is shared by the copies of the setup: one navigation at a time.
   auto extractor = std::make_shared<signature::SignatureExtractor>(memory.parameters().signature);

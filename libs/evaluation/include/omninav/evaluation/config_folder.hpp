@@ -10,7 +10,7 @@
 #include "omninav/evaluation/navigation_trials.hpp"
 #include "omninav/lattice/organise.hpp"
 #include "omninav/memory/memory_config.hpp"
-#include "omninav/navigation/confirmed_links.hpp"
+#include "omninav/lattice/confirmed_links.hpp"
 #include "omninav/navigation/navigator.hpp"
 #include "omninav/navigation/place_belief.hpp"
 #include "omninav/omni/unwrap.hpp"

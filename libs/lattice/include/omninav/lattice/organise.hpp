@@ -1,11 +1,21 @@
 #pragma once
-// Organising a visual memory into a lattice (Menegatti et al. 2004, §3): distances estimated
-// from similarity (calibrated without ground truth), springs between places, motion directions
-// from the phases, solved by spring_lattice.hpp, and the positions written into the places.
+// Organising a visual memory into a lattice. Two inputs, two methods:
+//   - a map made by driving with odometry (travelled links between places that kept the
+//     robot's odometry) is a robust pose graph over its confirmed links (confirmed_links.hpp,
+//     pose_graph.hpp): the robot's path by its odometry and revisits confirmed by sequence
+//     matching, each of which the solver may switch off, with §3.2's springs as weak
+//     constraints beside them;
+//   - any other map (a grid database, an unordered folder, a stream without odometry) is the
+//     spring model of
+//     Menegatti et al. 2004, §3: distances estimated from similarity (calibrated without ground
+//     truth), springs between places, motion directions from the phases (spring_lattice.hpp).
+// Either way the positions are written into the places.
 
 #include <optional>
 #include <string>
 
+#include "omninav/lattice/confirmed_links.hpp"
+#include "omninav/lattice/pose_graph.hpp"
 #include "omninav/lattice/spring_lattice.hpp"
 #include "omninav/memory/visual_memory.hpp"
 
@@ -14,6 +24,19 @@ class ConfigReader;
 }
 
 namespace omninav::lattice {
+
+// How the links of a map made by driving become the pose graph's measurements.
+struct DrivenLatticeParams {
+  // The odometry's relative standard deviation over a step, of its distance and of its turn.
+  // Larger than a robot's per-step noise (Menegatti et al. 2004, §3.4, know the distance
+  // "within 10 %"): each step is taken as independent, where wheel slip persists over many.
+  // Chosen across the zoo, leaving one family out (docs/evaluation.md).
+  double odometry_noise = 0.3;
+  // Standard deviation of a turn measured from the images, degrees: the compass's between
+  // consecutive places without odometry, the phases' (Eq. 1) between a revisit's two places.
+  double visual_turn_stddev_deg = 5.0;
+  PoseGraphParams solver;
+};
 
 struct OrganiseParams {
   // The scale: the distance between consecutive places of the exploration, metres. 0: take it
@@ -58,7 +81,9 @@ struct OrganiseParams {
   // Pieces that the checked motions leave apart are joined by the pairs across whose fit
   // explains the two views best (the smallest residual), not by the most similar pairs.
   bool joins_by_residual = true;
-  LatticeParams lattice;  // correlation_range_m is set by the calibration
+  LatticeParams lattice;       // correlation_range_m is set by the calibration
+  LinkParams links;            // a map made by driving: its confirmed links ...
+  DrivenLatticeParams driven;  // ... as the pose graph's measurements
   // The verdict of the lattice quality (LatticeQuality, measured without ground truth): the
   // lattice is not trustworthy when more than this share of its motions point more than 45°
   // away from where the lattice puts their places, or when the motions that survived the
@@ -72,6 +97,9 @@ struct OrganiseParams {
 
 // Reads the `organise:` section of lattice.yaml, then checks it (OrganiseParams::check).
 void load_organise_params(const ConfigReader& section, OrganiseParams& params);
+
+// Reads the `driven:` section of lattice.yaml (checked with the rest by OrganiseParams::check).
+void load_driven_params(const ConfigReader& section, DrivenLatticeParams& params);
 
 // How dissimilarity maps to distance, calibrated on the map itself (our reading of Fig. 7 and
 // §3.2, which show the curve but give no formula). Fig. 7 is linear at short range; its slope,
@@ -108,6 +136,11 @@ struct OrganiseResult {
   int look_alikes_dropped = 0;  // neighbour motions dropped as look-alikes (src/motions.hpp)
   int motion_joins = 0;         // motions added to join places the others left apart
   LatticeResult lattice;
+  // A map made by driving: its links, and how many revisits the pose graph switched off (its
+  // switch below 0.5: the rest of the graph disagrees with them).
+  int travelled_links = 0;
+  int revisits = 0;
+  int revisits_switched_off = 0;
   memory::LatticeQuality quality;  // also stored in the map (VisualMemory::lattice_quality)
 };
 
@@ -123,7 +156,10 @@ memory::LatticeQuality measure_quality(const std::vector<Eigen::Vector2d>& posit
 // places (phases), integrated along the exploration; none for places that cannot be reached.
 std::vector<std::optional<double>> lattice_headings(const memory::VisualMemory& memory);
 
-// Calibrates, builds the springs and the motions (src/motions.hpp: a stream's steps, a grid
+// Calibrates and builds the springs. A map made by driving with odometry: its confirmed links
+// and the springs (as weak constraints) solved as a pose graph; motions are then the links the
+// pose graph kept, as displacements in the lattice frame (for the quality). Otherwise the
+// spring model: the motions (src/motions.hpp: a stream's steps, a grid
 // database's listed pairs that look one step apart, each place's most similar places but
 // look-alikes, and what joins the rest), solves, and stores each place's lattice position
 // (metres, lattice frame: place 0 at the origin, its heading along +x).

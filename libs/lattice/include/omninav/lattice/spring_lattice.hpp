@@ -60,6 +60,11 @@ struct LatticeResult {
   std::string summary;  // Ceres' one-paragraph report, for the log
 };
 
+// A spring's stiffness as a lattice uses it: Eq. 5 at params.correlation_range_m times
+// params.spring_weight; 0 for a spring too weak to keep (K < min_stiffness) or from a place to
+// itself.
+double used_stiffness(const SpringMeasurement& spring, const LatticeParams& params);
+
 // Arranges `place_count` places. Throws UsageError when a measurement names a place out of
 // range or the places are not connected by springs and motions (the lattice would be
 // undetermined).

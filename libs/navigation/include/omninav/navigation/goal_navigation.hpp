@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "omninav/navigation/confirmed_links.hpp"
+#include "omninav/lattice/confirmed_links.hpp"
 #include "omninav/navigation/homing.hpp"
 #include "omninav/navigation/navigator.hpp"
 #include "omninav/navigation/place_belief.hpp"

@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
+#include "omninav/lattice/confirmed_links.hpp"
 #include "omninav/memory/localisation.hpp"
 #include "omninav/memory/visual_memory.hpp"
-#include "omninav/navigation/confirmed_links.hpp"
 #include "omninav/navigation/goal_navigation.hpp"
 #include "omninav/navigation/homing.hpp"
 #include "omninav/navigation/navigator.hpp"
@@ -51,6 +51,11 @@ HomingScale homing_scale(const memory::VisualMemory& memory, const std::vector<P
 // The distance between neighbouring places the map states (a grid database's grid spacing, else
 // the exploration's spacing), else the lattice spacing of `places`.
 double map_spacing(const memory::VisualMemory& memory, const std::vector<PlaceNode>& places);
+
+// The confirmed links of `memory` (lattice/confirmed_links.hpp) with `places`' headings and the
+// map's spacing.
+std::vector<MeasuredLink> map_links(const memory::VisualMemory& memory,
+                                    const std::vector<PlaceNode>& places, const LinkParams& params);
 
 // The plan to `goal` over the confirmed links of `memory` (confirmed_links). `places` are
 // places_from_memory(memory).

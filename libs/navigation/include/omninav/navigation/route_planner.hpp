@@ -10,6 +10,8 @@
 #include <utility>
 #include <vector>
 
+#include "omninav/lattice/confirmed_links.hpp"
+
 namespace omninav {
 class ConfigReader;
 }
@@ -41,22 +43,10 @@ using Edge = std::pair<int, int>;
 // The median distance from each place to its nearest neighbour on the lattice.
 double lattice_spacing(const std::vector<PlaceNode>& places);
 
-// Why a link of the memory graph is trusted (confirmed_links.hpp).
-enum class LinkKind {
-  kTravelled,  // the robot drove from one place to the other while exploring
-  kGrid,       // neighbours of a grid database whose images agree
-  kRevisit,    // a stretch seen again, confirmed by a run of matching views
-};
-
-// A link of the memory graph: its length and its direction at either end, relative to that
-// place's stored heading.
-struct MeasuredLink {
-  Edge places;                           // (a, b)
-  double length_m = 0.0;                 // what the link adds to a route
-  double direction_at_first_rad = 0.0;   // from a towards b, relative to a's stored heading
-  double direction_at_second_rad = 0.0;  // from b towards a, relative to b's stored heading
-  LinkKind kind = LinkKind::kTravelled;
-};
+// The memory graph's links (lattice/confirmed_links.hpp), as the plan and the belief use them.
+using lattice::LinkKind;
+using lattice::LinkParams;
+using lattice::MeasuredLink;
 
 struct RoutePlan {
   int goal = -1;

@@ -21,20 +21,37 @@
 
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "omninav/memory/visual_memory.hpp"
-#include "omninav/navigation/route_planner.hpp"
 
 namespace omninav {
 class ConfigReader;
 }
 
-namespace omninav::navigation {
+namespace omninav::lattice {
+
+// Why a link of the memory graph is trusted.
+enum class LinkKind {
+  kTravelled,  // the robot drove from one place to the other while exploring
+  kGrid,       // neighbours of a grid database whose images agree
+  kRevisit,    // a stretch seen again, confirmed by a run of matching views
+};
+
+// A link of the memory graph: its length and its direction at either end, relative to that
+// place's stored heading.
+struct MeasuredLink {
+  std::pair<int, int> places;            // (a, b)
+  double length_m = 0.0;                 // what the link adds to a route
+  double direction_at_first_rad = 0.0;   // from a towards b, relative to a's stored heading
+  double direction_at_second_rad = 0.0;  // from b towards a, relative to b's stored heading
+  LinkKind kind = LinkKind::kTravelled;
+};
 
 struct LinkParams {
   // A grid link is kept when its images' mean dissimilarity per value is at most this many
-  // times the median over the map's grid links: chosen across the zoo (navigation.yaml).
+  // times the median over the map's grid links: chosen across the zoo (lattice.yaml).
   double grid_agreement_ratio = 2.0;
   // ... and when the direction of motion the phases fit from either end lies within this many
   // degrees of the database's.
@@ -54,14 +71,14 @@ struct LinkParams {
   double odometry_drift = 0.02;
 };
 
-// Reads the `links:` section of navigation.yaml.
+// Reads the `links:` section of lattice.yaml.
 void load_link_params(const ConfigReader& section, LinkParams& params);
 
-// The confirmed links of `memory`; `places` gives each place's heading (places_from_memory).
-// Logs how many of each kind. Empty for a map without any (one place, or an unordered input
-// without positions): the caller says so.
+// The confirmed links of `memory`, given each place's heading in one frame (lattice_headings)
+// and the distance between consecutive places. Logs how many of each kind. Empty for a map
+// without any (one place, or an unordered input without positions): the caller says so.
 std::vector<MeasuredLink> confirmed_links(const memory::VisualMemory& memory,
-                                          const std::vector<PlaceNode>& places,
+                                          const std::vector<double>& headings_rad, double spacing_m,
                                           const LinkParams& params);
 
 // The median over `links` of their places' mean dissimilarity per value (Eq. 6, the map's
@@ -72,4 +89,4 @@ std::optional<double> median_dissimilarity_per_value(const memory::VisualMemory&
 // "travelled", "grid", "revisit".
 std::string to_string(LinkKind kind);
 
-}  // namespace omninav::navigation
+}  // namespace omninav::lattice

@@ -6,11 +6,10 @@
 #include "omninav/core/angles.hpp"
 #include "omninav/signature/motion.hpp"
 
-namespace omninav::navigation {
+namespace omninav::lattice {
 
-std::optional<TwoWayFit> fit_two_way(const memory::VisualMemory& memory,
-                                     const std::vector<PlaceNode>& places, int a, int b) {
-  const double turn = signed_difference(places[b].heading_rad, places[a].heading_rad);
+std::optional<TwoWayFit> fit_two_way(const memory::VisualMemory& memory, int a, int b,
+                                     double turn) {
   const signature::MotionEstimate there =
       signature::estimate_motion(memory.place(a).signature, memory.place(b).signature, -1, turn);
   const signature::MotionEstimate back =
@@ -28,4 +27,4 @@ std::optional<TwoWayFit> fit_two_way(const memory::VisualMemory& memory,
   return fit;
 }
 
-}  // namespace omninav::navigation
+}  // namespace omninav::lattice

@@ -1,14 +1,13 @@
 #pragma once
 // The direction of motion between two places fitted from both ends (Menegatti et al. 2004,
-// §3.4; signature/motion.hpp), with the turn held at the difference of their headings.
+// §3.4; signature/motion.hpp), with the turn held at `turn`: heading(b) − heading(a), radians.
 
 #include <optional>
 #include <vector>
 
 #include "omninav/memory/visual_memory.hpp"
-#include "omninav/navigation/route_planner.hpp"
 
-namespace omninav::navigation {
+namespace omninav::lattice {
 
 struct TwoWayFit {
   double direction_at_a_rad = 0.0;  // from a towards b, relative to a's heading
@@ -19,7 +18,6 @@ struct TwoWayFit {
 };
 
 // None when either fit fails (no displacement to measure).
-std::optional<TwoWayFit> fit_two_way(const memory::VisualMemory& memory,
-                                     const std::vector<PlaceNode>& places, int a, int b);
+std::optional<TwoWayFit> fit_two_way(const memory::VisualMemory& memory, int a, int b, double turn);
 
-}  // namespace omninav::navigation
+}  // namespace omninav::lattice

@@ -1,4 +1,4 @@
-#include "omninav/navigation/confirmed_links.hpp"
+#include "omninav/lattice/confirmed_links.hpp"
 
 #include <algorithm>
 #include <boost/pending/disjoint_sets.hpp>
@@ -13,11 +13,10 @@
 #include "omninav/core/config.hpp"
 #include "omninav/core/log.hpp"
 #include "omninav/core/statistics.hpp"
-#include "omninav/navigation/memory_places.hpp"
 #include "omninav/signature/dissimilarity.hpp"
 #include "two_way_fit.hpp"
 
-namespace omninav::navigation {
+namespace omninav::lattice {
 
 void load_link_params(const ConfigReader& section, LinkParams& params) {
   section.read("grid_agreement_ratio", params.grid_agreement_ratio, 1.0, 100.0);
@@ -80,7 +79,7 @@ bool measure_by_odometry(const memory::VisualMemory& memory, MeasuredLink& link)
 
 // Consecutive places of a stream, the robot's own path: always links.
 std::vector<MeasuredLink> travelled_links(const memory::VisualMemory& memory,
-                                          const std::vector<PlaceNode>& places, double spacing_m) {
+                                          const std::vector<double>& headings, double spacing_m) {
   std::vector<MeasuredLink> links;
   for (const memory::VisualMemory::EdgeRef& edge : memory.edges()) {
     if (edge.edge->kind != memory::EdgeKind::kSequence) continue;
@@ -91,12 +90,13 @@ std::vector<MeasuredLink> travelled_links(const memory::VisualMemory& memory,
     link.length_m = spacing_m;
     if (measure_by_odometry(memory, link)) {
       // The odometry's step.
-    } else if (const std::optional<TwoWayFit> fit = fit_two_way(memory, places, a, b)) {
+    } else if (const std::optional<TwoWayFit> fit =
+                   fit_two_way(memory, a, b, signed_difference(headings[b], headings[a]))) {
       link.direction_at_first_rad = fit->direction_at_a_rad;
       link.direction_at_second_rad = fit->direction_at_b_rad;
     } else {
       // No displacement the phases can see: the robot drove forwards, as streams mostly do.
-      const double turn = signed_difference(places[b].heading_rad, places[a].heading_rad);
+      const double turn = signed_difference(headings[b], headings[a]);
       link.direction_at_first_rad = 0.0;
       link.direction_at_second_rad = wrap_angle(kPi - turn);
     }
@@ -107,7 +107,7 @@ std::vector<MeasuredLink> travelled_links(const memory::VisualMemory& memory,
 
 // Places of a grid database: the database's positions say which are neighbours.
 std::vector<MeasuredLink> grid_links(const memory::VisualMemory& memory,
-                                     const std::vector<PlaceNode>& places,
+                                     const std::vector<double>& headings,
                                      const LinkParams& params) {
   const std::optional<double> spacing = memory.grid_spacing_m();
   if (!spacing) return {};
@@ -147,12 +147,13 @@ std::vector<MeasuredLink> grid_links(const memory::VisualMemory& memory,
             link.places = {a, b};
             link.kind = LinkKind::kGrid;
             link.length_m = step.norm();
-            link.direction_at_first_rad = signed_difference(direction, places[a].heading_rad);
+            link.direction_at_first_rad = signed_difference(direction, headings[a]);
             link.direction_at_second_rad =
-                signed_difference(wrap_angle(direction + kPi), places[b].heading_rad);
+                signed_difference(wrap_angle(direction + kPi), headings[b]);
             // The phases must see the step the database states: across a wall or round
             // furniture the two views are not one scene moved, and the fit points elsewhere.
-            const std::optional<TwoWayFit> fit = fit_two_way(memory, places, a, b);
+            const std::optional<TwoWayFit> fit =
+                fit_two_way(memory, a, b, signed_difference(headings[b], headings[a]));
             const bool agrees =
                 fit &&
                 std::abs(signed_difference(fit->direction_at_a_rad, link.direction_at_first_rad)) <=
@@ -215,8 +216,8 @@ std::vector<MeasuredLink> grid_links(const memory::VisualMemory& memory,
     const double direction = std::atan2(step.y(), step.x());
     links.push_back({{a, b},
                      distance,
-                     signed_difference(direction, places[a].heading_rad),
-                     signed_difference(wrap_angle(direction + kPi), places[b].heading_rad),
+                     signed_difference(direction, headings[a]),
+                     signed_difference(wrap_angle(direction + kPi), headings[b]),
                      LinkKind::kGrid});
     pieces.union_set(a, b);
   }
@@ -245,7 +246,7 @@ std::vector<std::vector<int>> streams(const memory::VisualMemory& memory) {
 // Sequence matching over the streams: for each place with a full run of views round it, the
 // places whose runs (forwards or backwards) match it best.
 std::vector<MeasuredLink> revisit_links(const memory::VisualMemory& memory,
-                                        const std::vector<PlaceNode>& places,
+                                        const std::vector<double>& headings,
                                         const std::vector<MeasuredLink>& travelled,
                                         double spacing_m, const LinkParams& params) {
   if (params.revisits_per_place <= 0 || travelled.empty()) return {};
@@ -331,7 +332,8 @@ std::vector<MeasuredLink> revisit_links(const memory::VisualMemory& memory,
       if (kept >= params.revisits_per_place) break;
       const int a = members[i], b = members[j];
       if (!seen.insert(ordered(a, b)).second) continue;
-      const std::optional<TwoWayFit> fit = fit_two_way(memory, places, a, b);
+      const std::optional<TwoWayFit> fit =
+          fit_two_way(memory, a, b, signed_difference(headings[b], headings[a]));
       if (!fit || fit->disagreement_rad > disagreement_limit) continue;
       MeasuredLink link;
       link.places = {a, b};
@@ -359,13 +361,12 @@ std::optional<double> median_dissimilarity_per_value(const memory::VisualMemory&
 }
 
 std::vector<MeasuredLink> confirmed_links(const memory::VisualMemory& memory,
-                                          const std::vector<PlaceNode>& places,
+                                          const std::vector<double>& headings, double spacing_m,
                                           const LinkParams& params) {
-  const double spacing_m = map_spacing(memory, places);
-  std::vector<MeasuredLink> links = travelled_links(memory, places, spacing_m);
+  std::vector<MeasuredLink> links = travelled_links(memory, headings, spacing_m);
   const std::size_t travelled = links.size();
-  std::vector<MeasuredLink> revisits = revisit_links(memory, places, links, spacing_m, params);
-  std::vector<MeasuredLink> grid = grid_links(memory, places, params);
+  std::vector<MeasuredLink> revisits = revisit_links(memory, headings, links, spacing_m, params);
+  std::vector<MeasuredLink> grid = grid_links(memory, headings, params);
   log_info("the plan runs over " + std::to_string(travelled + revisits.size() + grid.size()) +
            " confirmed links: " + std::to_string(travelled) + " travelled, " +
            std::to_string(revisits.size()) + " revisits, " + std::to_string(grid.size()) +
@@ -375,4 +376,4 @@ std::vector<MeasuredLink> confirmed_links(const memory::VisualMemory& memory,
   return links;
 }
 
-}  // namespace omninav::navigation
+}  // namespace omninav::lattice
