@@ -137,3 +137,11 @@ def test_a_robot_that_reports_nan_metres_driven_is_refused(organised_grid):
                                                   heading_rad=start.heading_rad + 2.0))
     with pytest.raises(omninav.InputError, match=r"robot\.move\(\) returned nan"):
         organised_grid.navigate_to_image(robot, renderer.render(places[-1].truth), max_steps=60)
+
+
+def test_a_value_out_of_range_set_from_python_is_refused_as_in_navigation_yaml(organised_grid):
+    goal = len(organised_grid.places()) - 1
+    config = omninav.NavigationConfig.load()
+    config.links.revisit_ratio = 0.0  # navigation.yaml allows 0.1..100
+    with pytest.raises(omninav.UsageError, match="links.revisit_ratio"):
+        organised_grid.plan_route(goal, config=config)
