@@ -23,6 +23,7 @@
 #include "omninav/evaluation/navigation_trials.hpp"
 #include "omninav/evaluation/organised_map.hpp"
 #include "omninav/evaluation/render_database.hpp"
+#include "omninav/evaluation/robot_worlds.hpp"
 #include "omninav/io/bob_database.hpp"
 #include "omninav/io/sequence.hpp"
 #include "omninav/memory/exploration.hpp"
@@ -454,10 +455,7 @@ class WorldRun {
         memory, navigation::memory_localiser(localiser, extractor), config_.navigation.route,
         config_.navigation.navigator, config_.navigation.links, config_.navigation.belief);
     // As navigate: the robot's camera makes panoramas of the size the map was built from.
-    sim::RenderParams render = worlds_.render;
-    render.geometry.width_px = memory.place(0).signature.width_px;
-    render.geometry.height_px = memory.place(0).signature.rows;
-    const sim::Renderer renderer(world_, render);
+    const sim::Renderer renderer(world_, render_params_for_map(memory, worlds_.render));
     NavigationConfig navigation = config_.navigation;
     navigation.trials.count = params_.trials;
     navigation.trials.seed = suite_world_.seed;
