@@ -11,9 +11,9 @@
 #include "omninav/core/log.hpp"
 #include "omninav/core/output_file.hpp"
 #include "omninav/core/parse.hpp"
-#include "omninav/eval/png.hpp"
 #include "omninav/evaluation/localisation_output.hpp"
 #include "omninav/evaluation/query_localisation.hpp"
+#include "omninav/measures/png.hpp"
 #include "omninav/memory/map_store.hpp"
 #include "omninav/report/memory_figures.hpp"
 
@@ -99,9 +99,9 @@ void run_localise(const GlobalOptions& global, const LocaliseOptions& options) {
           first_figure = std::move(figure);
         } else {
           if (results.size() == 1) {
-            eval::save_png(first_figure, numbered_plot_file(options.plot, 0));
+            measures::save_png(first_figure, numbered_plot_file(options.plot, 0));
           }
-          eval::save_png(figure, numbered_plot_file(options.plot, results.size()));
+          measures::save_png(figure, numbered_plot_file(options.plot, results.size()));
         }
       }
       results.push_back(std::move(q));
@@ -111,7 +111,7 @@ void run_localise(const GlobalOptions& global, const LocaliseOptions& options) {
   if (results.size() == 1 && results.front().no_match) {
     throw InputError(results.front().source + ": " + *results.front().no_match);
   }
-  if (!options.plot.empty() && results.size() == 1) eval::save_png(first_figure, options.plot);
+  if (!options.plot.empty() && results.size() == 1) measures::save_png(first_figure, options.plot);
   const auto unmatched =
       std::count_if(results.begin(), results.end(),
                     [](const evaluation::QueryLocalisation& q) { return q.no_match.has_value(); });

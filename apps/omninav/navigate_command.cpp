@@ -12,11 +12,11 @@
 #include "omninav/core/format.hpp"
 #include "omninav/core/output_file.hpp"
 #include "omninav/core/parse.hpp"
-#include "omninav/eval/png.hpp"
 #include "omninav/evaluation/navigation_trials.hpp"
 #include "omninav/evaluation/robot_worlds.hpp"
 #include "omninav/evaluation/trials_output.hpp"
 #include "omninav/io/image_file.hpp"
+#include "omninav/measures/png.hpp"
 #include "omninav/memory/map_store.hpp"
 #include "omninav/navigation/memory_places.hpp"
 #include "omninav/report/navigation_figures.hpp"
@@ -84,7 +84,7 @@ void evaluate_trials(const GlobalOptions& global, const NavigateOptions& options
     if (!o.reached || o.result.path_length_m > kDetourRatio * o.straight_m) {
       const report::NavigationScene scene{
           world.obstacles, {}, Eigen::Vector2d(o.trial.goal.x_m, o.trial.goal.y_m)};
-      eval::save_png(
+      measures::save_png(
           report::navigation_path_figure(o.result, setup.places, o.goal_place, memory, scene),
           options.out / ("trial_" + std::to_string(i) + ".png"));
     }
@@ -162,7 +162,7 @@ void run_navigate(const GlobalOptions& global, const NavigateOptions& options) {
   });
   const report::NavigationScene scene{world ? world->obstacles : std::vector<sim::FloorBox>{}, grid,
                                       std::nullopt};
-  eval::save_png(
+  measures::save_png(
       report::navigation_path_figure(result, setup.places, run.goal.place, memory, scene),
       options.out / "path.png");
   summary(global) << (result.reached ? "reached" : "did not reach") << " the goal (place "

@@ -16,7 +16,6 @@
 #include "omninav/core/errors.hpp"
 #include "omninav/core/format.hpp"
 #include "omninav/core/log.hpp"
-#include "omninav/eval/png.hpp"
 #include "omninav/evaluation/compass_evaluation.hpp"
 #include "omninav/evaluation/home_vectors.hpp"
 #include "omninav/evaluation/localisation_score.hpp"
@@ -26,6 +25,7 @@
 #include "omninav/evaluation/robot_worlds.hpp"
 #include "omninav/io/bob_database.hpp"
 #include "omninav/io/sequence.hpp"
+#include "omninav/measures/png.hpp"
 #include "omninav/memory/exploration.hpp"
 #include "omninav/memory/localisation.hpp"
 #include "omninav/memory/map_store.hpp"
@@ -212,7 +212,7 @@ class WorldRun {
       const CompassEvaluation evaluation =
           evaluate_compass(estimates, truth, run.reference_count());
       const fs::path plot = dir_ / (name + ".compass.png");
-      eval::save_png(
+      measures::save_png(
           report::plot_compass_run(estimates, truth_heading_rad, row_.world + ", " + name), plot);
       command({"compass", "--input", folder.string(), "--truth", "--plot", plot.string()});
       set("compass_" + name + "_max_deg", evaluation.error_deg.max_abs);
@@ -325,9 +325,9 @@ class WorldRun {
     const OrganisedMap result = organise_stored_map(store, params);
     const std::optional<LatticeScore>& evaluation = result.score;
     const fs::path picture = dir_ / (key + ".lattice.png");
-    eval::save_png(report::lattice_picture(result.memory, result.organised,
-                                           evaluation ? &*evaluation : nullptr),
-                   picture);
+    measures::save_png(report::lattice_picture(result.memory, result.organised,
+                                               evaluation ? &*evaluation : nullptr),
+                       picture);
     store.save(result.memory);
     args.insert(args.end(), {"--picture", picture.string()});
     command(args);

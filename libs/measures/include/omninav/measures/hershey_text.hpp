@@ -5,11 +5,11 @@
 #include <string>
 #include <string_view>
 
-namespace omninav::eval {
+namespace omninav::measures {
 
 // `utf8` with ° ± σ × − – — ≤ ≥ → ← ′ ″ μ θ ψ α Δ as "deg", "+/-", "sigma", "x", "-", "-", "-",
 // "<=", ">=", "->", "<-", "'", "\"", "u", "theta", "psi", "alpha", "d" (a degree sign after a
 // number gets a space before it); any other non-ASCII character becomes "?".
 std::string hershey_text(std::string_view utf8);
 
-}  // namespace omninav::eval
+}  // namespace omninav::measures

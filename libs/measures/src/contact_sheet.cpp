@@ -1,12 +1,12 @@
-#include "omninav/eval/contact_sheet.hpp"
+#include "omninav/measures/contact_sheet.hpp"
 
 #include <algorithm>
 #include <string>
 
 #include "omninav/core/errors.hpp"
-#include "omninav/eval/hershey_text.hpp"
+#include "omninav/measures/hershey_text.hpp"
 
-namespace omninav::eval {
+namespace omninav::measures {
 namespace {
 
 constexpr int kFont = cv::FONT_HERSHEY_SIMPLEX;
@@ -114,4 +114,4 @@ cv::Mat contact_sheet(const std::vector<cv::Mat>& images, const std::vector<std:
   return sheet;
 }
 
-}  // namespace omninav::eval
+}  // namespace omninav::measures

@@ -1,4 +1,4 @@
-#include "omninav/eval/procrustes.hpp"
+#include "omninav/measures/procrustes.hpp"
 
 #include <gtest/gtest.h>
 
@@ -9,7 +9,7 @@
 #include "omninav/core/angles.hpp"
 #include "omninav/core/errors.hpp"
 
-namespace omninav::eval {
+namespace omninav::measures {
 namespace {
 
 // An irregular set: no symmetry, so its mirror image is not a rotation of it.
@@ -187,4 +187,4 @@ TEST(SplitRmse, AfterAlignment) {
 }
 
 }  // namespace
-}  // namespace omninav::eval
+}  // namespace omninav::measures

@@ -1,8 +1,8 @@
-#include "omninav/eval/hershey_text.hpp"
+#include "omninav/measures/hershey_text.hpp"
 
 #include <gtest/gtest.h>
 
-namespace omninav::eval {
+namespace omninav::measures {
 namespace {
 
 TEST(HersheyText, SpellsOutTheSymbolsOfLabels) {
@@ -20,4 +20,4 @@ TEST(HersheyText, EveryOtherCharacterIsOneQuestionMark) {
 }
 
 }  // namespace
-}  // namespace omninav::eval
+}  // namespace omninav::measures

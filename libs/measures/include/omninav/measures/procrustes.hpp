@@ -13,7 +13,7 @@
 #include <span>
 #include <vector>
 
-namespace omninav::eval {
+namespace omninav::measures {
 
 // p ↦ linear·p + translation, with linear = scale·R(rotation_rad)·M, where M is the identity,
 // or diag(1, −1) (mirror in the x axis, applied first) when `reflected`.
@@ -75,4 +75,4 @@ SplitRmse split_rmse_in_spacing(std::span<const Eigen::Vector2d> aligned,
                                 std::span<const Eigen::Vector2d> truth,
                                 std::span<const std::size_t> boundary_indices, double spacing);
 
-}  // namespace omninav::eval
+}  // namespace omninav::measures

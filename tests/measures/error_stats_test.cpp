@@ -1,4 +1,4 @@
-#include "omninav/eval/error_stats.hpp"
+#include "omninav/measures/error_stats.hpp"
 
 #include <gtest/gtest.h>
 
@@ -8,7 +8,7 @@
 #include "omninav/core/angles.hpp"
 #include "omninav/core/errors.hpp"
 
-namespace omninav::eval {
+namespace omninav::measures {
 namespace {
 
 std::vector<double> radians(std::initializer_list<double> degrees) {
@@ -90,4 +90,4 @@ TEST(ErrorStats, InDegreesConvertsEveryAngle) {
 }
 
 }  // namespace
-}  // namespace omninav::eval
+}  // namespace omninav::measures

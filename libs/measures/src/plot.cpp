@@ -1,4 +1,4 @@
-#include "omninav/eval/plot.hpp"
+#include "omninav/measures/plot.hpp"
 
 #include <fmt/format.h>
 
@@ -11,10 +11,10 @@
 
 #include "omninav/core/errors.hpp"
 #include "omninav/core/format.hpp"
-#include "omninav/eval/hershey_text.hpp"
-#include "omninav/eval/png.hpp"
+#include "omninav/measures/hershey_text.hpp"
+#include "omninav/measures/png.hpp"
 
-namespace omninav::eval {
+namespace omninav::measures {
 namespace {
 
 constexpr int kFont = cv::FONT_HERSHEY_SIMPLEX;
@@ -518,4 +518,4 @@ std::vector<cv::Point2d> plot_points(const std::vector<Eigen::Vector2d>& positio
   return points;
 }
 
-}  // namespace omninav::eval
+}  // namespace omninav::measures

@@ -1,4 +1,4 @@
-#include "omninav/eval/error_stats.hpp"
+#include "omninav/measures/error_stats.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +8,7 @@
 #include "omninav/core/angles.hpp"
 #include "omninav/core/errors.hpp"
 
-namespace omninav::eval {
+namespace omninav::measures {
 namespace {
 
 void require_finite(std::span<const double> values, const char* what) {
@@ -78,4 +78,4 @@ ErrorStats in_degrees(const ErrorStats& stats_rad) {
   return stats;
 }
 
-}  // namespace omninav::eval
+}  // namespace omninav::measures

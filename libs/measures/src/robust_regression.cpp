@@ -1,4 +1,4 @@
-#include "omninav/eval/robust_regression.hpp"
+#include "omninav/measures/robust_regression.hpp"
 
 #include <algorithm>
 #include <bit>
@@ -12,7 +12,7 @@
 #include "omninav/core/errors.hpp"
 #include "omninav/core/statistics.hpp"
 
-namespace omninav::eval {
+namespace omninav::measures {
 namespace {
 
 void require_line_data(std::span<const double> x, std::span<const double> y) {
@@ -181,4 +181,4 @@ LineFit theil_sen_fit(std::span<const double> x, std::span<const double> y,
   return fit;
 }
 
-}  // namespace omninav::eval
+}  // namespace omninav::measures

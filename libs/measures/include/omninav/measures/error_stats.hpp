@@ -10,7 +10,7 @@
 #include <span>
 #include <vector>
 
-namespace omninav::eval {
+namespace omninav::measures {
 
 struct ErrorStats {
   std::size_t count = 0;  // number of errors
@@ -38,4 +38,4 @@ ErrorStats error_stats(std::span<const double> errors);
 // edges, docs/design.md Conventions).
 ErrorStats in_degrees(const ErrorStats& stats_rad);
 
-}  // namespace omninav::eval
+}  // namespace omninav::measures

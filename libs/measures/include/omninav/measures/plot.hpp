@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-namespace omninav::eval {
+namespace omninav::measures {
 
 // Colour i of the fixed palette (Tableau 10, BGR), cycling after 10. The k-th series or point
 // set added to a plot gets palette_colour(k).
@@ -103,4 +103,4 @@ class PointsPlot {
   std::vector<PlotSegment> segments_;
 };
 
-}  // namespace omninav::eval
+}  // namespace omninav::measures

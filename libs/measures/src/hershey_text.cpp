@@ -1,10 +1,10 @@
-#include "omninav/eval/hershey_text.hpp"
+#include "omninav/measures/hershey_text.hpp"
 
 #include <array>
 #include <cctype>
 #include <utility>
 
-namespace omninav::eval {
+namespace omninav::measures {
 
 std::string hershey_text(std::string_view utf8) {
   static constexpr std::array<std::pair<std::string_view, std::string_view>, 18> kSpelled{{
@@ -57,4 +57,4 @@ std::string hershey_text(std::string_view utf8) {
   return text;
 }
 
-}  // namespace omninav::eval
+}  // namespace omninav::measures

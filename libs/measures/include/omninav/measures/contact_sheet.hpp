@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-namespace omninav::eval {
+namespace omninav::measures {
 
 struct ContactSheetParams {
   // Each image is enlarged by the smallest whole factor that makes it at least this wide
@@ -39,4 +39,4 @@ struct ContactSheetParams {
 cv::Mat contact_sheet(const std::vector<cv::Mat>& images, const std::vector<std::string>& captions,
                       int columns, const ContactSheetParams& params = {});
 
-}  // namespace omninav::eval
+}  // namespace omninav::measures

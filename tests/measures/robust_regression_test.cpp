@@ -1,4 +1,4 @@
-#include "omninav/eval/robust_regression.hpp"
+#include "omninav/measures/robust_regression.hpp"
 
 #include <gtest/gtest.h>
 
@@ -9,7 +9,7 @@
 
 #include "omninav/core/errors.hpp"
 
-namespace omninav::eval {
+namespace omninav::measures {
 namespace {
 
 // The oracle beside Theil–Sen: ordinary least squares, which outliers pull.
@@ -146,4 +146,4 @@ TEST(LineFit, RejectsBadInput) {
 }
 
 }  // namespace
-}  // namespace omninav::eval
+}  // namespace omninav::measures

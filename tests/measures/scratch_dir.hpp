@@ -7,13 +7,13 @@
 #include <filesystem>
 #include <string>
 
-namespace omninav::eval::testing {
+namespace omninav::measures::testing {
 
 class ScratchDir {
  public:
   explicit ScratchDir(const std::string& name)
       : path_(std::filesystem::temp_directory_path() /
-              ("omninav_eval_" + name + "_" + std::to_string(::getpid()))) {
+              ("omninav_measures_" + name + "_" + std::to_string(::getpid()))) {
     std::filesystem::remove_all(path_);
     std::filesystem::create_directories(path_);
   }
@@ -31,4 +31,4 @@ class ScratchDir {
   std::filesystem::path path_;
 };
 
-}  // namespace omninav::eval::testing
+}  // namespace omninav::measures::testing

@@ -1,4 +1,4 @@
-#include "omninav/eval/procrustes.hpp"
+#include "omninav/measures/procrustes.hpp"
 
 // GCC 12 at -O2 reports -Wstringop-overread inside Eigen::umeyama (Umeyama.h:157, the 2-vector
 // translation stored into the 3×3 result by a 16-byte SSE packet on a path the runtime size
@@ -16,7 +16,7 @@
 #include "omninav/core/angles.hpp"
 #include "omninav/core/errors.hpp"
 
-namespace omninav::eval {
+namespace omninav::measures {
 namespace {
 
 Eigen::Matrix2Xd as_matrix(std::span<const Eigen::Vector2d> points) {
@@ -150,4 +150,4 @@ SplitRmse split_rmse_in_spacing(std::span<const Eigen::Vector2d> aligned,
   return split;
 }
 
-}  // namespace omninav::eval
+}  // namespace omninav::measures

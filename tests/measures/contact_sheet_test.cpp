@@ -1,14 +1,14 @@
-#include "omninav/eval/contact_sheet.hpp"
+#include "omninav/measures/contact_sheet.hpp"
 
 #include <gtest/gtest.h>
 
 #include <opencv2/imgcodecs.hpp>
 
-#include "eval/scratch_dir.hpp"
+#include "measures/scratch_dir.hpp"
 #include "omninav/core/errors.hpp"
-#include "omninav/eval/png.hpp"
+#include "omninav/measures/png.hpp"
 
-namespace omninav::eval {
+namespace omninav::measures {
 namespace {
 
 using testing::ScratchDir;
@@ -118,4 +118,4 @@ TEST(SavePng, RoundTripsAndNamesTheFileOnFailure) {
 }
 
 }  // namespace
-}  // namespace omninav::eval
+}  // namespace omninav::measures

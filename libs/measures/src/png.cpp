@@ -1,4 +1,4 @@
-#include "omninav/eval/png.hpp"
+#include "omninav/measures/png.hpp"
 
 #include <opencv2/imgcodecs.hpp>
 #include <string>
@@ -7,7 +7,7 @@
 #include "omninav/core/errors.hpp"
 #include "omninav/core/output_file.hpp"
 
-namespace omninav::eval {
+namespace omninav::measures {
 
 void save_png(const cv::Mat& image, const std::filesystem::path& path) {
   if (image.empty()) throw UsageError("cannot write " + path.string() + ": the image is empty");
@@ -33,4 +33,4 @@ void save_png(const cv::Mat& image, const std::filesystem::path& path) {
                     std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
 }
 
-}  // namespace omninav::eval
+}  // namespace omninav::measures

@@ -1,4 +1,4 @@
-#include "omninav/eval/plot.hpp"
+#include "omninav/measures/plot.hpp"
 
 #include <gtest/gtest.h>
 
@@ -8,10 +8,10 @@
 #include <opencv2/imgproc.hpp>
 #include <vector>
 
-#include "eval/scratch_dir.hpp"
+#include "measures/scratch_dir.hpp"
 #include "omninav/core/errors.hpp"
 
-namespace omninav::eval {
+namespace omninav::measures {
 namespace {
 
 using testing::ScratchDir;
@@ -219,4 +219,4 @@ TEST(PointsPlot, RejectsBadArguments) {
 }
 
 }  // namespace
-}  // namespace omninav::eval
+}  // namespace omninav::measures

@@ -15,7 +15,7 @@
 #include <cstddef>
 #include <span>
 
-namespace omninav::eval {
+namespace omninav::measures {
 
 struct LineFit {
   double intercept = 0.0;  // a, in the unit of y
@@ -40,4 +40,4 @@ struct TheilSenParams {
 LineFit theil_sen_fit(std::span<const double> x, std::span<const double> y,
                       const TheilSenParams& params = {});
 
-}  // namespace omninav::eval
+}  // namespace omninav::measures
