@@ -108,6 +108,8 @@ std::optional<LiveOutput> LiveSession::push(const LiveFrame& frame) {
       frame.odometry ? std::optional<double>(frame.odometry->heading_rad) : std::nullopt;
   output.compass = compass_.push(frame.image, frames_, source, start_heading);
   output.place = recognise(frame.image, frame.odometry);
+  last_odometry_ = frame.odometry;
+  ++frames_;
   if (explorer_) {
     io::Frame explored;
     explored.index = explored_frames_++;
@@ -120,8 +122,6 @@ std::optional<LiveOutput> LiveSession::push(const LiveFrame& frame) {
     }
     output.new_place = explorer_->add(explored);
   }
-  last_odometry_ = frame.odometry;
-  ++frames_;
   return output;
 }
 

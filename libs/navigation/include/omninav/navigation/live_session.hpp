@@ -101,6 +101,7 @@ class LiveSession {
   LiveSession& operator=(const LiveSession&) = delete;
 
   // The frame's outputs; none when it was skipped (last_skip() says why, skipped() counts).
+  // While exploring, throws what memory::Explorer::add throws (the frame counts as seen).
   std::optional<LiveOutput> push(const LiveFrame& frame);
 
   // Exploring: the frames pushed from now on go into a new run of the map, until stop.
