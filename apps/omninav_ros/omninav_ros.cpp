@@ -53,7 +53,9 @@ class Node {
     new_place_ = private_node.advertise<std_msgs::UInt32>("new_place", queue);
     const uint32_t size = static_cast<uint32_t>(std::max(queue, 1));
     if (private_node.param("compressed", false)) {
-      image_ = node.subscribe("image/compressed", size, &Node::on_compressed, this);
+      // As image_transport names it: the raw topic's name (after remapping) + "/compressed".
+      image_ = node.subscribe(node.resolveName("image") + "/compressed", size, &Node::on_compressed,
+                              this);
     } else {
       image_ = node.subscribe("image", size, &Node::on_image, this);
     }

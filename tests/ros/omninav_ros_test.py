@@ -6,6 +6,9 @@ then a rosmaster on a free port, omninav_ros on the map with odometry by its lau
   - /omninav/heading: one message per frame, stamped as the frame, its yaw and variance those
     of `omninav compass --pose-topic /odom` (the same compass on the same frames, started at the
     same heading) to the CSV's precision;
+  - a second node without a map on the same bag's frames as PNG (sensor_msgs/CompressedImage,
+    `compressed`), played together with the first bag: its headings are those of `omninav
+    compass` on that bag (started at 0 without odometry);
   - /omninav/place: every frame recognises the place made from its own image (every frame of the
     route is a place of the map: the truth by construction), with a confidence in (0, 1];
   - bad input after the play (an image in an unknown encoding, one of another size) is skipped
@@ -59,7 +62,22 @@ def stop(process):
 
 
 def run(command, **kwargs):
-    subprocess.run(command, check=True, timeout=60, **kwargs)
+    subprocess.run(command, check=True, timeout=30, **kwargs)
+
+
+def expect_headings(messages, offline):
+    """The node's ~heading messages against `omninav compass`'s CSV rows, frame for frame."""
+    assert len(messages) == len(offline), (len(messages), len(offline))
+    for index, (message, row) in enumerate(zip(messages, offline)):
+        assert abs(message.header.stamp.to_sec() - float(row["time_s"])) < 1e-4, index
+        orientation = message.pose.pose.orientation
+        yaw = 2.0 * math.atan2(orientation.z, orientation.w)
+        expected = math.radians(float(row["heading_deg"]))
+        error = math.atan2(math.sin(yaw - expected), math.cos(yaw - expected))
+        assert abs(error) < 1e-9, (index, math.degrees(yaw), row["heading_deg"])
+        sigma = math.radians(float(row["heading_sigma_deg"]))
+        # heading_sigma_deg is printed with 4 decimals.
+        assert abs(math.sqrt(message.pose.covariance[35]) - sigma) < math.radians(1e-4), index
 
 
 def main():
@@ -99,6 +117,14 @@ def main():
         with open(compass_csv, newline="") as file:
             offline = list(csv.DictReader(file))
         assert len(offline) == FRAMES, offline
+        png_bag = os.path.join(scratch, "route_png.bag")
+        run([sys.executable, os.path.join(writers, "write_ros1_bag.py"),
+             os.path.join(writers, "route"), png_bag, "--encoding", "png"])
+        png_csv = os.path.join(scratch, "compass_png.csv")
+        run([omninav, "-q", "compass", "--input", png_bag, "--out", png_csv])
+        with open(png_csv, newline="") as file:
+            offline_png = list(csv.DictReader(file))
+        assert len(offline_png) == FRAMES, offline_png
 
         port = free_port()
         environment = dict(os.environ, ROS_MASTER_URI="http://127.0.0.1:%d" % port,
@@ -121,20 +147,26 @@ def main():
             wait_for("the rosmaster", lambda: rosgraph.Master("/test").is_online(), 15)
             omninav_ros = start("omninav_ros", [
                 "roslaunch", launch_file, "map:=" + map_file, "use_odometry:=true"])
+            start("omninav_compressed", [
+                os.path.join(package_path, "omninav", "omninav_ros"), "__name:=compressed",
+                "_compressed:=true", "image:=/camera/image_raw"])
             rospy.init_node("omninav_ros_test", disable_signals=True)
-            headings, places, new_places = [], [], []
+            headings, places, new_places, compressed = [], [], [], []
+            rospy.Subscriber("/compressed/heading", PoseWithCovarianceStamped, compressed.append)
             rospy.Subscriber("/omninav/heading", PoseWithCovarianceStamped, headings.append)
             rospy.Subscriber("/omninav/place", Float64MultiArray, places.append)
             rospy.Subscriber("/omninav/new_place", UInt32, new_places.append)
             rospy.wait_for_service("/omninav/start_exploring", timeout=20)
+            rospy.wait_for_service("/compressed/start_exploring", timeout=20)
             assert omninav_ros.poll() is None, "omninav_ros ended"
             response = rospy.ServiceProxy("/omninav/start_exploring", Trigger)()
             assert response.success, response.message
             # At five times the recorded rate: the outputs do not depend on it.
-            run(["rosbag", "play", "-q", "--wait-for-subscribers", "-r", "5", bag],
+            run(["rosbag", "play", "-q", "--wait-for-subscribers", "-r", "5", bag, png_bag],
                 env=environment, stdout=subprocess.DEVNULL)
             wait_for("%d headings and places" % FRAMES,
-                     lambda: len(headings) >= FRAMES and len(places) >= FRAMES, 20)
+                     lambda: len(headings) >= FRAMES and len(places) >= FRAMES and
+                     len(compressed) >= FRAMES, 20)
             # Bad input after the bag's last frame: an unknown encoding, then a smaller image,
             # which the odometry after it lets through to the session.
             last = rospy.Time.from_sec(float(offline[-1]["time_s"]))
@@ -159,28 +191,19 @@ def main():
             for process in reversed(processes):
                 stop(process)
             rospy.signal_shutdown("done")
-        output = {}
-        for name, log in logs.items():
-            log.seek(0)
-            output[name] = log.read()
-            print("--- %s\n%s" % (name, output[name]))
+            output = {}
+            for name, log in logs.items():
+                log.seek(0)
+                output[name] = log.read()
+                print("--- %s\n%s" % (name, output[name]))
 
         summary = ("omninav: skipped 1 frames the session refused, 1 that could not be decoded, "
                    "0 that failed")
         assert summary in output["omninav_ros"], "no line: " + summary
 
-        assert len(headings) == FRAMES, len(headings)
         assert len(places) == FRAMES, len(places)
-        for index, (message, row) in enumerate(zip(headings, offline)):
-            assert abs(message.header.stamp.to_sec() - float(row["time_s"])) < 1e-4, index
-            orientation = message.pose.pose.orientation
-            yaw = 2.0 * math.atan2(orientation.z, orientation.w)
-            expected = math.radians(float(row["heading_deg"]))
-            error = math.atan2(math.sin(yaw - expected), math.cos(yaw - expected))
-            assert abs(error) < 1e-9, (index, math.degrees(yaw), row["heading_deg"])
-            sigma = math.radians(float(row["heading_sigma_deg"]))
-            # heading_sigma_deg is printed with 4 decimals.
-            assert abs(math.sqrt(message.pose.covariance[35]) - sigma) < math.radians(1e-4), index
+        expect_headings(headings, offline)
+        expect_headings(compressed, offline_png)
         fields = places[0].layout.dim[0].label.split(",")
         for index, message in enumerate(places):
             place = dict(zip(fields, message.data))
@@ -192,8 +215,8 @@ def main():
         with sqlite3.connect(map_file) as database:
             saved = database.execute("SELECT COUNT(*) FROM places").fetchone()[0]
         assert saved == FRAMES + len(new_places), (saved, len(new_places))
-    print("omninav_ros: %d frames, headings as `omninav compass`, places as made, %d places "
-          "explored and saved" % (FRAMES, len(new_places)))
+    print("omninav_ros: %d frames raw and compressed, headings as `omninav compass`, places as "
+          "made, %d places explored and saved" % (FRAMES, len(new_places)))
     return 0
 
 
