@@ -52,17 +52,33 @@ def wait_for(what, condition, seconds):
 
 
 def stop(process):
+    """Ctrl-C, as a user stops a node (the node logs its counts then); its whole process group
+    killed when that does not end it in 5 s, or leaves anything behind (roslaunch's node)."""
     if process.poll() is None:
         process.send_signal(signal.SIGINT)
         try:
             process.wait(timeout=5)
         except subprocess.TimeoutExpired:
-            process.kill()
-            process.wait()
+            pass
+    try:
+        os.killpg(process.pid, signal.SIGKILL)
+    except ProcessLookupError:
+        pass
+    process.wait()
 
 
 def run(command, **kwargs):
-    subprocess.run(command, check=True, timeout=30, **kwargs)
+    """Runs `command` in a process group of its own, all of which is killed after 30 s: `rosbag
+    play` is a Python wrapper whose player (/usr/lib/rosbag/play) outlives a kill of it alone."""
+    process = subprocess.Popen(command, start_new_session=True, **kwargs)
+    try:
+        status = process.wait(timeout=30)
+    except subprocess.TimeoutExpired:
+        os.killpg(process.pid, signal.SIGKILL)
+        process.wait()
+        raise
+    if status != 0:
+        raise subprocess.CalledProcessError(status, command)
 
 
 def expect_headings(messages, offline):
@@ -138,7 +154,7 @@ def main():
         def start(name, command):
             logs[name] = open(os.path.join(scratch, name + ".log"), "w+")
             processes.append(subprocess.Popen(command, env=environment, stdout=logs[name],
-                                              stderr=subprocess.STDOUT))
+                                              stderr=subprocess.STDOUT, start_new_session=True))
             return processes[-1]
 
         try:
