@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Regenerates the statistics table of docs/compass.md: the visual compass on sequences rendered
+# Regenerates the statistics table of docs/evaluation.md ("Compass: Evaluation"): the visual compass on sequences rendered
 # in the built-in room that mirror the datasets of Labrosse 2006, §4.2, evaluated as
 # its Tables 3-4, for Algorithm 1 ("Atm 0.6", t = 0.6055, with compass.yaml's rotation cap:
 # "Atm 0.6055 cap 6°") and the best fixed skip ("Fx n": the n in 0..15 with the smallest |error|

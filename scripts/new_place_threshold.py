@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """The new-place threshold of exploration (config/memory.yaml), chosen across the zoo leaving one
-family out (docs/memory.md, "The new-place threshold"): the sparsest map whose worst family
+family out (docs/evaluation.md, "Memory: The new-place threshold"): the sparsest map whose worst family
 localises >= 95% of queries within 0.3 m.
 
   scripts/new_place_threshold.py run [BIN]   # explore every full-suite row's zigzag30 and wander

@@ -32,6 +32,10 @@ packages=(
   librosbag-dev libsensor-msgs-dev libnav-msgs-dev libgeometry-msgs-dev libcv-bridge-dev
   liblz4-dev libzstd-dev python3-rosbag python3-sensor-msgs python3-nav-msgs
   python3-geometry-msgs
+  # the ROS 1 node (apps/omninav_ros) and its test: roscpp, the std_srvs and std_msgs headers,
+  # a rosmaster, roslaunch and rospy to talk to it
+  libroscpp-dev libstd-srvs-dev libstd-msgs-dev python3-rosmaster python3-roslaunch
+  python3-rospy python3-std-srvs python3-std-msgs
   # the Python module, its tests and example, and `pip install --no-build-isolation .`
   pybind11-dev python3-dev python3-numpy python3-pytest python3-matplotlib python3-pip
   python3-setuptools python3-wheel python3-venv

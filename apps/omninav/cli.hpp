@@ -17,6 +17,10 @@ struct GlobalOptions {
   bool verbose = false;
 };
 
+// The configuration folder beside the program: <prefix>/share/omninav/config for a program in
+// <prefix>/bin (omninav, omninav_ros), as installed and as in the build tree.
+std::filesystem::path default_config_dir();
+
 // The range check of every number on the command line: CLI::Range lets NaN through (a NaN
 // compares false with both bounds), this refuses anything but a finite number in [min, max].
 CLI::Validator NumberRange(double min, double max);

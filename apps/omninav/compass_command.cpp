@@ -22,9 +22,9 @@
 #include "omninav/core/output_file.hpp"
 #include "omninav/core/parse.hpp"
 #include "omninav/core/progress.hpp"
-#include "omninav/eval/png.hpp"
 #include "omninav/evaluation/compass_output.hpp"
 #include "omninav/io/panorama_input.hpp"
+#include "omninav/measures/png.hpp"
 #include "omninav/memory/map_store.hpp"
 #include "omninav/navigation/map_heading.hpp"
 #include "omninav/report/compass_figures.hpp"
@@ -253,7 +253,7 @@ void write_plot(const fs::path& path, const CompassRows& run, const TruthRows& w
     for (const evaluation::CompassTruth& t : with_truth.truth)
       all_truth_rad.push_back(t.heading_rad);
   }
-  eval::save_png(report::plot_compass_run(all, all_truth_rad, title), path);
+  measures::save_png(report::plot_compass_run(all, all_truth_rad, title), path);
 }
 
 void run_compass(const GlobalOptions& global, const CompassOptions& options) {

@@ -11,8 +11,8 @@
 #include "omninav/core/errors.hpp"
 #include "omninav/core/log.hpp"
 #include "omninav/core/output_file.hpp"
-#include "omninav/eval/png.hpp"
 #include "omninav/evaluation/evaluate.hpp"
+#include "omninav/measures/png.hpp"
 
 namespace omninav::cli {
 namespace {
@@ -64,7 +64,7 @@ void run_evaluate(const GlobalOptions& global, const EvaluateOptions& options) {
   const std::filesystem::path picture = out / "evaluation.png";
   const std::filesystem::path commands = out / "commands.sh";
   write_output_file(csv, evaluation::table_csv(result.rows, columns));
-  eval::save_png(
+  measures::save_png(
       evaluation::table_picture(result.rows, columns, "omninav evaluate --suite " + suite.name),
       picture);
   std::string script = "#!/bin/sh\n# The commands that remake every figure of " + csv.string() +

@@ -11,12 +11,10 @@
 #include "omninav/core/log.hpp"
 #include "omninav/core/output_file.hpp"
 #include "omninav/core/parse.hpp"
-#include "omninav/eval/png.hpp"
-#include "omninav/evaluation/home_vectors.hpp"
 #include "omninav/evaluation/localisation_output.hpp"
-#include "omninav/memory/localisation.hpp"
+#include "omninav/evaluation/query_localisation.hpp"
+#include "omninav/measures/png.hpp"
 #include "omninav/memory/map_store.hpp"
-#include "omninav/navigation/memory_places.hpp"
 #include "omninav/report/memory_figures.hpp"
 
 namespace omninav::cli {
@@ -63,23 +61,20 @@ void run_localise(const GlobalOptions& global, const LocaliseOptions& options) {
   }
 
   const memory::VisualMemory map = memory::load_map(options.map);
-  if (map.place_count() == 0) throw InputError(options.map.string() + ": the map has no places");
-  memory::Localiser localiser(map, params);
+  evaluation::QueryLocalisationOptions query_options;
+  query_options.exhaustive = options.exhaustive;
+  if (options.home_vector) {
+    query_options.home_vector = load_compass_config(global.config_dir).min_warping;
+    query_options.panorama = load_camera_config(global.config_dir).panorama;
+  }
   // A query matches a place by route's and navigate's criterion (navigation.yaml).
-  const double match_limit =
-      navigation::match_limit(map, load_navigation_config(global.config_dir).route);
-  std::optional<evaluation::LocalisationScore> score;
-  if (map.all_have_truth()) score.emplace(map);
+  evaluation::QueryLocaliser localiser(map, options.map.string(), params,
+                                       load_navigation_config(global.config_dir).route,
+                                       query_options);
   if (!options.plot.empty() && !memory::place_positions(map)) {
     throw UsageError(options.map.string() +
                      ": --plot needs place positions (a lattice or ground truth); the map has "
                      "neither");
-  }
-
-  std::optional<compass::MinWarping> warping;
-  if (options.home_vector) {
-    warping.emplace(load_compass_config(global.config_dir).min_warping,
-                    load_camera_config(global.config_dir).panorama);
   }
 
   std::vector<evaluation::QueryLocalisation> results;
@@ -90,39 +85,23 @@ void run_localise(const GlobalOptions& global, const LocaliseOptions& options) {
                                               .topic = options.bag.topic,
                                               .pose_topic = options.bag.pose_topic});
     while (std::optional<io::Frame> frame = input.next()) {
-      const signature::Signature signature = localiser.signature_of(frame->image, frame->source);
-      evaluation::QueryLocalisation q;
-      q.source = frame->source;
-      q.truth = frame->truth;
-      q.result = options.exhaustive ? localiser.localise_exhaustive(signature)
-                                    : localiser.localise(signature);
-      q.no_match = navigation::no_match_reason(q.result, match_limit);
-      if (q.no_match) {
-        q.result.best.clear();
-        q.result.position.reset();
-      }
-      if (score && q.truth) q.score = score->add(q.result, *q.truth);
-      if (warping && !q.result.best.empty()) {
-        const int best = q.result.best.front().place;
-        q.home = evaluation::home_vector_to_place(*warping, map.place(best),
-                                                  "place " + std::to_string(best), frame->image,
-                                                  frame->source);
-      }
+      const signature::Signature signature = localiser.signature_of(*frame);
+      evaluation::QueryLocalisation q = localiser.localise(*frame, signature);
       if (!options.plot.empty()) {
         std::optional<Eigen::Vector2d> truth;
         if (q.truth && memory::place_positions(map)->first == memory::PositionFrame::kTruth) {
           truth = q.truth->floor_position();
         }
         cv::Mat figure = report::localisation_figure(
-            localiser, signature, q.result, truth,
+            localiser.localiser(), signature, q.result, truth,
             "hierarchical localisation of " + std::filesystem::path(q.source).filename().string());
         if (results.empty()) {
           first_figure = std::move(figure);
         } else {
           if (results.size() == 1) {
-            eval::save_png(first_figure, numbered_plot_file(options.plot, 0));
+            measures::save_png(first_figure, numbered_plot_file(options.plot, 0));
           }
-          eval::save_png(figure, numbered_plot_file(options.plot, results.size()));
+          measures::save_png(figure, numbered_plot_file(options.plot, results.size()));
         }
       }
       results.push_back(std::move(q));
@@ -132,7 +111,7 @@ void run_localise(const GlobalOptions& global, const LocaliseOptions& options) {
   if (results.size() == 1 && results.front().no_match) {
     throw InputError(results.front().source + ": " + *results.front().no_match);
   }
-  if (!options.plot.empty() && results.size() == 1) eval::save_png(first_figure, options.plot);
+  if (!options.plot.empty() && results.size() == 1) measures::save_png(first_figure, options.plot);
   const auto unmatched =
       std::count_if(results.begin(), results.end(),
                     [](const evaluation::QueryLocalisation& q) { return q.no_match.has_value(); });
@@ -142,6 +121,7 @@ void run_localise(const GlobalOptions& global, const LocaliseOptions& options) {
   }
 
   const std::vector<int>& levels = params.hierarchy.levels;
+  const std::optional<evaluation::LocalisationScore>& score = localiser.score();
   if (options.format == OutputFormat::kCsv) {
     evaluation::write_localisation_csv_header(std::cout, levels, options.home_vector);
     for (const evaluation::QueryLocalisation& q : results) {

@@ -10,14 +10,13 @@
 #include "omninav/core/angles.hpp"
 #include "omninav/core/errors.hpp"
 #include "omninav/core/format.hpp"
-#include "omninav/core/log.hpp"
 #include "omninav/core/output_file.hpp"
 #include "omninav/core/parse.hpp"
-#include "omninav/eval/png.hpp"
 #include "omninav/evaluation/navigation_trials.hpp"
 #include "omninav/evaluation/robot_worlds.hpp"
 #include "omninav/evaluation/trials_output.hpp"
 #include "omninav/io/image_file.hpp"
+#include "omninav/measures/png.hpp"
 #include "omninav/memory/map_store.hpp"
 #include "omninav/navigation/memory_places.hpp"
 #include "omninav/report/navigation_figures.hpp"
@@ -58,23 +57,6 @@ void write_csv_file(const std::filesystem::path& file, Write write) {
   csv.commit();
 }
 
-// The images of a grid database (or any input whose images have poses), as panoramas.
-std::vector<evaluation::GridImage> read_grid(const std::filesystem::path& input,
-                                             const std::filesystem::path& config_dir) {
-  io::PanoramaInput panoramas = open_panoramas(input, config_dir);
-  std::vector<evaluation::GridImage> images;
-  while (std::optional<io::Frame> frame = panoramas.next()) {
-    if (!frame->truth) {
-      throw InputError(frame->source + ": no pose; a grid world needs the position of every image");
-    }
-    images.push_back({frame->image, *frame->truth});
-  }
-  if (!panoramas.is_grid()) {
-    log_info(input.string() + " is not marked a grid database; its images are used as one");
-  }
-  return images;
-}
-
 void evaluate_trials(const GlobalOptions& global, const NavigateOptions& options,
                      const memory::VisualMemory& memory,
                      const navigation::GoalNavigationSetup& setup, NavigationConfig navigation,
@@ -102,7 +84,7 @@ void evaluate_trials(const GlobalOptions& global, const NavigateOptions& options
     if (!o.reached || o.result.path_length_m > kDetourRatio * o.straight_m) {
       const report::NavigationScene scene{
           world.obstacles, {}, Eigen::Vector2d(o.trial.goal.x_m, o.trial.goal.y_m)};
-      eval::save_png(
+      measures::save_png(
           report::navigation_path_figure(o.result, setup.places, o.goal_place, memory, scene),
           options.out / ("trial_" + std::to_string(i) + ".png"));
     }
@@ -118,7 +100,7 @@ void run_navigate(const GlobalOptions& global, const NavigateOptions& options) {
   if (options.trials == 0 && (options.start.empty() || options.goal.empty()))
     throw UsageError("navigate needs --start and --goal (or --trials N for an evaluation)");
   const CameraConfig camera = load_camera_config(global.config_dir);
-  sim::WorldsConfig worlds = load_worlds_config(global.config_dir, camera.panorama);
+  const sim::WorldsConfig worlds = load_worlds_config(global.config_dir, camera.panorama);
   const memory::MemoryConfig memory_config = load_memory_config(global.config_dir);
   NavigationConfig navigation = load_navigation_config(global.config_dir);
   if (options.max_steps > 0) navigation.navigator.max_steps = options.max_steps;
@@ -140,15 +122,14 @@ void run_navigate(const GlobalOptions& global, const NavigateOptions& options) {
   // The robot in a rendered world, or on a grid of stored images.
   std::optional<sim::World> world;
   std::unique_ptr<sim::Renderer> renderer;
-  std::unique_ptr<sim::VirtualRobot> robot;
-  std::unique_ptr<navigation::NavigationWorld> body;
+  evaluation::RenderedRobot rendered;
+  std::unique_ptr<navigation::NavigationWorld> grid_world;
+  navigation::NavigationWorld* body = nullptr;
   std::vector<Eigen::Vector2d> grid;  // the grid images' true positions
   if (options.database.empty()) {
     world = sim::load_world(options.world, worlds);
-    // The robot's camera makes panoramas of the size the map was built from.
-    worlds.render.geometry.width_px = memory.place(0).signature.width_px;
-    worlds.render.geometry.height_px = memory.place(0).signature.rows;
-    renderer = std::make_unique<sim::Renderer>(*world, worlds.render);
+    renderer = std::make_unique<sim::Renderer>(
+        *world, evaluation::render_params_for_map(memory, worlds.render));
     if (options.trials > 0) {
       evaluate_trials(global, options, memory, setup, navigation, *world, *renderer);
       return;
@@ -158,17 +139,17 @@ void run_navigate(const GlobalOptions& global, const NavigateOptions& options) {
       throw UsageError("--start: (" + options.start +
                        ") is inside furniture or outside the floor of " + world->name);
     }
-    const double camera_z = memory.place(0).truth ? memory.place(0).truth->z_m : 1.0;
-    robot = std::make_unique<sim::VirtualRobot>(
-        *world, CameraPose{start.x_m, start.y_m, camera_z, start.heading_rad, 0.0, 0.0},
-        navigation.robot);
-    body = std::make_unique<evaluation::RenderedWorld>(*robot, *renderer);
+    rendered = evaluation::place_robot(*world, *renderer, memory, start, navigation.robot);
+    body = rendered.world.get();
   } else {
-    std::vector<evaluation::GridImage> images = read_grid(options.database, global.config_dir);
+    io::PanoramaInput panoramas = open_panoramas(options.database, global.config_dir);
+    std::vector<evaluation::GridImage> images =
+        evaluation::read_grid_images(panoramas, options.database.string());
     for (const evaluation::GridImage& image : images)
       grid.emplace_back(image.pose.x_m, image.pose.y_m);
-    body = std::make_unique<evaluation::GridDatabaseWorld>(
+    grid_world = std::make_unique<evaluation::GridDatabaseWorld>(
         std::move(images), parse_start(options.start), navigation.robot);
+    body = grid_world.get();
   }
 
   const navigation::GoalRun run = navigation::navigate_to_image(*body, io::read_image(options.goal),
@@ -181,7 +162,7 @@ void run_navigate(const GlobalOptions& global, const NavigateOptions& options) {
   });
   const report::NavigationScene scene{world ? world->obstacles : std::vector<sim::FloorBox>{}, grid,
                                       std::nullopt};
-  eval::save_png(
+  measures::save_png(
       report::navigation_path_figure(result, setup.places, run.goal.place, memory, scene),
       options.out / "path.png");
   summary(global) << (result.reached ? "reached" : "did not reach") << " the goal (place "

@@ -8,8 +8,8 @@
 #include "omninav/core/format.hpp"
 #include "omninav/core/log.hpp"
 #include "omninav/core/output_file.hpp"
-#include "omninav/eval/png.hpp"
 #include "omninav/evaluation/organised_map.hpp"
+#include "omninav/measures/png.hpp"
 #include "omninav/memory/map_store.hpp"
 #include "omninav/report/lattice_figures.hpp"
 
@@ -96,8 +96,8 @@ void run_organise(const GlobalOptions& global, const OrganiseOptions& options) {
                     << evaluation->neighbour_triangles
                     << " triangles of true neighbours turned over in the lattice\n";
   }
-  eval::save_png(report::lattice_picture(memory, organised, evaluation ? &*evaluation : nullptr),
-                 picture);
+  measures::save_png(
+      report::lattice_picture(memory, organised, evaluation ? &*evaluation : nullptr), picture);
   // The map last: a failure above leaves it as it was.
   store.save(result.memory);
   summary(global) << "  picture:  " << picture.string() << "\n";

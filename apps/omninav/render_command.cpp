@@ -6,9 +6,9 @@
 #include "omninav/core/angles.hpp"
 #include "omninav/core/format.hpp"
 #include "omninav/core/log.hpp"
-#include "omninav/eval/contact_sheet.hpp"
-#include "omninav/eval/png.hpp"
 #include "omninav/evaluation/render_database.hpp"
+#include "omninav/measures/contact_sheet.hpp"
+#include "omninav/measures/png.hpp"
 #include "omninav/report/floor_plan.hpp"
 
 namespace omninav::cli {
@@ -59,7 +59,7 @@ void run_render(const GlobalOptions& global, const RenderOptions& options) {
                        fixed(rad_to_deg(pose.heading_rad), 0) + " deg");
   }
   const std::filesystem::path sheet = options.out / "contact_sheet.png";
-  eval::save_png(eval::contact_sheet(previews, captions, 2), sheet);
+  measures::save_png(measures::contact_sheet(previews, captions, 2), sheet);
 
   const std::filesystem::path plan = options.out / "plan.png";
   report::floor_plan(world, trajectory).save(plan);

@@ -9,8 +9,8 @@
 #include "omninav/core/json.hpp"
 #include "omninav/core/log.hpp"
 #include "omninav/core/output_file.hpp"
-#include "omninav/eval/png.hpp"
 #include "omninav/io/image_file.hpp"
+#include "omninav/measures/png.hpp"
 #include "omninav/memory/map_store.hpp"
 #include "omninav/navigation/memory_places.hpp"
 #include "omninav/report/navigation_figures.hpp"
@@ -77,7 +77,7 @@ void run_route(const GlobalOptions& global, const RouteOptions& options) {
     for (std::size_t i = 0; i < memory.place_count(); ++i)
       truth->emplace_back(memory.place(i).truth->x_m, memory.place(i).truth->y_m);
   }
-  eval::save_png(report::route_figure(places, plan, static_cast<int>(from.place), truth), plot);
+  measures::save_png(report::route_figure(places, plan, static_cast<int>(from.place), truth), plot);
   log_info("route picture: " + plot.string());
 }
 

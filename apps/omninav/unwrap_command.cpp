@@ -20,9 +20,9 @@
 #include "omninav/core/log.hpp"
 #include "omninav/core/panorama.hpp"
 #include "omninav/core/progress.hpp"
-#include "omninav/eval/png.hpp"
 #include "omninav/io/bag_sequence.hpp"
 #include "omninav/io/sequence.hpp"
+#include "omninav/measures/png.hpp"
 #include "omninav/omni/unwrap.hpp"
 
 namespace omninav::cli {
@@ -141,7 +141,7 @@ void run_unwrap(const UnwrapOptions& options, const GlobalOptions& global) {
         throw InputError(frame->source + ": " + unwrap_error.what());
       }
       const fs::path file = options.out / output_name(*frame, video, used_names);
-      eval::save_png(panorama, file);
+      measures::save_png(panorama, file);
       ++written;
       progress.advance();
     }

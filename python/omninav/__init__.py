@@ -30,6 +30,9 @@ from ._omninav import (  # noqa: F401 (re-exported)
     Frame,
     GoalRun,
     InputError,
+    LiveOutput,
+    LivePlace,
+    LiveSession,
     Localisation,
     LocalisationParams,
     Localiser,
@@ -103,7 +106,8 @@ def _fields_repr(value):
 for _type in (SamplingParams, MinimiserParams, CompassConfig, SignatureParams,
               ExplorationParams, LocalisationParams, MemoryConfig, RouteParams, LinkParams,
               BeliefParams, NavigatorParams,
-              NavigationConfig, Place, Edge, Localisation, RoutePlan, Run, NavigationStep, GoalRun):
+              NavigationConfig, Place, Edge, Localisation, RoutePlan, Run, NavigationStep, GoalRun,
+              LivePlace, LiveOutput):
     _type.__repr__ = _fields_repr
 del _type
 

@@ -378,6 +378,41 @@ class GoalRun:
     homing_steps: int
     lost_events: int
 
+# A robot's frames as they come (docs/ros.md: the ROS node runs the same session).
+class LivePlace:
+    place: int
+    similarity: float  # Eq. 3 over the map's places, 0..1000
+    dissimilarity_per_value: float
+    probability: float
+    confidence: float  # the belief on the place and the places linked to it
+    lost: bool
+
+class LiveOutput:
+    frame: int
+    stamp_s: float
+    compass: CompassEstimate
+    place: Optional[LivePlace]  # None without a map that has a lattice
+    new_place: Optional[int]  # exploring: the place the frame became
+
+class LiveSession:
+    def __init__(self, map: Optional[PathArg] = None,
+                 config_dir: Optional[PathArg] = None) -> None: ...
+    def push(self, panorama: Image, stamp_s: float,
+             odometry: Optional[Pose2] = None) -> Optional[LiveOutput]: ...
+    def start_exploring(self) -> None: ...
+    def stop_exploring(self) -> None: ...
+    def save(self) -> None: ...
+    @property
+    def exploring(self) -> bool: ...
+    @property
+    def place_count(self) -> int: ...
+    @property
+    def no_belief_reason(self) -> Optional[str]: ...
+    @property
+    def skipped(self) -> dict[str, int]: ...  # "bad image", "size change", "stamp not increasing"
+    @property
+    def last_skip(self) -> Optional[tuple[str, str]]: ...
+
 class Localiser:
     def __init__(self, map: Map, config: Optional[MemoryConfig] = None,
                  config_dir: Optional[PathArg] = None,

@@ -2,6 +2,8 @@
 // of the caller's: any Python object with view(step) -> panorama, move(turn_rad, distance_m) ->
 // metres driven, and truth() -> CameraPose (for the step log only). So a user drives their own
 // robot or simulator from Python, the navigator deciding each turn and step from the panoramas.
+// And the live session (navigation/live_session.hpp), as the ROS node runs it: a robot's frames
+// pushed as they come, each answered with its heading, place and new place.
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
@@ -12,6 +14,7 @@
 #include "omninav/evaluation/config_folder.hpp"
 #include "omninav/memory/localisation.hpp"
 #include "omninav/navigation/goal_navigation.hpp"
+#include "omninav/navigation/live_session.hpp"
 #include "omninav/navigation/memory_places.hpp"
 
 namespace omninav::python {
@@ -49,9 +52,125 @@ class PythonRobot : public navigation::NavigationWorld {
   py::object robot_;
 };
 
+void bind_live_session(py::module_& m) {
+  using navigation::LiveOutput;
+  using navigation::LivePlace;
+  using navigation::LiveSession;
+  py::class_<LivePlace>(m, "LivePlace",
+                        "The place the belief recognises in a frame (LiveSession.push).")
+      .def_readonly("place", &LivePlace::place, "The most probable place's index.")
+      .def_readonly("similarity", &LivePlace::similarity,
+                    "Eq. 3 over the map's places, 0..1000 (1000: the most similar).")
+      .def_readonly("dissimilarity_per_value", &LivePlace::dissimilarity_per_value)
+      .def_readonly("probability", &LivePlace::probability, "The belief's on the place.")
+      .def_readonly("confidence", &LivePlace::confidence,
+                    "The belief's on the place and the places linked to it.")
+      .def_readonly("lost", &LivePlace::lost, "confidence below belief.confident_share.");
+  py::class_<LiveOutput>(m, "LiveOutput", "A frame's outputs (LiveSession.push).")
+      .def_readonly("frame", &LiveOutput::frame, "Frames accepted before this one.")
+      .def_readonly("stamp_s", &LiveOutput::stamp_s)
+      .def_readonly("compass", &LiveOutput::compass, "The compass's CompassEstimate.")
+      .def_readonly("place", &LiveOutput::place,
+                    "The recognised LivePlace; None without a map "
+                    "that has a lattice.")
+      .def_readonly("new_place", &LiveOutput::new_place,
+                    "Exploring: the index of the place the frame became, else None.");
+  py::class_<LiveSession>(
+      m, "LiveSession",
+      "A robot's frames pushed one at a time, each answered at once, as the ROS node omninav_ros "
+      "runs it (docs/ros.md): the compass's heading (as `omninav compass`), with a map that "
+      "has a lattice the place the belief over places recognises, and while exploring the place "
+      "the frame became. Bad frames (an empty or non-8-bit image, a size change, a stamp not "
+      "after the last) are skipped and counted: push returns None.\n\n"
+      "    session = omninav.LiveSession('maps/lab.vmem')\n"
+      "    output = session.push(panorama, stamp_s=0.1, odometry=omninav.Pose2(0, 0, 0))")
+      .def(py::init([](std::optional<fs::path> map, std::optional<fs::path> config_dir) {
+             return std::make_unique<LiveSession>(
+                 evaluation::load_live_session_params(config_dir_or_default(config_dir)), map);
+           }),
+           py::arg("map") = py::none(), py::arg("config_dir") = py::none(),
+           "map: the map file to recognise places in and explore into (loaded when it exists); "
+           "None: the compass only. The parameters are compass.yaml, memory.yaml and "
+           "navigation.yaml of config_dir (None: omninav.default_config_dir()).")
+      .def(
+          "push",
+          [](LiveSession& session, const py::array& panorama, double stamp_s,
+             std::optional<Pose2> odometry) {
+            const Busy busy(&session, "this LiveSession");
+            py::object keep;
+            const cv::Mat image = array_to_mat(panorama, "live frame", keep);
+            py::gil_scoped_release release;
+            return session.push({image, stamp_s, odometry});
+          },
+          py::arg("panorama"), py::arg("stamp_s"), py::arg("odometry") = py::none(),
+          "The frame's LiveOutput, or None when it was skipped (last_skip says why). The stamps "
+          "must grow; odometry: the robot's Pose2 at the stamp.")
+      .def(
+          "start_exploring",
+          [](LiveSession& session) {
+            const Busy busy(&session, "this LiveSession");
+            session.start_exploring();
+          },
+          "The frames pushed from now on go into a new run of the map.")
+      .def("stop_exploring",
+           [](LiveSession& session) {
+             const Busy busy(&session, "this LiveSession");
+             session.stop_exploring();
+           })
+      .def(
+          "save",
+          [](LiveSession& session) {
+            const Busy busy(&session, "this LiveSession");
+            py::gil_scoped_release release;
+            session.save();
+          },
+          "Writes the map to its file (what changed, in one transaction). UsageError without "
+          "a map file.")
+      .def_property_readonly("exploring",
+                             [](const LiveSession& session) {
+                               const Busy busy(&session, "this LiveSession");
+                               return session.exploring();
+                             })
+      .def_property_readonly("place_count",
+                             [](const LiveSession& session) {
+                               const Busy busy(&session, "this LiveSession");
+                               return session.place_count();
+                             })
+      .def_property_readonly(
+          "no_belief_reason",
+          [](const LiveSession& session) {
+            const Busy busy(&session, "this LiveSession");
+            return session.no_belief_reason();
+          },
+          "Why no places are recognised (no map, no places, no lattice); None when they are.")
+      .def_property_readonly(
+          "skipped",
+          [](const LiveSession& session) {
+            const Busy busy(&session, "this LiveSession");
+            py::dict counts;
+            for (int reason = 0; reason < navigation::kSkipReasons; ++reason) {
+              const auto kind = static_cast<navigation::SkipReason>(reason);
+              counts[navigation::to_string(kind)] = session.skipped(kind);
+            }
+            return counts;
+          },
+          "The frames skipped so far by reason: 'bad image', 'size change', 'stamp not "
+          "increasing'.")
+      .def_property_readonly(
+          "last_skip",
+          [](const LiveSession& session) -> std::optional<std::pair<std::string, std::string>> {
+            const Busy busy(&session, "this LiveSession");
+            if (!session.last_skip()) return std::nullopt;
+            return std::make_pair(std::string(navigation::to_string(session.last_skip()->first)),
+                                  session.last_skip()->second);
+          },
+          "The last skip's (reason, message), None before any.");
+}
+
 }  // namespace
 
 void bind_navigation(py::module_& m, py::class_<Map>& map) {
+  bind_live_session(m);
   using navigation::NavigationStep;
   py::class_<NavigationStep>(m, "NavigationStep",
                              "One step of a navigation: the best place matched (None when "

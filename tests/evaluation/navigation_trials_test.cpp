@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "omninav/core/angles.hpp"
+#include "omninav/core/errors.hpp"
 #include "omninav/evaluation/robot_worlds.hpp"
 #include "support/room_navigation_map.hpp"
 
@@ -178,6 +179,19 @@ TEST_F(RoomNavigation, NavigationOnARenderedGridReachesItsGoal) {
   const double straight_m =
       std::hypot(goal_pose.x_m - start_pose.x_m, goal_pose.y_m - start_pose.y_m);
   EXPECT_LT(run.result.path_length_m, 1.5 * straight_m);
+}
+
+// A value set in code is refused by random_trials as the YAML loader refuses it in
+// navigation.yaml, naming the key (TrialParams::check).
+TEST_F(RoomNavigation, TrialParamsOutOfRangeAreRefusedNamingTheKey) {
+  TrialParams params;
+  params.goal_radius_m = 0.0;
+  try {
+    random_trials(map().world, {Eigen::Vector2d::Zero()}, kRoomGridSpacing_m, 0.15, 1.0, params);
+    FAIL() << "a goal radius of 0 was accepted";
+  } catch (const UsageError& error) {
+    EXPECT_NE(std::string(error.what()).find("trials.goal_radius_m"), std::string::npos);
+  }
 }
 
 }  // namespace

@@ -6,8 +6,8 @@
 #include <random>
 
 #include "omninav/core/errors.hpp"
-#include "omninav/eval/procrustes.hpp"
 #include "omninav/lattice/stiffness.hpp"
+#include "omninav/measures/procrustes.hpp"
 
 namespace omninav::lattice {
 namespace {
@@ -56,9 +56,9 @@ std::vector<MotionMeasurement> motions_from(const std::vector<Eigen::Vector2d>& 
 
 double rmse_in_spacing(const std::vector<Eigen::Vector2d>& positions,
                        const std::vector<Eigen::Vector2d>& truth) {
-  eval::ProcrustesParams params;
+  measures::ProcrustesParams params;
   params.allow_reflection = true;  // distances alone cannot tell a lattice from its mirror image
-  return eval::align_similarity(positions, truth, params).rmse / kSpacing;
+  return measures::align_similarity(positions, truth, params).rmse / kSpacing;
 }
 
 TEST(SpringLattice, ExactDistancesRecoverTheGridUpToTheGauge) {

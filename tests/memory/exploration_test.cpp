@@ -353,5 +353,20 @@ TEST(Exploration, BadFramesNameTheirSource) {
   EXPECT_THROW(second.add_place(taller), UsageError);
 }
 
+// A value set in code, as Python's writable fields set it, is refused by the explorer as the
+// YAML loader refuses it in memory.yaml, naming the key (ExplorationParams::check).
+TEST(Exploration, ParamsOutOfRangeAreRefusedNamingTheKey) {
+  VisualMemory memory;
+  ExplorationParams params;
+  params.new_place_dissimilarity = 2000.0;
+  try {
+    Explorer explorer(memory, params, "route", "test");
+    FAIL() << "a threshold of 2000 was accepted";
+  } catch (const UsageError& error) {
+    EXPECT_NE(std::string(error.what()).find("exploration.new_place_dissimilarity"),
+              std::string::npos);
+  }
+}
+
 }  // namespace
 }  // namespace omninav::memory

@@ -4,11 +4,11 @@
 // rectangle, scored as `evaluate` scores them: the best place within one grid spacing (0.3 m) of
 // the query's truth. The default (auto at 0.25 of the stream's plateau, config/memory.yaml) was
 // chosen across the zoo leaving one family out as the sparsest map whose worst family localises
-// >= 95% of queries within 0.3 m (docs/memory.md, "The new-place threshold"); here it must do so
-// in the room, the house and the field seen from 1 m, where the built-in room's fixed 1.5 grey
-// levels spaces the field's places a metre apart and localises fewer; in the office and the field
-// seen from 10 cm, where no map of these short streams reaches it, it must localise as well as
-// the former default or a place at every frame.
+// >= 95% of queries within 0.3 m (docs/evaluation.md, "Memory: The new-place threshold"); here it
+// must do so in the room, the house and the field seen from 1 m, where the built-in room's
+// fixed 1.5 grey levels spaces the field's places a metre apart and localises fewer; in the office
+// and the field seen from 10 cm, where no map of these short streams reaches it, it must localise
+// as well as the former default or a place at every frame.
 
 #include <gtest/gtest.h>
 

@@ -3,9 +3,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <set>
 
 #include "omninav/core/angles.hpp"
+#include "omninav/core/errors.hpp"
 #include "omninav/navigation/memory_places.hpp"
 #include "support/room_navigation_map.hpp"
 
@@ -58,6 +60,38 @@ TEST_F(RoomNavigation, GridChecksThatNoPairPassesStillLeaveOneConnectedGraph) {
   for (std::size_t place = 0; place < map().places.size(); ++place) {
     EXPECT_TRUE(plan.reaches_goal(static_cast<int>(place))) << place;
   }
+}
+
+// Values set in code, as Python's writable fields set them, are refused by the algorithm that
+// takes them as the YAML loader refuses them in navigation.yaml, naming the key (the check() of
+// LinkParams, RouteParams and NavigatorParams).
+TEST(NavigationParams, OutOfRangeAreRefusedNamingTheKey) {
+  const memory::VisualMemory memory{memory::MapParameters{}};
+  const auto refusal = [](const std::function<void()>& action) -> std::string {
+    try {
+      action();
+    } catch (const UsageError& error) {
+      return error.what();
+    }
+    return "";
+  };
+  navigation::LinkParams links;
+  links.revisit_ratio = 0.0;
+  EXPECT_NE(
+      refusal([&] { lattice::confirmed_links(memory, {}, 0.3, links); }).find("links.revisit_ratio"),
+      std::string::npos);
+  navigation::RouteParams route;
+  route.match_dissimilarity_ratio = 1000.0;
+  EXPECT_NE(refusal([&] {
+              navigation::match_limit(memory, route);
+            }).find("route.match_dissimilarity_ratio"),
+            std::string::npos);
+  navigation::NavigatorParams navigator;
+  navigator.max_steps = 0;
+  EXPECT_NE(refusal([&] {
+              navigation::goal_navigation_setup(memory, {}, {}, navigator, {}, {});
+            }).find("navigator.max_steps"),
+            std::string::npos);
 }
 
 }  // namespace

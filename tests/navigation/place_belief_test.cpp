@@ -128,5 +128,18 @@ TEST(PlaceBelief, RefusesWhatItCannotUse) {
   EXPECT_THROW(belief.predict(std::vector<double>(2, 0.0), 0.3), UsageError);
 }
 
+// A value set in code, as Python's writable fields set it, is refused by the belief as the YAML
+// loader refuses it in navigation.yaml, naming the key (BeliefParams::check).
+TEST(PlaceBelief, ParamsOutOfRangeAreRefusedNamingTheKey) {
+  BeliefParams params;
+  params.uniform_share = 0.75;
+  try {
+    PlaceBelief belief(5, corridor(5), 1.0, params);
+    FAIL() << "a uniform share of 0.75 was accepted";
+  } catch (const UsageError& error) {
+    EXPECT_NE(std::string(error.what()).find("belief.uniform_share"), std::string::npos);
+  }
+}
+
 }  // namespace
 }  // namespace omninav::navigation

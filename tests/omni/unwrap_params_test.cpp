@@ -219,5 +219,17 @@ TEST(Unwrapper, AnnulusBeyondTheImageStillUnwrapsWithBlackThere) {
   EXPECT_EQ(panorama.at<uchar>(44, 0), 255);  // the inner ring is inside
 }
 
+// A value set in code is refused by make_unwrapper as the YAML loader refuses it in camera.yaml,
+// naming the key (UnwrapParams::check).
+TEST(Unwrapper, ParamsOutOfRangeAreRefusedNamingTheKey) {
+  UnwrapParams params;  // fractions of the raw width
+  params.centre_x = 0.5;
+  params.centre_y = 0.5;
+  params.outer_radius = 1.5;
+  const std::string message = message_of<ConfigError>(
+      [&] { make_unwrapper(params, cv::Mat(cv::Size(64, 64), CV_8UC3, cv::Scalar::all(0))); });
+  EXPECT_NE(message.find("unwrap.outer_radius"), std::string::npos) << message;
+}
+
 }  // namespace
 }  // namespace omninav::omni

@@ -5,6 +5,8 @@ import csv
 import io
 import math
 
+import pytest
+
 import omninav
 from conftest import run_omninav
 
@@ -71,3 +73,10 @@ def test_coarse_to_fine_keeps_fewer_candidates_and_the_oracles_best(route_map, q
         assert pruned.position_frame == "truth"  # the map's places have ground truth
         place = memory.place(pruned.best[0].place).truth
         assert pruned.position == (place.x_m, place.y_m)
+
+
+def test_a_value_out_of_range_set_from_python_is_refused_as_in_memory_yaml(route_db):
+    config = omninav.MemoryConfig.load()
+    config.exploration.new_place_plateau_share = 2.0  # memory.yaml allows 0.01..1
+    with pytest.raises(omninav.UsageError, match="exploration.new_place_plateau_share"):
+        omninav.Map().explore(route_db, config=config)

@@ -137,3 +137,40 @@ def test_a_robot_that_reports_nan_metres_driven_is_refused(organised_grid):
                                                   heading_rad=start.heading_rad + 2.0))
     with pytest.raises(omninav.InputError, match=r"robot\.move\(\) returned nan"):
         organised_grid.navigate_to_image(robot, renderer.render(places[-1].truth), max_steps=60)
+
+
+def test_a_value_out_of_range_set_from_python_is_refused_as_in_navigation_yaml(organised_grid):
+    goal = len(organised_grid.places()) - 1
+    config = omninav.NavigationConfig.load()
+    config.links.revisit_ratio = 0.0  # navigation.yaml allows 0.1..100
+    with pytest.raises(omninav.UsageError, match="links.revisit_ratio"):
+        organised_grid.plan_route(goal, config=config)
+
+
+def test_a_live_session_recognises_places_and_agrees_with_the_compass(organised_grid, tmp_path):
+    map_file = tmp_path / "grid.vmem"
+    organised_grid.save(map_file)
+    world = omninav.World(WORLD, width_px=WIDTH_PX, height_px=HEIGHT_PX, rays_per_pixel=1)
+    renderer = omninav.Renderer(world)
+    places = organised_grid.places()
+    first = places[0].truth
+    session = omninav.LiveSession(map_file)
+    assert session.no_belief_reason is None
+    compass = omninav.Compass()
+    # Forwards along the grid's first row, 5 cm a frame, odometry from the renderer's poses.
+    for index in range(25):
+        pose = omninav.CameraPose(first.x_m + 0.05 * index, first.y_m, first.z_m,
+                                  heading_rad=first.heading_rad)
+        image = renderer.render(pose)
+        output = session.push(image, 0.1 * index, pose.on_floor())
+        expected = compass.push(image, truth_heading_rad=first.heading_rad)
+        assert output.frame == index
+        assert output.compass.heading_rad == expected.heading_rad  # the offline compass's
+        # From the fourth frame on (the belief starts uniform), confident and next to the robot.
+        if index >= 3:
+            assert not output.place.lost, output.place
+            assert distance_m(places[output.place.place].truth, pose) < 1.5 * 0.3, output.place
+    # A frame stamped before the last is skipped and counted.
+    assert session.push(image, 0.0) is None
+    assert session.last_skip[0] == "stamp not increasing"
+    assert session.skipped["stamp not increasing"] == 1

@@ -2,7 +2,7 @@
 
 #include <gtest/gtest.h>
 
-#include "omninav/eval/plot.hpp"
+#include "omninav/measures/plot.hpp"
 
 namespace omninav::report {
 namespace {
@@ -35,7 +35,7 @@ ColourPixels pixels_of(const cv::Mat& panel, const cv::Scalar& colour) {
 // mirrored (x → −x), so that the truth panel, if it draws the truth, shows the goal west of
 // the start where the lattice panel shows it east. The figure adds its point sets in the
 // order places, route, start, goal, and a PointsPlot gives the k-th set palette colour k
-// (eval/plot.hpp): only the sixth place shows the places' colour (the route's markers cover the
+// (measures/plot.hpp): only the sixth place shows the places' colour (the route's markers cover the
 // others), the start is drawn in colour 2, the goal in colour 3.
 TEST(NavigationFigures, RoutePictureDrawsTheRouteOnTheLatticeAndOverTheTruth) {
   std::vector<navigation::PlaceNode> places;
@@ -60,21 +60,21 @@ TEST(NavigationFigures, RoutePictureDrawsTheRouteOnTheLatticeAndOverTheTruth) {
   EXPECT_EQ(cv::norm(lattice_panel, lattice_only, cv::NORM_INF), 0.0);
   // Both panels show every point set: places, route, start and goal.
   for (std::size_t set = 0; set < 4; ++set) {
-    EXPECT_GT(pixels_of(lattice_panel, eval::palette_colour(set)).count, 0) << "set " << set;
-    EXPECT_GT(pixels_of(truth_panel, eval::palette_colour(set)).count, 0) << "set " << set;
+    EXPECT_GT(pixels_of(lattice_panel, measures::palette_colour(set)).count, 0) << "set " << set;
+    EXPECT_GT(pixels_of(truth_panel, measures::palette_colour(set)).count, 0) << "set " << set;
   }
   // The goal east of the start on the lattice, west of it over the truth.
   const auto start_column = [](const cv::Mat& panel) {
-    return pixels_of(panel, eval::palette_colour(2)).mean_column;
+    return pixels_of(panel, measures::palette_colour(2)).mean_column;
   };
   const auto goal_column = [](const cv::Mat& panel) {
-    return pixels_of(panel, eval::palette_colour(3)).mean_column;
+    return pixels_of(panel, measures::palette_colour(3)).mean_column;
   };
   EXPECT_GT(goal_column(lattice_panel), start_column(lattice_panel) + 50.0);
   EXPECT_LT(goal_column(truth_panel), start_column(truth_panel) - 50.0);
   // The place off the route lies east of the goal on the lattice, west of it over the truth.
   const auto place_column = [](const cv::Mat& panel) {
-    return pixels_of(panel, eval::palette_colour(0)).mean_column;
+    return pixels_of(panel, measures::palette_colour(0)).mean_column;
   };
   EXPECT_GT(place_column(lattice_panel), goal_column(lattice_panel) + 50.0);
   EXPECT_LT(place_column(truth_panel), goal_column(truth_panel) - 50.0);
@@ -111,7 +111,7 @@ TEST(NavigationFigures, PathPictureDrawsTheMatchesOnTheLatticeAndThePathOverTheT
   const cv::Mat lattice_panel = picture.colRange(0, width);
   const cv::Mat truth_panel = picture.colRange(width, 2 * width);
   const auto column = [](const cv::Mat& panel, std::size_t set) {
-    const ColourPixels found = pixels_of(panel, eval::palette_colour(set));
+    const ColourPixels found = pixels_of(panel, measures::palette_colour(set));
     EXPECT_GT(found.count, 0) << "set " << set;
     return found.mean_column;
   };
@@ -120,7 +120,7 @@ TEST(NavigationFigures, PathPictureDrawsTheMatchesOnTheLatticeAndThePathOverTheT
   // Over the truth the goal place (x = −4) lies west of the start (x = 0).
   EXPECT_LT(column(truth_panel, 1), column(truth_panel, 2) - 50.0);
   // Nothing in a fourth colour: no grid images and no goal pose were given.
-  EXPECT_EQ(pixels_of(truth_panel, eval::palette_colour(3)).count, 0);
+  EXPECT_EQ(pixels_of(truth_panel, measures::palette_colour(3)).count, 0);
 }
 
 }  // namespace

@@ -141,7 +141,8 @@ std::vector<int> scan_offsets_px(const MinimiserParams& params, int width_px) {
   // columns. At W columns the count grows as W/360 (never below the configured count) so that
   // they stay 2.5 columns apart: at 1080 columns (3 px/°) the distance function has ripples a
   // third as wide in degrees (finer texture is resolved), and eight values 7.5 columns apart
-  // step over the basin of the global minimum (docs/compass.md measures it).
+  // step over the basin of the global minimum (docs/evaluation.md, "Compass: the local scan at
+  // higher resolution").
   const int scaled = static_cast<int>(std::lround(params.scan_values * width_px / 360.0 / 2.0)) * 2;
   const int half = std::max(params.scan_values, scaled) / 2;
   if (half < 1) return offsets;

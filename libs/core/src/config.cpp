@@ -245,6 +245,10 @@ void ConfigReader::read(const std::string& key, std::optional<double>& value, do
   value = parsed;
 }
 
+void ConfigReader::read(const std::string& key, std::optional<double>& value) const {
+  read(key, value, std::numeric_limits<double>::lowest(), std::numeric_limits<double>::max());
+}
+
 void ConfigReader::read(const std::string& key, int& value, int min, int max) const {
   if (const std::optional<YAML::Node> node = lookup(key))
     value = whole_number(*node, key, min, max);

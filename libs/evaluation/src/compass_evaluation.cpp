@@ -6,7 +6,7 @@
 #include "omninav/core/angles.hpp"
 #include "omninav/core/errors.hpp"
 #include "omninav/core/format.hpp"
-#include "omninav/eval/robust_regression.hpp"
+#include "omninav/measures/robust_regression.hpp"
 
 namespace omninav::evaluation {
 namespace {
@@ -16,7 +16,7 @@ std::optional<double> robust_slope(const std::vector<double>& x, const std::vect
   bool distinct = false;
   for (std::size_t i = 1; i < x.size() && !distinct; ++i) distinct = x[i] != x.front();
   if (!distinct) return std::nullopt;
-  return eval::theil_sen_fit(x, y).slope;
+  return measures::theil_sen_fit(x, y).slope;
 }
 
 }  // namespace
@@ -52,7 +52,8 @@ CompassEvaluation evaluate_compass(const std::vector<compass::CompassEstimate>& 
       timed_errors.push_back(error_deg);
     }
   }
-  evaluation.error_deg = eval::in_degrees(eval::angular_error_stats(estimate_rad, truth_rad));
+  evaluation.error_deg =
+      measures::in_degrees(measures::angular_error_stats(estimate_rad, truth_rad));
   evaluation.final_error_deg = evaluation.errors_deg.back();
   if (times.size() == estimates.size()) {
     evaluation.slope_deg_per_s = robust_slope(times, timed_errors);

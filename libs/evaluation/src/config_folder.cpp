@@ -72,4 +72,19 @@ NavigationConfig load_navigation_config(const std::filesystem::path& config_dir)
   return navigation;
 }
 
+navigation::LiveSessionParams load_live_session_params(const std::filesystem::path& config_dir) {
+  navigation::LiveSessionParams params;
+  const compass::CompassConfig compass = load_compass_config(config_dir);
+  params.compass = compass.compass;
+  params.compass_width_px = compass.width_px;
+  params.memory = load_memory_config(config_dir);
+  use_compass_config(config_dir, params.memory.exploration);
+  const NavigationConfig navigation = load_navigation_config(config_dir);
+  params.route = navigation.route;
+  params.navigator = navigation.navigator;
+  params.links = navigation.links;
+  params.belief = navigation.belief;
+  return params;
+}
+
 }  // namespace omninav::evaluation

@@ -16,15 +16,16 @@
 #include "omninav/core/errors.hpp"
 #include "omninav/core/format.hpp"
 #include "omninav/core/log.hpp"
-#include "omninav/eval/png.hpp"
 #include "omninav/evaluation/compass_evaluation.hpp"
 #include "omninav/evaluation/home_vectors.hpp"
 #include "omninav/evaluation/localisation_score.hpp"
 #include "omninav/evaluation/navigation_trials.hpp"
 #include "omninav/evaluation/organised_map.hpp"
 #include "omninav/evaluation/render_database.hpp"
+#include "omninav/evaluation/robot_worlds.hpp"
 #include "omninav/io/bob_database.hpp"
 #include "omninav/io/sequence.hpp"
+#include "omninav/measures/png.hpp"
 #include "omninav/memory/exploration.hpp"
 #include "omninav/memory/localisation.hpp"
 #include "omninav/memory/map_store.hpp"
@@ -211,7 +212,7 @@ class WorldRun {
       const CompassEvaluation evaluation =
           evaluate_compass(estimates, truth, run.reference_count());
       const fs::path plot = dir_ / (name + ".compass.png");
-      eval::save_png(
+      measures::save_png(
           report::plot_compass_run(estimates, truth_heading_rad, row_.world + ", " + name), plot);
       command({"compass", "--input", folder.string(), "--truth", "--plot", plot.string()});
       set("compass_" + name + "_max_deg", evaluation.error_deg.max_abs);
@@ -324,9 +325,9 @@ class WorldRun {
     const OrganisedMap result = organise_stored_map(store, params);
     const std::optional<LatticeScore>& evaluation = result.score;
     const fs::path picture = dir_ / (key + ".lattice.png");
-    eval::save_png(report::lattice_picture(result.memory, result.organised,
-                                           evaluation ? &*evaluation : nullptr),
-                   picture);
+    measures::save_png(report::lattice_picture(result.memory, result.organised,
+                                               evaluation ? &*evaluation : nullptr),
+                       picture);
     store.save(result.memory);
     args.insert(args.end(), {"--picture", picture.string()});
     command(args);
@@ -454,10 +455,7 @@ class WorldRun {
         memory, navigation::memory_localiser(localiser, extractor), config_.navigation.route,
         config_.navigation.navigator, config_.navigation.links, config_.navigation.belief);
     // As navigate: the robot's camera makes panoramas of the size the map was built from.
-    sim::RenderParams render = worlds_.render;
-    render.geometry.width_px = memory.place(0).signature.width_px;
-    render.geometry.height_px = memory.place(0).signature.rows;
-    const sim::Renderer renderer(world_, render);
+    const sim::Renderer renderer(world_, render_params_for_map(memory, worlds_.render));
     NavigationConfig navigation = config_.navigation;
     navigation.trials.count = params_.trials;
     navigation.trials.seed = suite_world_.seed;

@@ -104,12 +104,13 @@ std::optional<LatticeScore> score_lattice(const memory::VisualMemory& memory,
   LatticeScore score;
   score.spacing_m = memory::typical_spacing(truth);
   score.boundary = boundary_places(truth, score.spacing_m);
-  eval::ProcrustesParams params;
+  measures::ProcrustesParams params;
   params.allow_reflection = allow_reflection;
-  const eval::ProcrustesResult aligned =
-      eval::align_similarity(lattice_points(memory), truth, params);
+  const measures::ProcrustesResult aligned =
+      measures::align_similarity(lattice_points(memory), truth, params);
   score.aligned = aligned.aligned;
-  score.rmse = eval::split_rmse_in_spacing(aligned.aligned, truth, score.boundary, score.spacing_m);
+  score.rmse =
+      measures::split_rmse_in_spacing(aligned.aligned, truth, score.boundary, score.spacing_m);
   const std::vector<std::array<std::size_t, 3>> triangles =
       neighbour_triangles(truth, 1.5 * score.spacing_m);
   score.neighbour_triangles = static_cast<int>(triangles.size());

@@ -9,6 +9,7 @@
 #include "omninav/core/config.hpp"
 #include "omninav/core/errors.hpp"
 #include "omninav/core/format.hpp"
+#include "omninav/core/param_check.hpp"
 #include "omninav/core/progress.hpp"
 #include "omninav/core/statistics.hpp"
 #include "omninav/evaluation/evaluate.hpp"
@@ -30,14 +31,21 @@ double nearest_m(const std::vector<Eigen::Vector2d>& points, const Eigen::Vector
 
 }  // namespace
 
+void TrialParams::check() const {
+  check_range("trials.min_separation_spacings", min_separation_spacings, 0.0, 1000.0);
+  check_range("trials.goal_radius_m", goal_radius_m, 0.01, 100.0);
+}
+
 void load_trial_params(const ConfigReader& section, TrialParams& params) {
-  section.read("min_separation_spacings", params.min_separation_spacings, 0.0, 1000.0);
-  section.read("goal_radius_m", params.goal_radius_m, 0.01, 100.0);
+  section.read("min_separation_spacings", params.min_separation_spacings);
+  section.read("goal_radius_m", params.goal_radius_m);
+  check_loaded(section.source_name(), [&] { params.check(); });
 }
 
 std::vector<Trial> random_trials(const sim::World& world,
                                  const std::vector<Eigen::Vector2d>& mapped_m, double spacing_m,
                                  double clearance_m, double z_m, const TrialParams& params) {
+  params.check();
   if (mapped_m.empty()) throw UsageError("trials: the map has no places");
   Eigen::Vector2d low = mapped_m.front(), high = mapped_m.front();
   for (const Eigen::Vector2d& point : mapped_m) {

@@ -6,6 +6,7 @@
 
 #include "omninav/core/angles.hpp"
 #include "omninav/core/errors.hpp"
+#include "omninav/core/log.hpp"
 #include "omninav/core/panorama.hpp"
 #include "omninav/memory/localisation.hpp"
 
@@ -81,6 +82,38 @@ CameraPose GridDatabaseWorld::truth() const {
   CameraPose pose = images_[current_].pose;
   pose.heading_rad = heading_rad_;
   return pose;
+}
+
+sim::RenderParams render_params_for_map(const memory::VisualMemory& memory,
+                                        sim::RenderParams render) {
+  render.geometry.width_px = memory.place(0).signature.width_px;
+  render.geometry.height_px = memory.place(0).signature.rows;
+  return render;
+}
+
+RenderedRobot place_robot(const sim::World& world, const sim::Renderer& renderer,
+                          const memory::VisualMemory& memory, const Pose2& start,
+                          const sim::RobotParams& params) {
+  const double camera_z = memory.place(0).truth ? memory.place(0).truth->z_m : 1.0;
+  RenderedRobot placed;
+  placed.robot = std::make_unique<sim::VirtualRobot>(
+      world, CameraPose{start.x_m, start.y_m, camera_z, start.heading_rad, 0.0, 0.0}, params);
+  placed.world = std::make_unique<RenderedWorld>(*placed.robot, renderer);
+  return placed;
+}
+
+std::vector<GridImage> read_grid_images(io::PanoramaInput& input, const std::string& name) {
+  std::vector<GridImage> images;
+  while (std::optional<io::Frame> frame = input.next()) {
+    if (!frame->truth) {
+      throw InputError(frame->source + ": no pose; a grid world needs the position of every image");
+    }
+    images.push_back({frame->image, *frame->truth});
+  }
+  if (!input.is_grid()) {
+    log_info(name + " is not marked a grid database; its images are used as one");
+  }
+  return images;
 }
 
 }  // namespace omninav::evaluation

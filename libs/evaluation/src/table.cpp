@@ -10,7 +10,7 @@
 #include "omninav/core/csv.hpp"
 #include "omninav/core/errors.hpp"
 #include "omninav/core/format.hpp"
-#include "omninav/eval/hershey_text.hpp"
+#include "omninav/measures/hershey_text.hpp"
 
 namespace omninav::evaluation {
 namespace {
@@ -205,12 +205,12 @@ cv::Mat table_picture(const std::vector<Row>& rows, const std::vector<Measure>& 
   const int height = kTitleH + kHeaderH + kCellH * (static_cast<int>(rows.size()) + 1) + 10;
   cv::Mat picture(height, width, CV_8UC3, cv::Scalar(255, 255, 255));
   const int font = cv::FONT_HERSHEY_SIMPLEX;
-  cv::putText(picture, eval::hershey_text(title), {8, 24}, font, 0.6, cv::Scalar(0, 0, 0), 1,
+  cv::putText(picture, measures::hershey_text(title), {8, 24}, font, 0.6, cv::Scalar(0, 0, 0), 1,
               cv::LINE_AA);
   // Headers written upwards, one per column.
   for (std::size_t c = 0; c < columns.size(); ++c) {
     cv::Mat header(kCellW, kHeaderH, CV_8UC3, cv::Scalar(255, 255, 255));
-    cv::putText(header, eval::hershey_text(columns[c].group + " " + columns[c].title),
+    cv::putText(header, measures::hershey_text(columns[c].group + " " + columns[c].title),
                 {4, kCellW / 2 + 5}, font, 0.4, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
     cv::Mat rotated;
     cv::rotate(header, rotated, cv::ROTATE_90_COUNTERCLOCKWISE);
@@ -220,7 +220,7 @@ cv::Mat table_picture(const std::vector<Row>& rows, const std::vector<Measure>& 
   const auto row_top = [&](std::size_t r) { return kTitleH + kHeaderH + kCellH * int(r); };
   for (std::size_t r = 0; r <= rows.size(); ++r) {
     const std::string label = r < rows.size() ? rows[r].world : "WORST";
-    cv::putText(picture, eval::hershey_text(label), {6, row_top(r) + 16}, font, 0.42,
+    cv::putText(picture, measures::hershey_text(label), {6, row_top(r) + 16}, font, 0.42,
                 cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
   }
   for (std::size_t c = 0; c < columns.size(); ++c) {
@@ -252,7 +252,7 @@ cv::Mat table_picture(const std::vector<Row>& rows, const std::vector<Measure>& 
                   0.4, ink, 1, cv::LINE_AA);
     }
     if (worst[c] >= 0) {
-      cv::putText(picture, eval::hershey_text(rows[worst[c]].family),
+      cv::putText(picture, measures::hershey_text(rows[worst[c]].family),
                   {x + 4, row_top(rows.size()) + 16}, font, 0.4, cv::Scalar(0, 0, 160), 1,
                   cv::LINE_AA);
     }

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "omninav/io/bag_sequence.hpp"
+#include "omninav/io/ros_image.hpp"
 
 namespace omninav::io::detail {
 
@@ -21,16 +22,6 @@ struct BagTopic {
   std::string name;
   std::string type;  // as the bag names it: "sensor_msgs/Image" (ROS 1), "sensor_msgs/msg/Image"
   std::size_t count = 0;  // messages, as far as the bag could be read
-};
-
-// A sensor_msgs/Image's fields, as any format's decoder fills them.
-struct RawImage {
-  std::uint32_t height = 0;
-  std::uint32_t width = 0;
-  std::string encoding;
-  bool is_bigendian = false;
-  std::uint32_t step = 0;
-  std::vector<std::uint8_t> data;
 };
 
 // One image message: its header stamp and the picture, 8-bit BGR or grey.
@@ -60,13 +51,6 @@ bool is_image_type(const std::string& type);
 bool is_image_compressed_type(const std::string& type);
 bool is_odometry_type(const std::string& type);
 bool is_pose_stamped_type(const std::string& type);
-
-// The picture of a sensor_msgs/Image (through Debian's cv_bridge: colour encodings to bgr8,
-// mono and 16-bit to mono8 scaled to 8 bits, Bayer patterns demosaiced to bgr8) or of a
-// sensor_msgs/CompressedImage (cv::imdecode). Throws InputError prefixed with `where`.
-cv::Mat decode_raw_image(RawImage image, const std::string& where);
-cv::Mat decode_compressed_image(const std::vector<std::uint8_t>& data, const std::string& format,
-                                const std::string& where);
 
 std::unique_ptr<BagBackend> open_ros1_bag(const std::filesystem::path& file);
 std::unique_ptr<BagBackend> open_mcap(const std::filesystem::path& file);

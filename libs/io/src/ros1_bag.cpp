@@ -239,6 +239,14 @@ class Ros1Bag : public BagBackend {
 
 }  // namespace
 
+std::unique_ptr<BagBackend> open_ros1_bag(const std::filesystem::path& file) {
+  return std::make_unique<Ros1Bag>(file);
+}
+
+}  // namespace omninav::io::detail
+
+namespace omninav::io {
+
 cv::Mat decode_raw_image(RawImage image, const std::string& where) {
   namespace encodings = sensor_msgs::image_encodings;
   if (image.width == 0 || image.height == 0) throw InputError(where + ": an empty image");
@@ -291,8 +299,4 @@ cv::Mat decode_compressed_image(const std::vector<std::uint8_t>& data, const std
   return image;
 }
 
-std::unique_ptr<BagBackend> open_ros1_bag(const std::filesystem::path& file) {
-  return std::make_unique<Ros1Bag>(file);
-}
-
-}  // namespace omninav::io::detail
+}  // namespace omninav::io

@@ -12,21 +12,33 @@
 #include "omninav/core/angles.hpp"
 #include "omninav/core/config.hpp"
 #include "omninav/core/log.hpp"
+#include "omninav/core/param_check.hpp"
 #include "omninav/core/statistics.hpp"
 #include "omninav/signature/dissimilarity.hpp"
 #include "two_way_fit.hpp"
 
 namespace omninav::lattice {
 
+void LinkParams::check() const {
+  check_range("links.grid_agreement_ratio", grid_agreement_ratio, 1.0, 100.0);
+  check_range("links.grid_direction_deg", grid_direction_deg, 0.0, 180.0);
+  check_range("links.revisit_run", revisit_run, 3, 101);
+  check_range("links.revisit_ratio", revisit_ratio, 0.1, 100.0);
+  check_range("links.revisit_disagreement_deg", revisit_disagreement_deg, 0.0, 180.0);
+  check_range("links.revisits_per_place", revisits_per_place, 0, 100);
+  check_range("links.odometry_drift", odometry_drift, 0.0, 10.0);
+}
+
 void load_link_params(const ConfigReader& section, LinkParams& params) {
-  section.read("grid_agreement_ratio", params.grid_agreement_ratio, 1.0, 100.0);
-  section.read("grid_direction_deg", params.grid_direction_deg, 0.0, 180.0);
-  section.read("revisit_run", params.revisit_run, 3, 101);
+  section.read("grid_agreement_ratio", params.grid_agreement_ratio);
+  section.read("grid_direction_deg", params.grid_direction_deg);
+  section.read("revisit_run", params.revisit_run);
+  section.read("revisit_ratio", params.revisit_ratio);
+  section.read("revisit_disagreement_deg", params.revisit_disagreement_deg);
+  section.read("revisits_per_place", params.revisits_per_place);
+  section.read("odometry_drift", params.odometry_drift);
+  check_loaded(section.source_name(), [&] { params.check(); });
   if (params.revisit_run % 2 == 0) ++params.revisit_run;
-  section.read("revisit_ratio", params.revisit_ratio, 0.1, 100.0);
-  section.read("revisit_disagreement_deg", params.revisit_disagreement_deg, 0.0, 180.0);
-  section.read("revisits_per_place", params.revisits_per_place, 0, 100);
-  section.read("odometry_drift", params.odometry_drift, 0.0, 10.0);
 }
 
 std::string to_string(LinkKind kind) {
@@ -363,6 +375,7 @@ std::optional<double> median_dissimilarity_per_value(const memory::VisualMemory&
 std::vector<MeasuredLink> confirmed_links(const memory::VisualMemory& memory,
                                           const std::vector<double>& headings, double spacing_m,
                                           const LinkParams& params) {
+  params.check();
   std::vector<MeasuredLink> links = travelled_links(memory, headings, spacing_m);
   const std::size_t travelled = links.size();
   std::vector<MeasuredLink> revisits = revisit_links(memory, headings, links, spacing_m, params);

@@ -14,6 +14,7 @@
 #include "omninav/core/format.hpp"
 #include "omninav/core/log.hpp"
 #include "omninav/core/panorama.hpp"
+#include "omninav/core/param_check.hpp"
 #include "omninav/core/parse.hpp"
 #include "omninav/core/progress.hpp"
 #include "omninav/signature/dissimilarity.hpp"
@@ -53,21 +54,33 @@ void load_exploration_params(const ConfigReader& section, ExplorationParams& par
   } else if (!threshold.empty()) {
     double value = 0.0;
     try {
-      section.read("new_place_dissimilarity", value, 0.0, 1000.0);
+      section.read("new_place_dissimilarity", value);
       params.new_place_dissimilarity = value;
     } catch (const ConfigError&) {
       section.fail("new_place_dissimilarity",
                    "= '" + threshold + "' is neither auto nor a number in [0, 1000]");
     }
   }
-  section.read("new_place_plateau_share", params.new_place_plateau_share, 0.01, 1.0);
-  section.read("every_n_frames", params.every_n_frames, 0, 1000000);
-  section.read("every_m", params.every_m, 0.0, 1000.0);
-  section.read("thumbnail_width_px", params.thumbnail_width_px, 8, 4096);
+  section.read("new_place_plateau_share", params.new_place_plateau_share);
+  section.read("every_n_frames", params.every_n_frames);
+  section.read("every_m", params.every_m);
+  section.read("thumbnail_width_px", params.thumbnail_width_px);
   std::string heading_source = to_string(params.heading_source);
   section.read("heading_source", heading_source, {"auto", "compass", "truth", "none"});
   params.heading_source = heading_policy_from_string(heading_source);
-  section.read("motion_components", params.motion_components, 0, 4096);
+  section.read("motion_components", params.motion_components);
+  check_loaded(section.source_name(), [&] { params.check(); });
+}
+
+void ExplorationParams::check() const {
+  if (new_place_dissimilarity) {
+    check_range("exploration.new_place_dissimilarity", *new_place_dissimilarity, 0.0, 1000.0);
+  }
+  check_range("exploration.new_place_plateau_share", new_place_plateau_share, 0.01, 1.0);
+  check_range("exploration.every_n_frames", every_n_frames, 0, 1000000);
+  check_range("exploration.every_m", every_m, 0.0, 1000.0);
+  check_range("exploration.thumbnail_width_px", thumbnail_width_px, 8, 4096);
+  check_range("exploration.motion_components", motion_components, 0, 4096);
 }
 
 std::vector<std::uint8_t> make_thumbnail(const cv::Mat& panorama, int width_px) {
@@ -99,6 +112,7 @@ Explorer::Explorer(VisualMemory& memory, ExplorationParams params, std::string i
       params_(std::move(params)),
       extractor_(memory.parameters().signature),
       order_(order) {
+  params_.check();
   Run run;
   run.id = 0;
   for (const Run& r : memory_.runs()) run.id = std::max(run.id, r.id + 1);

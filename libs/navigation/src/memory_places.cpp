@@ -80,6 +80,7 @@ std::optional<double> median_link_dissimilarity(const memory::VisualMemory& memo
 }  // namespace
 
 double match_limit(const memory::VisualMemory& memory, const RouteParams& params) {
+  params.check();
   const std::optional<double> link = median_link_dissimilarity(memory);
   if (!link) {
     log_warning(
@@ -130,6 +131,8 @@ GoalNavigationSetup goal_navigation_setup(const memory::VisualMemory& memory,
                                           PanoramaLocaliser localise, const RouteParams& route,
                                           const NavigatorParams& navigator, const LinkParams& links,
                                           const BeliefParams& belief) {
+  navigator.check();
+  belief.check();
   GoalNavigationSetup setup;
   setup.places = places_from_memory(memory);
   setup.localise = std::move(localise);

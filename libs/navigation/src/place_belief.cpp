@@ -7,14 +7,23 @@
 #include "omninav/core/angles.hpp"
 #include "omninav/core/config.hpp"
 #include "omninav/core/errors.hpp"
+#include "omninav/core/param_check.hpp"
 
 namespace omninav::navigation {
 
+void BeliefParams::check() const {
+  check_range("belief.view_scale", view_scale, 0.01, 100.0);
+  check_range("belief.direction_sigma_deg", direction_sigma_deg, 1.0, 180.0);
+  check_range("belief.uniform_share", uniform_share, 0.0, 0.5);
+  check_range("belief.confident_share", confident_share, 0.0, 1.0);
+}
+
 void load_belief_params(const ConfigReader& section, BeliefParams& params) {
-  section.read("view_scale", params.view_scale, 0.01, 100.0);
-  section.read("direction_sigma_deg", params.direction_sigma_deg, 1.0, 180.0);
-  section.read("uniform_share", params.uniform_share, 0.0, 0.5);
-  section.read("confident_share", params.confident_share, 0.0, 1.0);
+  section.read("view_scale", params.view_scale);
+  section.read("direction_sigma_deg", params.direction_sigma_deg);
+  section.read("uniform_share", params.uniform_share);
+  section.read("confident_share", params.confident_share);
+  check_loaded(section.source_name(), [&] { params.check(); });
 }
 
 PlaceBelief::PlaceBelief(std::size_t place_count, std::vector<MeasuredLink> links,
@@ -24,6 +33,7 @@ PlaceBelief::PlaceBelief(std::size_t place_count, std::vector<MeasuredLink> link
       view_scale_(view_scale_per_value),
       params_(params),
       probability_(place_count, place_count > 0 ? 1.0 / static_cast<double>(place_count) : 0.0) {
+  params_.check();
   if (place_count == 0) throw UsageError("a belief over no places");
   if (!(view_scale_ > 0.0) || !std::isfinite(view_scale_)) {
     throw UsageError("a belief's view scale must be finite and positive");

@@ -9,6 +9,7 @@
 #include "omninav/core/angles.hpp"
 #include "omninav/core/config.hpp"
 #include "omninav/core/errors.hpp"
+#include "omninav/core/param_check.hpp"
 #include "omninav/memory/localisation.hpp"
 
 namespace omninav::navigation {
@@ -27,8 +28,13 @@ void require_place(int place, std::size_t count, const char* what) {
 
 }  // namespace
 
+void RouteParams::check() const {
+  check_range("route.match_dissimilarity_ratio", match_dissimilarity_ratio, 0.1, 100.0);
+}
+
 void load_route_params(const ConfigReader& section, RouteParams& params) {
-  section.read("match_dissimilarity_ratio", params.match_dissimilarity_ratio, 0.1, 100.0);
+  section.read("match_dissimilarity_ratio", params.match_dissimilarity_ratio);
+  check_loaded(section.source_name(), [&] { params.check(); });
 }
 
 double lattice_spacing(const std::vector<PlaceNode>& places) {

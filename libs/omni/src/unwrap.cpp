@@ -12,6 +12,7 @@
 #include "omninav/core/errors.hpp"
 #include "omninav/core/format.hpp"
 #include "omninav/core/log.hpp"
+#include "omninav/core/param_check.hpp"
 
 namespace omninav::omni {
 namespace {
@@ -89,36 +90,44 @@ void load_unwrap_params(const ConfigReader& section, UnwrapParams& params) {
   std::string units = to_string(params.units);
   section.read("units", units, {"fraction", "pixels"});
   params.units = units == "pixels" ? LengthUnits::kPixels : LengthUnits::kFraction;
-
-  // Ranges depend on the unit. Fractions are of the raw width, so a portrait image's centre_y
-  // may exceed 1; resolve_annulus checks the centre against the actual image.
-  const bool fraction = params.units == LengthUnits::kFraction;
-  const double max_centre = fraction ? 2.0 : 100000.0;
-  const double max_radius = fraction ? 1.0 : 100000.0;
-  const double min_outer = fraction ? 0.001 : 1.0;
-  section.read("centre_x", params.centre_x, 0.0, max_centre);
-  section.read("centre_y", params.centre_y, 0.0, max_centre);
-  section.read("inner_radius", params.inner_radius, 0.0, max_radius);
-  section.read("outer_radius", params.outer_radius, min_outer, max_radius);
-  section.read("inner_fraction_of_outer", params.inner_fraction_of_outer, 0.0, 0.95);
+  section.read("centre_x", params.centre_x);
+  section.read("centre_y", params.centre_y);
+  section.read("inner_radius", params.inner_radius);
+  section.read("outer_radius", params.outer_radius);
+  section.read("inner_fraction_of_outer", params.inner_fraction_of_outer);
 
   std::string interpolation = to_string(params.interpolation);
   section.read("interpolation", interpolation, {"nearest", "bilinear"});
   params.interpolation =
       interpolation == "nearest" ? Interpolation::kNearest : Interpolation::kBilinear;
   section.read("flip", params.flip);
-  section.read_deg("front_offset_deg", params.front_offset_rad, -360.0, 360.0);
+  section.read_deg("front_offset_deg", params.front_offset_rad);
   section.read("outer_radius_at_top", params.outer_radius_at_top);
+  check_loaded(section.source_name(), [&] { params.check(); });
+}
 
-  if (params.centre_x.has_value() != params.centre_y.has_value()) {
-    throw ConfigError(section.source_name() +
-                      ": keys 'unwrap.centre_x' and 'unwrap.centre_y' go together: give both, "
-                      "or neither to detect the mirror");
+void UnwrapParams::check() const {
+  // Ranges depend on the unit. Fractions are of the raw width, so a portrait image's centre_y
+  // may exceed 1; resolve_annulus checks the centre against the actual image.
+  const bool fraction = units == LengthUnits::kFraction;
+  const double max_centre = fraction ? 2.0 : 100000.0;
+  const double max_radius = fraction ? 1.0 : 100000.0;
+  const double min_outer = fraction ? 0.001 : 1.0;
+  if (centre_x) check_range("unwrap.centre_x", *centre_x, 0.0, max_centre);
+  if (centre_y) check_range("unwrap.centre_y", *centre_y, 0.0, max_centre);
+  if (inner_radius) check_range("unwrap.inner_radius", *inner_radius, 0.0, max_radius);
+  if (outer_radius) check_range("unwrap.outer_radius", *outer_radius, min_outer, max_radius);
+  check_range("unwrap.inner_fraction_of_outer", inner_fraction_of_outer, 0.0, 0.95);
+  check_range_deg("unwrap.front_offset_deg", front_offset_rad, -360.0, 360.0);
+  if (centre_x.has_value() != centre_y.has_value()) {
+    throw UsageError(
+        "keys 'unwrap.centre_x' and 'unwrap.centre_y' go together: give both, or neither to "
+        "detect the mirror");
   }
-  if (params.inner_radius && params.outer_radius && *params.inner_radius >= *params.outer_radius) {
-    throw ConfigError(
-        section.source_name() + ": key 'unwrap.inner_radius' (" + general(*params.inner_radius) +
-        ") must be smaller than 'unwrap.outer_radius' (" + general(*params.outer_radius) + ")");
+  if (inner_radius && outer_radius && *inner_radius >= *outer_radius) {
+    throw UsageError("key 'unwrap.inner_radius' (" + general(*inner_radius) +
+                     ") must be smaller than 'unwrap.outer_radius' (" + general(*outer_radius) +
+                     ")");
   }
 }
 
@@ -256,9 +265,7 @@ cv::Mat Unwrapper::unwrap(const cv::Mat& raw) const {
 
 Unwrapper make_unwrapper(const UnwrapParams& params, const cv::Mat& first_raw) {
   if (first_raw.empty()) throw InputError("unwrap: the first raw image is empty");
-  if (params.centre_x.has_value() != params.centre_y.has_value()) {
-    throw ConfigError("unwrap: centre_x and centre_y go together: give both, or neither");
-  }
+  check_loaded("unwrap", [&] { params.check(); });
   std::optional<MirrorCircle> detected;
   const bool needs_detection = !params.centre_x || !params.centre_y || !params.outer_radius;
   if (needs_detection) {

@@ -3,7 +3,7 @@
 #include <cmath>
 
 #include "omninav/core/angles.hpp"
-#include "omninav/eval/plot.hpp"
+#include "omninav/measures/plot.hpp"
 
 namespace omninav::report {
 namespace {
@@ -33,8 +33,8 @@ cv::Mat plot_compass_run(const std::vector<compass::CompassEstimate>& estimates,
   }
   const bool with_truth =
       !truth_heading_rad.empty() && truth_heading_rad.size() == estimates.size();
-  eval::LinePlot headings(title + ": heading", "frame", "heading (deg, unwrapped)",
-                          cv::Size(900, 420));
+  measures::LinePlot headings(title + ": heading", "frame", "heading (deg, unwrapped)",
+                              cv::Size(900, 420));
   // The estimate is already unwrapped (Algorithm 1 accumulates); the truth is unwrapped here,
   // then moved by whole turns to start where the estimate starts.
   std::vector<double> estimate_deg;
@@ -55,7 +55,7 @@ cv::Mat plot_compass_run(const std::vector<compass::CompassEstimate>& estimates,
   }
   if (!realigned_frames.empty()) {
     headings.add_series("re-aligned on the map", std::move(realigned_frames),
-                        std::move(realigned_deg), eval::SeriesStyle::kPoints);
+                        std::move(realigned_deg), measures::SeriesStyle::kPoints);
   }
   cv::Mat picture = headings.render();
   if (with_truth) {
@@ -63,8 +63,8 @@ cv::Mat plot_compass_run(const std::vector<compass::CompassEstimate>& estimates,
     for (std::size_t i = 0; i < estimates.size(); ++i) {
       errors.push_back(rad_to_deg(signed_difference(heading_rad[i], truth_heading_rad[i])));
     }
-    eval::LinePlot error(title + ": error (estimate - truth)", "frame", "error (deg)",
-                         cv::Size(900, 320));
+    measures::LinePlot error(title + ": error (estimate - truth)", "frame", "error (deg)",
+                             cv::Size(900, 320));
     error.add_series("error", frames, errors).show_zero_line();
     // The band of ±1 standard deviation (CompassEstimate::heading_sigma_rad).
     std::vector<double> upper, lower;

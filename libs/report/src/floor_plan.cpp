@@ -4,7 +4,8 @@
 
 namespace omninav::report {
 
-void add_floor_boxes(eval::PointsPlot& plot, const std::vector<sim::FloorBox>& boxes, double grey) {
+void add_floor_boxes(measures::PointsPlot& plot, const std::vector<sim::FloorBox>& boxes,
+                     double grey) {
   for (const sim::FloorBox& box : boxes) {
     const std::array<cv::Point2d, 4> corners{
         cv::Point2d(box.min_x_m, box.min_y_m), cv::Point2d(box.max_x_m, box.min_y_m),
@@ -14,9 +15,10 @@ void add_floor_boxes(eval::PointsPlot& plot, const std::vector<sim::FloorBox>& b
   }
 }
 
-eval::PointsPlot floor_plan(const sim::World& world, const sim::Trajectory& trajectory) {
-  eval::PointsPlot plan("'" + world.name + "' from above: floor, obstacles, regions, trajectory",
-                        "x (m)", "y (m)", cv::Size(900, 700));
+measures::PointsPlot floor_plan(const sim::World& world, const sim::Trajectory& trajectory) {
+  measures::PointsPlot plan(
+      "'" + world.name + "' from above: floor, obstacles, regions, trajectory", "x (m)", "y (m)",
+      cv::Size(900, 700));
   add_floor_boxes(plan, {world.floor}, 0.0);
   add_floor_boxes(plan, world.obstacles, 0.35);
   std::vector<cv::Point2d> centres;

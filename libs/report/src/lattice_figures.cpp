@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <set>
 
-#include "omninav/eval/plot.hpp"
 #include "omninav/lattice/stiffness.hpp"
+#include "omninav/measures/plot.hpp"
 
 namespace omninav::report {
 namespace {
@@ -14,9 +14,10 @@ cv::Mat springs_panel(const memory::VisualMemory& memory,
                       const lattice::OrganiseResult& organised) {
   std::vector<cv::Point2d> places;
   for (std::size_t i = 0; i < memory.place_count(); ++i) {
-    places.push_back(eval::plot_point(*memory.place(i).lattice_position));
+    places.push_back(measures::plot_point(*memory.place(i).lattice_position));
   }
-  eval::PointsPlot plot("Lattice: springs shaded by stiffness (dark = stiff)", "x (m)", "y (m)");
+  measures::PointsPlot plot("Lattice: springs shaded by stiffness (dark = stiff)", "x (m)",
+                            "y (m)");
   // Weak springs first, so that the stiff ones are drawn on top.
   std::vector<lattice::SpringMeasurement> springs = organised.springs;
   std::sort(springs.begin(), springs.end(),
@@ -35,11 +36,11 @@ cv::Mat springs_panel(const memory::VisualMemory& memory,
 
 // The truth, the aligned lattice over it, and the places in a fold.
 cv::Mat truth_panel(const memory::VisualMemory& memory, const LatticeOverTruth& truth) {
-  eval::PointsPlot plot("Truth and the aligned lattice", "x (m)", "y (m)");
+  measures::PointsPlot plot("Truth and the aligned lattice", "x (m)", "y (m)");
   std::vector<cv::Point2d> true_points, aligned_points;
   for (std::size_t i = 0; i < memory.place_count(); ++i) {
-    true_points.push_back(eval::plot_point(memory.place(i).truth->floor_position()));
-    aligned_points.push_back(eval::plot_point(truth.aligned[i]));
+    true_points.push_back(measures::plot_point(memory.place(i).truth->floor_position()));
+    aligned_points.push_back(measures::plot_point(truth.aligned[i]));
     plot.add_segment({true_points.back(), aligned_points.back(), 0.5, 0.8});
   }
   plot.add_points("truth", true_points);

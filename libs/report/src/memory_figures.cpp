@@ -13,9 +13,9 @@
 #include "omninav/core/output_file.hpp"
 #include "omninav/core/pose.hpp"
 #include "omninav/core/statistics.hpp"
-#include "omninav/eval/hershey_text.hpp"
-#include "omninav/eval/plot.hpp"
 #include "omninav/io/image_file.hpp"
+#include "omninav/measures/hershey_text.hpp"
+#include "omninav/measures/plot.hpp"
 #include "omninav/signature/dissimilarity.hpp"
 #include "omninav/signature/signature.hpp"
 
@@ -35,8 +35,8 @@ cv::Scalar viridis(double similarity) {
 
 void put_text(cv::Mat& image, const std::string& text, cv::Point origin, double scale = 0.5,
               cv::Scalar colour = cv::Scalar(30, 30, 30)) {
-  cv::putText(image, eval::hershey_text(text), origin, cv::FONT_HERSHEY_SIMPLEX, scale, colour, 1,
-              cv::LINE_AA);
+  cv::putText(image, measures::hershey_text(text), origin, cv::FONT_HERSHEY_SIMPLEX, scale, colour,
+              1, cv::LINE_AA);
 }
 
 // The layout of a localisation figure: the places' bounds with a margin of one spacing, drawn
@@ -341,11 +341,12 @@ void spectrum_figure(const FigureInputs& in, FigureFolder& folder, std::ostream&
     }
   }
   folder.csv("fig5_spectrum.csv", csv.str());
-  eval::LinePlot plot("Fig. 5: Fourier magnitudes of place " + std::to_string(in.middle) +
-                          " (k = 0 is the mean grey level)",
-                      "component k", "|F(k)|, grey levels");
-  plot.add_series("row " + std::to_string(row), k, middle_row, eval::SeriesStyle::kLineAndPoints);
-  plot.add_series("mean over rows", k, mean_rows, eval::SeriesStyle::kLineAndPoints);
+  measures::LinePlot plot("Fig. 5: Fourier magnitudes of place " + std::to_string(in.middle) +
+                              " (k = 0 is the mean grey level)",
+                          "component k", "|F(k)|, grey levels");
+  plot.add_series("row " + std::to_string(row), k, middle_row,
+                  measures::SeriesStyle::kLineAndPoints);
+  plot.add_series("mean over rows", k, mean_rows, measures::SeriesStyle::kLineAndPoints);
   folder.plot(plot, "fig5_spectrum.png");
   summary << "Fig. 5: components 1..14 hold " << fixed(100.0 * low / all, 1)
           << "% of the power of components 1.." << half - 1 << " (place " << in.middle << ")\n";
@@ -362,7 +363,7 @@ void components_figure(const FigureInputs& in, FigureFolder& folder) {
   std::sort(near.begin(), near.end(), [&](std::size_t a, std::size_t b) {
     return in.distance(a, middle) < in.distance(b, middle);
   });
-  eval::LinePlot plot(
+  measures::LinePlot plot(
       "Fig. 6: similarity of place " + std::to_string(middle) + " to its neighbours, by m",
       "distance to the input place, m", "similarity (Eq. 3 over these places), mean");
   std::ostringstream csv;
@@ -380,7 +381,7 @@ void components_figure(const FigureInputs& in, FigureFolder& folder) {
     // One point per distance: the mean over the neighbours at that distance.
     const auto [x, y] = mean_per_distance(distance, sims.back());
     plot.add_series(m == half ? "m = " + std::to_string(m) + " (all)" : "m = " + std::to_string(m),
-                    x, y, eval::SeriesStyle::kLineAndPoints);
+                    x, y, measures::SeriesStyle::kLineAndPoints);
   }
   for (std::size_t r = 0; r < near.size(); ++r) {
     std::vector<std::string> fields{std::to_string(near[r]), general(distance[r])};
@@ -423,10 +424,10 @@ void localisation_rate_figure(const FigureInputs& in, FigureFolder& folder, std:
     write_csv_line(csv, {std::to_string(m), general(rate_lum.back()), general(rate_col.back())});
   }
   folder.csv("fig6_localisation_rate.csv", csv.str());
-  eval::LinePlot plot("Fig. 6 measured: leave-one-out localisation by number of components",
-                      "components compared, m", "% of places whose best match is a neighbour");
-  plot.add_series("luminance", x, rate_lum, eval::SeriesStyle::kLineAndPoints);
-  plot.add_series("per channel (B, G, R)", x, rate_col, eval::SeriesStyle::kLineAndPoints);
+  measures::LinePlot plot("Fig. 6 measured: leave-one-out localisation by number of components",
+                          "components compared, m", "% of places whose best match is a neighbour");
+  plot.add_series("luminance", x, rate_lum, measures::SeriesStyle::kLineAndPoints);
+  plot.add_series("per channel (B, G, R)", x, rate_col, measures::SeriesStyle::kLineAndPoints);
   folder.plot(plot, "fig6_localisation_rate.png");
   summary << "Fig. 6: leave-one-out rate, luminance / per channel:";
   for (std::size_t i = 0; i < ms.size(); ++i) {
@@ -458,8 +459,8 @@ void dissimilarity_distance_figure(const FigureInputs& in, FigureFolder& folder,
                                    std::ostream& summary) {
   const int m = std::min(15, in.luminance.half);
   const std::size_t n = in.count();
-  eval::LinePlot plot("Fig. 7: dissimilarity (Eq. 2, m = 15, luminance) against distance",
-                      "distance between the two places, m", "Dis / (rows x m), grey levels");
+  measures::LinePlot plot("Fig. 7: dissimilarity (Eq. 2, m = 15, luminance) against distance",
+                          "distance between the two places, m", "Dis / (rows x m), grey levels");
   const double norm = static_cast<double>(in.luminance.lines) * m;
   std::ostringstream csv;
   write_csv_line(csv, {"reference_place", "other_place", "distance_m", "dissimilarity_per_value"});
@@ -480,7 +481,7 @@ void dissimilarity_distance_figure(const FigureInputs& in, FigureFolder& folder,
     }
     // One point per distance (the mean of places at the same distance), as a line.
     const auto [x, y] = mean_per_distance(distances, values);
-    plot.add_series("from place " + std::to_string(r), x, y, eval::SeriesStyle::kLine);
+    plot.add_series("from place " + std::to_string(r), x, y, measures::SeriesStyle::kLine);
   }
   // The median over all pairs, in bins.
   std::map<int, std::vector<double>> bins;
@@ -497,7 +498,7 @@ void dissimilarity_distance_figure(const FigureInputs& in, FigureFolder& folder,
     bx.push_back(bin * 0.5 * in.spacing);
     by.push_back(median(values));
   }
-  plot.add_series("median of all pairs", bx, by, eval::SeriesStyle::kLineAndPoints);
+  plot.add_series("median of all pairs", bx, by, measures::SeriesStyle::kLineAndPoints);
   folder.csv("fig7_dissimilarity_distance.csv", csv.str());
   folder.plot(plot, "fig7_dissimilarity_distance.png");
   summary << "Fig. 7: median Dis per value at distance (m):";

@@ -3,17 +3,17 @@
 #include <cmath>
 
 #include "omninav/core/angles.hpp"
-#include "omninav/eval/plot.hpp"
+#include "omninav/measures/plot.hpp"
 #include "omninav/report/floor_plan.hpp"
 
 namespace omninav::report {
 namespace {
 
-using eval::plot_point;
-using eval::plot_points;
+using measures::plot_point;
+using measures::plot_points;
 
 // An arrow as three segments: the shaft and two barbs 25° off it.
-void add_arrow(eval::PointsPlot& plot, const Eigen::Vector2d& from, double direction_rad,
+void add_arrow(measures::PointsPlot& plot, const Eigen::Vector2d& from, double direction_rad,
                double length) {
   const auto along = [](double angle) { return Eigen::Vector2d(std::cos(angle), std::sin(angle)); };
   const Eigen::Vector2d tip = from + length * along(direction_rad);
@@ -25,7 +25,7 @@ void add_arrow(eval::PointsPlot& plot, const Eigen::Vector2d& from, double direc
   }
 }
 
-void add_route(eval::PointsPlot& plot, const std::vector<Eigen::Vector2d>& positions,
+void add_route(measures::PointsPlot& plot, const std::vector<Eigen::Vector2d>& positions,
                const std::vector<int>& route, int start, int goal) {
   for (std::size_t i = 1; i < route.size(); ++i) {
     plot.add_segment(
@@ -46,7 +46,7 @@ std::vector<Eigen::Vector2d> lattice_positions(const std::vector<navigation::Pla
 }
 
 // A polyline as segments of grey level `grey`.
-void add_path(eval::PointsPlot& plot, const std::vector<cv::Point2d>& path, double grey) {
+void add_path(measures::PointsPlot& plot, const std::vector<cv::Point2d>& path, double grey) {
   for (std::size_t i = 1; i < path.size(); ++i) plot.add_segment({path[i - 1], path[i], grey, 1.0});
 }
 
@@ -58,7 +58,7 @@ cv::Mat matched_path_panel(const navigation::NavigationResult& result,
   for (const navigation::NavigationStep& step : result.steps) {
     if (step.match) matched.push_back(lattice[step.match->place]);
   }
-  eval::PointsPlot plot("The route over the lattice (places matched, in order)", "x", "y");
+  measures::PointsPlot plot("The route over the lattice (places matched, in order)", "x", "y");
   add_path(plot, matched, 0.2);
   plot.add_points("places", lattice);
   plot.add_points("goal", {lattice[goal]});
@@ -72,7 +72,7 @@ cv::Mat true_path_panel(const navigation::NavigationResult& result, int goal,
   for (const navigation::NavigationStep& step : result.steps) {
     path.emplace_back(step.truth.x_m, step.truth.y_m);
   }
-  eval::PointsPlot plot("The robot's true path", "x (m)", "y (m)");
+  measures::PointsPlot plot("The robot's true path", "x (m)", "y (m)");
   add_floor_boxes(plot, scene.obstacles, 0.3);
   add_path(plot, path, 0.1);
   if (!scene.grid_world_positions.empty()) {
@@ -99,8 +99,8 @@ cv::Mat route_figure(const std::vector<navigation::PlaceNode>& places,
                      const navigation::RoutePlan& plan, int start,
                      const std::optional<std::vector<Eigen::Vector2d>>& truth_m) {
   const std::vector<int> route = plan.route_from(start);
-  eval::PointsPlot lattice_plot("Route on the lattice: each place's direction to the goal",
-                                "lattice x", "lattice y");
+  measures::PointsPlot lattice_plot("Route on the lattice: each place's direction to the goal",
+                                    "lattice x", "lattice y");
   const double arrow = 0.45 * navigation::lattice_spacing(places);
   for (std::size_t place = 0; place < places.size(); ++place) {
     if (plan.next[place] >= 0)
@@ -109,7 +109,7 @@ cv::Mat route_figure(const std::vector<navigation::PlaceNode>& places,
   add_route(lattice_plot, lattice_positions(places), route, start, plan.goal);
   cv::Mat picture = lattice_plot.render();
   if (truth_m) {
-    eval::PointsPlot truth_plot("The route over the places' true positions", "x (m)", "y (m)");
+    measures::PointsPlot truth_plot("The route over the places' true positions", "x (m)", "y (m)");
     add_route(truth_plot, *truth_m, route, start, plan.goal);
     cv::hconcat(picture, truth_plot.render(), picture);
   }

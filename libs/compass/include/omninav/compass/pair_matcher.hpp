@@ -41,7 +41,7 @@ struct ConfidenceParams {
   // Below this mean difference per compared component (grey levels, RMS for L2, mean absolute
   // for L1) the distance function counts as flat: featureless (§3.3.5). A label only (no heading
   // changes with it on the zoo); chosen across the zoo, leaving one family out, by how well it
-  // flags frames whose turn is more than 5° off (docs/compass.md "Thresholds"; it was 1).
+  // flags frames whose turn is more than 5° off (docs/evaluation.md "Compass: Thresholds").
   double flat_below_grey = 8.0;
   // A second local minimum at least this far from the best one ...
   double competing_separation_rad = 10.0 * 3.14159265358979323846 / 180.0;

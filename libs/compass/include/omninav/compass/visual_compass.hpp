@@ -63,7 +63,7 @@ struct SamplingParams {
   // Ours (the rotation cap above): also replace the reference when the rotation from it exceeds
   // this, radians, once the pair shows parallax; 0: off (the paper's Algorithm 1). 4° keeps the
   // bands within 2° of the direction of travel; chosen across the zoo leaving one family out
-  // (docs/compass.md "Thresholds"; it was 6°, chosen in the built-in room).
+  // (docs/evaluation.md "Compass: Thresholds"; it was 6°, chosen in the built-in room).
   double max_reference_rotation_rad = 4.0 * 3.14159265358979323846 / 180.0;
   // Parallax shown: the pair's minimum d_m above this multiple of d(I_r, I_r, 1 column)
   // (PairMatch::self_step), the most a pure rotation leaves (above). 1: the bound itself, not a

@@ -45,6 +45,7 @@ class ConfigReader {
   void read_deg(const std::string& key, double& value_rad, double min_deg, double max_deg) const;
   // A number that may be absent or null (`~`): the caller then decides, e.g. "detect it".
   void read(const std::string& key, std::optional<double>& value, double min, double max) const;
+  void read(const std::string& key, std::optional<double>& value) const;
   // A non-empty list of numbers, each in [min, max] (`seeds: [1, 2]`).
   void read(const std::string& key, std::vector<double>& values, double min, double max) const;
   void read(const std::string& key, std::vector<int>& values, int min, int max) const;

@@ -5,7 +5,7 @@
 //
 // Every 2-D position in the libraries is an Eigen::Vector2d (one type for one idea); where a
 // position could be in two frames, its name says which (`world_position`, `lattice_position`).
-// OpenCV's points appear only where pictures are drawn (eval, report).
+// OpenCV's points appear only where pictures are drawn (measures, report).
 
 #include <Eigen/Core>
 #include <cmath>

@@ -6,7 +6,7 @@
 //   Max. |e|, Mean, Std. dev. over the whole sequence (not only its end, §4.3);
 //   Slope (°/s) and (°/m): the slope of a robust linear regression of e against time and
 //   against distance travelled. The paper does not name its robust regression; we use Theil–Sen
-//   (median of pairwise slopes, omninav::eval::theil_sen_fit, whose header says why).
+//   (median of pairwise slopes, omninav::measures::theil_sen_fit, whose header says why).
 // The compass is started at the true heading of the first frame (§4.1: "the visual compass is
 // initialised with the absolute value at the beginning of the experiment").
 
@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "omninav/compass/visual_compass.hpp"
-#include "omninav/eval/error_stats.hpp"
+#include "omninav/measures/error_stats.hpp"
 
 namespace omninav::evaluation {
 
@@ -32,7 +32,7 @@ struct CompassEvaluation {
   int total_frames = 0;
   std::vector<double> errors_deg;         // per frame, wrapped to (−180, 180]
   std::vector<double> distance_m;         // travelled on the floor up to each frame
-  eval::ErrorStats error_deg;             // max |e|, mean, std (degrees)
+  measures::ErrorStats error_deg;         // max |e|, mean, std (degrees)
   std::optional<double> slope_deg_per_s;  // absent without times
   std::optional<double> slope_deg_per_m;  // absent when the camera did not travel (on the spot)
   double final_error_deg = 0.0;

@@ -11,6 +11,7 @@
 #include "omninav/lattice/organise.hpp"
 #include "omninav/memory/memory_config.hpp"
 #include "omninav/lattice/confirmed_links.hpp"
+#include "omninav/navigation/live_session.hpp"
 #include "omninav/navigation/navigator.hpp"
 #include "omninav/navigation/place_belief.hpp"
 #include "omninav/omni/unwrap.hpp"
@@ -59,5 +60,9 @@ struct NavigationConfig {
 
 // <config_dir>/navigation.yaml: sections route, links, belief, navigator, robot and trials.
 NavigationConfig load_navigation_config(const std::filesystem::path& config_dir);
+
+// A live session's parameters (navigation/live_session.hpp): compass.yaml, memory.yaml (with
+// use_compass_config, as `explore` does) and navigation.yaml's route, links, belief and navigator.
+navigation::LiveSessionParams load_live_session_params(const std::filesystem::path& config_dir);
 
 }  // namespace omninav::evaluation

@@ -7,7 +7,7 @@
 #include <optional>
 #include <vector>
 
-#include "omninav/eval/procrustes.hpp"
+#include "omninav/measures/procrustes.hpp"
 #include "omninav/memory/visual_memory.hpp"
 #include "omninav/report/lattice_figures.hpp"
 
@@ -21,8 +21,8 @@ namespace omninav::evaluation {
 //   the aligned lattice (a place moved across the line through two of its neighbours), or lie
 //   on one line.
 struct LatticeScore : report::LatticeOverTruth {
-  double spacing_m = 0.0;  // the truth's typical spacing (median nearest-neighbour distance)
-  eval::SplitRmse rmse;    // in spacings
+  double spacing_m = 0.0;    // the truth's typical spacing (median nearest-neighbour distance)
+  measures::SplitRmse rmse;  // in spacings
   std::vector<std::size_t> boundary;  // places with fewer than 8 true neighbours within 1.5
                                       // spacings
   int neighbour_triangles = 0;        // the triangles of true neighbours

@@ -36,6 +36,11 @@ struct TrialParams {
   // map's own spacing would make the same robot score differently on another map of the
   // room). 0.3 m: one spacing of the suites' grids.
   double goal_radius_m = 0.3;
+
+  // The ranges of navigation.yaml's trials section (min_separation_spacings, goal_radius_m;
+  // count and seed are checked on the command line). Throws UsageError naming the key
+  // (core/param_check.hpp); the loader and random_trials call it.
+  void check() const;
 };
 
 // Reads the `trials:` section of navigation.yaml (count and seed are command-line values).

@@ -7,10 +7,14 @@
 //     would end, and turning on the spot is simulated by rolling the panorama (core/panorama.hpp:
 //     a counter-clockwise turn by δ moves the content by δ·W/(2π) columns).
 
+#include <memory>
 #include <opencv2/core.hpp>
+#include <string>
 #include <vector>
 
 #include "omninav/core/pose.hpp"
+#include "omninav/io/panorama_input.hpp"
+#include "omninav/memory/visual_memory.hpp"
 #include "omninav/navigation/navigator.hpp"
 #include "omninav/sim/renderer.hpp"
 #include "omninav/sim/virtual_robot.hpp"
@@ -69,5 +73,29 @@ class GridDatabaseWorld : public navigation::NavigationWorld {
   double turn_noise_deg_ = 0.0;
   cv::RNG rng_;
 };
+
+// The render parameters of a robot's camera on `memory`'s map: `render` with the panorama size
+// the map was built from (its first place's signature), so that its views compare with the
+// places. `memory` must hold a place.
+sim::RenderParams render_params_for_map(const memory::VisualMemory& memory,
+                                        sim::RenderParams render);
+
+// A virtual robot in a rendered world, and the world the navigator drives it in.
+struct RenderedRobot {
+  std::unique_ptr<sim::VirtualRobot> robot;
+  std::unique_ptr<RenderedWorld> world;
+};
+
+// The robot of `omninav navigate --world` at `start` in `world` (drawn by `renderer`, both of
+// which must outlive it), its camera at the height of `memory`'s first place (1 m when the place
+// has no ground truth).
+RenderedRobot place_robot(const sim::World& world, const sim::Renderer& renderer,
+                          const memory::VisualMemory& memory, const Pose2& start,
+                          const sim::RobotParams& params);
+
+// The images of a grid database (or any input whose images have poses), as panoramas, for a
+// GridDatabaseWorld; `name` names the input in messages. Throws InputError for an image
+// without a pose; logs when the input is not marked a grid database.
+std::vector<GridImage> read_grid_images(io::PanoramaInput& input, const std::string& name);
 
 }  // namespace omninav::evaluation

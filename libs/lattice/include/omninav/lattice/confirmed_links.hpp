@@ -69,6 +69,10 @@ struct LinkParams {
   // must lie within 1.5 spacings plus that share of the way between them by their odometry
   // (when both have it; Menegatti et al. 2004, §3.4, know the distance "within 10 %").
   double odometry_drift = 0.02;
+
+  // The ranges of navigation.yaml's links section. Throws UsageError naming the key
+  // (core/param_check.hpp); the loader and confirmed_links call it.
+  void check() const;
 };
 
 // Reads the `links:` section of lattice.yaml.

@@ -108,6 +108,10 @@ struct ExplorationParams {
   // Components used to measure the direction of motion (§3.4, signature/motion.hpp); 0: the
   // signature's.
   int motion_components = 0;
+
+  // The ranges of memory.yaml's exploration section. Throws UsageError naming the key
+  // (core/param_check.hpp); the loader and Explorer's constructor call it.
+  void check() const;
 };
 
 // Reads the `exploration:` section of memory.yaml.

@@ -43,6 +43,10 @@ struct NavigatorParams {
   double homing_step_spacings = 0.333;
   double homing_stop_spacings = 0.5;
   int homing_max_steps = 8;  // homing steps at most (they count against max_steps too)
+
+  // The ranges of navigation.yaml's navigator section. Throws UsageError naming the key
+  // (core/param_check.hpp); the loader and goal_navigation_setup (memory_places.hpp) call it.
+  void check() const;
 };
 
 // Reads the `navigator:` section of navigation.yaml.

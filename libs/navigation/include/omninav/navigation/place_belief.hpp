@@ -38,6 +38,10 @@ struct BeliefParams {
   // Confident: at least this much of the belief on the most probable place and the places
   // linked to it (the robot stands somewhere between them); lost otherwise.
   double confident_share = 0.5;
+
+  // The ranges of navigation.yaml's belief section. Throws UsageError naming the key
+  // (core/param_check.hpp); the loader and PlaceBelief's constructor call it.
+  void check() const;
 };
 
 // Reads the `belief:` section of navigation.yaml.

@@ -26,6 +26,10 @@ struct RouteParams {
   // similarity cannot tell: it rescales so that the best place always scores 1000.
   // Chosen across the zoo leaving one family out (config/navigation.yaml).
   double match_dissimilarity_ratio = 1.5;
+
+  // The range of navigation.yaml's route section. Throws UsageError naming the key
+  // (core/param_check.hpp); the loader and match_limit (memory_places.hpp) call it.
+  void check() const;
 };
 
 // Reads the `route:` section of navigation.yaml.

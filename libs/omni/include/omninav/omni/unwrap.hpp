@@ -98,6 +98,12 @@ struct UnwrapParams {
   // mirror seen from below (Labrosse 2006, §3.1). A fisheye looking up sees the zenith at the
   // centre of the raw image: set false for it.
   bool outer_radius_at_top = true;
+
+  // The ranges of camera.yaml's unwrap section (the lengths' by `units`) and their consistency
+  // (both centre coordinates or neither, the inner radius below the outer). Throws UsageError
+  // naming the key (core/param_check.hpp); the loader calls it, and make_unwrapper turns its
+  // error into a ConfigError.
+  void check() const;
 };
 
 // Default parameters with the output size of `geometry` (camera.yaml's `panorama:` section).

@@ -4,17 +4,18 @@
 #include <string>
 #include <vector>
 
-#include "omninav/eval/plot.hpp"
+#include "omninav/measures/plot.hpp"
 #include "omninav/sim/trajectory.hpp"
 #include "omninav/sim/world.hpp"
 
 namespace omninav::report {
 
 // Outlines of floor rectangles (obstacles, regions) as segments of grey level `grey`.
-void add_floor_boxes(eval::PointsPlot& plot, const std::vector<sim::FloorBox>& boxes, double grey);
+void add_floor_boxes(measures::PointsPlot& plot, const std::vector<sim::FloorBox>& boxes,
+                     double grey);
 
 // The world seen from above: its floor, obstacles and named regions, and the trajectory's
 // positions (plan.png of `omninav render`).
-eval::PointsPlot floor_plan(const sim::World& world, const sim::Trajectory& trajectory);
+measures::PointsPlot floor_plan(const sim::World& world, const sim::Trajectory& trajectory);
 
 }  // namespace omninav::report

@@ -1,0 +1,244 @@
+// omninav_ros: the live session (libs/navigation/.../live_session.hpp) as a ROS 1 node, a thin
+// adapter: messages in, the session's outputs out, the session's commands as services.
+// docs/ros.md documents its topics, services and parameters. Compiled as C++17: ROS 1's
+// generated message headers use std::allocator<void>::rebind, which C++20 removed.
+
+#include <geometry_msgs/PoseWithCovarianceStamped.h>
+#include <nav_msgs/Odometry.h>
+#include <ros/callback_queue.h>
+#include <ros/ros.h>
+#include <sensor_msgs/CompressedImage.h>
+#include <sensor_msgs/Image.h>
+#include <std_msgs/Float64MultiArray.h>
+#include <std_msgs/UInt32.h>
+#include <std_srvs/Trigger.h>
+
+#include <cmath>
+#include <csignal>
+#include <exception>
+#include <memory>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "omninav/io/ros_image.hpp"
+#include "ros_session.hpp"
+
+namespace omninav::ros_node {
+namespace {
+
+// The fields of ~place, in order (its layout's label says them too).
+constexpr const char* kPlaceFields =
+    "place,similarity,dissimilarity_per_value,probability,confidence,lost";
+constexpr int kPlaceFieldCount = 6;
+// The covariance of the parts of ~heading the node does not measure (position, roll, pitch):
+// unknown, as robot_localization and REP 145 read a huge variance.
+constexpr double kUnknownVariance = 1e9;
+
+class Node {
+ public:
+  Node(ros::NodeHandle& node, ros::NodeHandle& private_node) {
+    const std::string config_dir = private_node.param<std::string>("config_dir", "");
+    const std::string map = private_node.param<std::string>("map", "");
+    const bool use_odometry = private_node.param("use_odometry", false);
+    const int queue = private_node.param("queue_size", 100);
+    frame_id_ = private_node.param<std::string>("frame_id", "odom");
+    session_ = std::make_unique<RosSession>(config_dir, map, use_odometry,
+                                            static_cast<std::size_t>(std::max(queue, 1)));
+    if (!session_->no_belief_reason().empty()) {
+      ROS_WARN_STREAM("no places are recognised: " << session_->no_belief_reason());
+    }
+    heading_ = private_node.advertise<geometry_msgs::PoseWithCovarianceStamped>("heading", queue);
+    place_ = private_node.advertise<std_msgs::Float64MultiArray>("place", queue);
+    new_place_ = private_node.advertise<std_msgs::UInt32>("new_place", queue);
+    const uint32_t size = static_cast<uint32_t>(std::max(queue, 1));
+    if (private_node.param("compressed", false)) {
+      // As image_transport names it: the raw topic's name (after remapping) + "/compressed".
+      image_ = node.subscribe(node.resolveName("image") + "/compressed", size, &Node::on_compressed,
+                              this);
+    } else {
+      image_ = node.subscribe("image", size, &Node::on_image, this);
+    }
+    if (use_odometry) odometry_ = node.subscribe("odom", size, &Node::on_odometry, this);
+    services_.push_back(private_node.advertiseService("start_exploring", &Node::start, this));
+    services_.push_back(private_node.advertiseService("stop_exploring", &Node::stop, this));
+    services_.push_back(private_node.advertiseService("save_map", &Node::save, this));
+    if (private_node.param("explore", false)) session_->start_exploring();
+    ROS_INFO_STREAM("omninav: listening on "
+                    << image_.getTopic()
+                    << (use_odometry ? " and " + odometry_.getTopic() : std::string()));
+  }
+
+  // What was skipped, logged when the node stops.
+  void log_summary() const {
+    ROS_INFO_STREAM("omninav: skipped " << skipped_ << " frames the session refused, "
+                                        << undecodable_ << " that could not be decoded, " << failed_
+                                        << " that failed");
+  }
+
+ private:
+  void on_image(const sensor_msgs::ImageConstPtr& message) {
+    io::RawImage raw{message->height, message->width, message->encoding, message->is_bigendian != 0,
+                     message->step,   message->data};
+    take(message->header.stamp.toSec(), image_.getTopic(),
+         [&raw](const std::string& where) { return io::decode_raw_image(std::move(raw), where); });
+  }
+
+  void on_compressed(const sensor_msgs::CompressedImageConstPtr& message) {
+    take(message->header.stamp.toSec(), image_.getTopic(), [&message](const std::string& where) {
+      return io::decode_compressed_image(message->data, message->format, where);
+    });
+  }
+
+  // Decodes an image message, skipping (and counting) one that cannot be; pushes the picture.
+  template <typename Decode>
+  void take(double stamp_s, const std::string& topic, Decode decode) {
+    cv::Mat picture;
+    try {
+      picture = decode(topic);
+    } catch (const std::exception& error) {
+      ++undecodable_;
+      warn_once("decode", std::string(error.what()) + " (skipped; further ones counted)");
+      return;
+    }
+    guarded(topic, [&] { publish(session_->image(picture, stamp_s)); });
+  }
+
+  // Runs the session on a message: what it throws (exploring refused a frame) is logged once and
+  // counted, never the end of the node; then the first skip of each kind is logged (the session
+  // counts them all).
+  template <typename Work>
+  void guarded(const std::string& topic, Work work) {
+    try {
+      work();
+    } catch (const std::exception& error) {
+      ++failed_;
+      warn_once("failed", topic + ": " + error.what() + " (further failures counted)");
+    }
+    const int skipped = session_->skipped();
+    if (skipped > skipped_) {
+      skipped_ = skipped;
+      warn_once(session_->last_skip_reason(), image_.getTopic() + ": " +
+                                                  session_->last_skip_message() +
+                                                  " (skipped; further ones counted)");
+    }
+  }
+
+  void on_odometry(const nav_msgs::OdometryConstPtr& message) {
+    const geometry_msgs::Pose& pose = message->pose.pose;
+    guarded(odometry_.getTopic(), [&] {
+      std::vector<FrameOutputs> completed;
+      if (!session_->odometry(
+              {message->header.stamp.toSec(), pose.position.x, pose.position.y, pose.position.z,
+               pose.orientation.x, pose.orientation.y, pose.orientation.z, pose.orientation.w},
+              completed)) {
+        warn_once("odometry", odometry_.getTopic() +
+                                  ": a stamp not after the last one's (ignored; further ones too)");
+      }
+      publish(completed);
+    });
+  }
+
+  void publish(const std::vector<FrameOutputs>& frames) {
+    for (const FrameOutputs& frame : frames) {
+      geometry_msgs::PoseWithCovarianceStamped heading;
+      heading.header.stamp = ros::Time(frame.stamp_s);
+      heading.header.frame_id = frame_id_;
+      heading.pose.pose.orientation.z = std::sin(frame.heading_rad / 2.0);
+      heading.pose.pose.orientation.w = std::cos(frame.heading_rad / 2.0);
+      for (int i = 0; i < 5; ++i) heading.pose.covariance[i * 7] = kUnknownVariance;
+      heading.pose.covariance[35] = frame.heading_sigma_rad * frame.heading_sigma_rad;
+      heading_.publish(heading);
+      if (frame.has_place) {
+        std_msgs::Float64MultiArray place;
+        place.layout.dim.resize(1);
+        place.layout.dim[0].label = kPlaceFields;
+        place.layout.dim[0].size = kPlaceFieldCount;
+        place.layout.dim[0].stride = kPlaceFieldCount;
+        place.data = {static_cast<double>(frame.place),
+                      frame.similarity,
+                      frame.dissimilarity_per_value,
+                      frame.probability,
+                      frame.confidence,
+                      frame.lost ? 1.0 : 0.0};
+        place_.publish(place);
+      }
+      if (frame.new_place) {
+        std_msgs::UInt32 added;
+        added.data = *frame.new_place;
+        new_place_.publish(added);
+      }
+    }
+  }
+
+  bool start(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response) {
+    session_->start_exploring();
+    response.success = true;
+    response.message = "exploring: " + std::to_string(session_->place_count()) + " places";
+    return true;
+  }
+
+  bool stop(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response) {
+    session_->stop_exploring();
+    response.success = true;
+    response.message = "stopped exploring: " + std::to_string(session_->place_count()) + " places";
+    return true;
+  }
+
+  bool save(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response) {
+    try {
+      session_->save();
+      response.success = true;
+      response.message = "saved " + std::to_string(session_->place_count()) + " places";
+    } catch (const std::exception& error) {
+      response.success = false;
+      response.message = error.what();
+      ROS_ERROR_STREAM("save_map: " << error.what());
+    }
+    return true;
+  }
+
+  // Each kind of bad input is logged once; the session counts them.
+  void warn_once(const std::string& kind, const std::string& message) {
+    if (warned_.insert(kind).second) ROS_WARN_STREAM(message);
+  }
+
+  std::unique_ptr<RosSession> session_;
+  std::string frame_id_;
+  ros::Publisher heading_, place_, new_place_;
+  ros::Subscriber image_, odometry_;
+  std::vector<ros::ServiceServer> services_;
+  std::set<std::string> warned_;
+  int skipped_ = 0;
+  int undecodable_ = 0;
+  int failed_ = 0;
+};
+
+}  // namespace
+}  // namespace omninav::ros_node
+
+namespace {
+volatile std::sig_atomic_t stop_requested = 0;
+}
+
+int main(int argc, char** argv) {
+  // Ctrl-C (and roslaunch's SIGINT) ends the loop below rather than ROS at once, so that the
+  // node can still log what it skipped.
+  ros::init(argc, argv, "omninav", ros::init_options::NoSigintHandler);
+  std::signal(SIGINT, [](int) { stop_requested = 1; });
+  ros::NodeHandle node;
+  ros::NodeHandle private_node("~");
+  try {
+    omninav::ros_node::Node adapter(node, private_node);
+    while (ros::ok() && !stop_requested) {
+      ros::getGlobalCallbackQueue()->callAvailable(ros::WallDuration(0.1));
+    }
+    adapter.log_summary();
+  } catch (const std::exception& error) {
+    ROS_FATAL_STREAM("omninav: " << error.what());
+    ros::shutdown();
+    return 1;
+  }
+  ros::shutdown();
+  return 0;
+}
