@@ -253,19 +253,10 @@ PoseGraphResult solve_pose_graph(int place_count,
   options.max_num_iterations = params.max_iterations;
   options.num_threads = params.threads;
   options.logging_type = ceres::SILENT;
-  // Two stages. Switches decide well only near the solution: from dead reckoning that drifted
-  // by metres, a true revisit looks as wrong as a look-alike (several standard deviations off)
-  // and costs less switched off. So the graph is first solved with every revisit on, which
-  // undoes the drift the true ones agree on, and then with the switches free.
-  for (double& on : result.switches) problem.SetParameterBlockConstant(&on);
-  ceres::Solver::Summary all_on;
-  ceres::Solve(options, &problem, &all_on);
-  for (double& on : result.switches) problem.SetParameterBlockVariable(&on);
   ceres::Solver::Summary summary;
   ceres::Solve(options, &problem, &summary);
   result.converged = summary.termination_type == ceres::CONVERGENCE;
-  result.summary =
-      "revisits on: " + all_on.BriefReport() + "; switches free: " + summary.BriefReport();
+  result.summary = summary.BriefReport();
   for (Eigen::Vector3d& pose : result.poses) pose.z() = wrapped(pose.z());
 
   // Pieces by the measurements kept.
