@@ -10,8 +10,8 @@
 // `straight_turn_rad`), and one correction per stretch is solved from the phases' turns between
 // places of different stretches and the compass's turns across the bends, each with a Cauchy
 // loss (a look-alike's turn, or a bend where the compass jumped, is an outlier); the first
-// place's stretch is held. A correction per place instead (every place free) did worse on the
-// quick suite's zig-zags (room 60 cm 0.16 -> 0.52 spacings; docs/lattice.md).
+// place's stretch is held. A correction per place (every place free) moves single places where
+// the compass was right (docs/lattice.md).
 
 #include <optional>
 #include <vector>

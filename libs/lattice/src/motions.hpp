@@ -20,8 +20,8 @@
 //     median residual is dropped; and so is one between places of a stream at most
 //     step_check_steps apart that disagrees with the steps between them by more than
 //     step_check_sigmas standard deviations (dead reckoning over a few steps is better than any
-//     look-alike). The three numbers are chosen across the zoo (docs/lattice.md, Thresholds
-//     across the zoo).
+//     look-alike). The three numbers are chosen across the zoo (docs/evaluation.md,
+//     "Thresholds across the zoo").
 // Last, places that these motions leave apart are joined by the most similar pairs across, even
 // look-alikes (a lattice in pieces held by springs alone falls apart: a piece whose motions were
 // all dropped drifts away, pushed by its one-sided springs).

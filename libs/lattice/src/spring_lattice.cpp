@@ -69,14 +69,13 @@ ceres::Solver::Options solver_options(const LatticeParams& params) {
   ceres::Solver::Options solver;
   // Conjugate gradients on the normal equations, not a sparse Cholesky: a place springs to its
   // most similar places, and the look-alikes among them lie anywhere on the map, so the factor
-  // fills in. Measured on rendered grids (docs/lattice.md): the same lattice to the digit on the
-  // 57-80-place grids, 1.5× faster at 787 places, and at 10,000 places CGNR solves in about a
-  // minute where the Cholesky had not finished in 12.
+  // fills in: at 10,000 places the Cholesky did not finish, and on small grids CGNR gives the
+  // same lattice (docs/evaluation.md, "Speed, measured").
   solver.linear_solver_type = ceres::CGNR;
   solver.preconditioner_type = ceres::JACOBI;
   // Each step's normal equations solved by CG to 30 % of their residual (an inexact Newton
-  // step; Ceres' default forcing term is 10 %): the same lattices within 0.01 spacings on the 16
-  // rendered maps of docs/lattice.md, and the 10,000-place solve 3.5× faster (52 s → 15 s).
+  // step; Ceres' default forcing term is 10 %): the same lattices within 0.01 spacings, in a
+  // fraction of the time (docs/evaluation.md, "Speed, measured").
   solver.eta = 0.3;
   // Unbending a dead-reckoned start takes many small steps; non-monotonic steps let the trust
   // region grow faster, and a 1e-4 relative cost change is far below what moves a place visibly.
