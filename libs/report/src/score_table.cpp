@@ -14,7 +14,7 @@ namespace {
 
 constexpr int kFont = cv::FONT_HERSHEY_SIMPLEX;
 constexpr double kTextScale = 0.4;
-constexpr int kCellW = 96, kCellH = 24, kLineH = 14, kTitleH = 34, kGroupH = 22, kGap = 16;
+constexpr int kCellW = 104, kCellH = 24, kLineH = 14, kTitleH = 34, kGroupH = 22, kGap = 16;
 constexpr int kKeyH = 30, kMargin = 8, kHeaderChars = 13;
 const cv::Scalar kInk(0, 0, 0), kWhite(255, 255, 255);
 const cv::Scalar kFailed(40, 40, 140), kNotApplicable(250, 250, 250);
@@ -29,48 +29,43 @@ std::vector<std::pair<std::size_t, std::size_t>> blocks(const std::vector<ScoreC
   return spans;
 }
 
-// Words joined into lines of at most kHeaderChars characters (a longer word stands alone).
-std::vector<std::string> wrapped(const std::string& text) {
-  std::vector<std::string> lines;
-  std::istringstream words(text);
-  for (std::string word; words >> word;) {
-    if (!lines.empty() && lines.back().size() + 1 + word.size() <= kHeaderChars) {
-      lines.back() += " " + word;
-    } else {
-      lines.push_back(word);
-    }
-  }
-  return lines;
-}
-
-// A column's header: its title wrapped, its unit, its target.
-std::vector<std::string> header_lines(const ScoreColumn& column) {
-  std::vector<std::string> lines = wrapped(column.title);
-  if (!column.unit.empty()) lines.push_back("(" + column.unit + ")");
-  lines.push_back(column.target ? target_text(*column.target) : "no target");
-  return lines;
-}
-
 int text_width(const std::string& text) {
   int baseline = 0;
   return cv::getTextSize(measures::hershey_text(text), kFont, kTextScale, 1, &baseline).width;
 }
 
+// Words joined into lines that fit a cell (a longer word stands alone), appended to `lines`.
+void wrap_into(std::vector<std::string>& lines, const std::string& text) {
+  bool first = true;
+  std::istringstream words(text);
+  for (std::string word; words >> word; first = false) {
+    if (!first && text_width(lines.back() + " " + word) <= kCellW - 8) {
+      lines.back() += " " + word;
+    } else {
+      lines.push_back(word);
+    }
+  }
+}
+
+std::vector<std::string> target_lines(const ScoreColumn& column) {
+  std::vector<std::string> lines;
+  wrap_into(lines, column.target ? target_text(*column.target) : "no target");
+  return lines;
+}
+
+// A column's header: its title, its unit and its target, each wrapped to the cell's width.
+std::vector<std::string> header_lines(const ScoreColumn& column) {
+  std::vector<std::string> lines;
+  wrap_into(lines, column.title);
+  if (!column.unit.empty()) wrap_into(lines, "(" + column.unit + ")");
+  const std::vector<std::string> target = target_lines(column);
+  lines.insert(lines.end(), target.begin(), target.end());
+  return lines;
+}
+
 void put_text(cv::Mat& picture, const std::string& text, cv::Point at, const cv::Scalar& ink,
               double scale = kTextScale) {
   cv::putText(picture, measures::hershey_text(text), at, kFont, scale, ink, 1, cv::LINE_AA);
-}
-
-std::string cell_text(const Cell& cell, int decimals) {
-  switch (cell.state) {
-    case Cell::State::kValue:
-      return fixed(cell.value, decimals);
-    case Cell::State::kNotApplicable:
-      return "-";
-    case Cell::State::kFailed:
-      return "failed";
-  }
-  return "";
 }
 
 cv::Scalar cell_colour(const Cell& cell, const ScoreColumn& column) {
@@ -94,12 +89,14 @@ void draw_cell(cv::Mat& picture, const cv::Rect& box, const Cell& cell, const Sc
   put_text(picture, text, {box.x + box.width - 5 - text_width(text), box.y + 16}, ink);
 }
 
+// The header's lines at the bottom of its box, over the column's cells; the target's in grey.
 void draw_header(cv::Mat& picture, const cv::Rect& box, const ScoreColumn& column) {
   const std::vector<std::string> lines = header_lines(column);
+  const std::size_t grey_from = lines.size() - target_lines(column).size();
+  const int first = box.y + box.height - 6 - kLineH * static_cast<int>(lines.size() - 1);
   for (std::size_t i = 0; i < lines.size(); ++i) {
-    const int y = box.y + kLineH * static_cast<int>(i + 1);
-    const bool target_line = i + 1 == lines.size();
-    put_text(picture, lines[i], {box.x + 4, y}, target_line ? cv::Scalar(90, 90, 90) : kInk);
+    put_text(picture, lines[i], {box.x + 4, first + kLineH * static_cast<int>(i)},
+             i >= grey_from ? cv::Scalar(90, 90, 90) : kInk);
   }
 }
 
@@ -133,6 +130,18 @@ void draw_key(cv::Mat& picture, int top) {
 
 }  // namespace
 
+std::string cell_text(const Cell& cell, int decimals) {
+  switch (cell.state) {
+    case Cell::State::kValue:
+      return fixed(cell.value, decimals);
+    case Cell::State::kNotApplicable:
+      return "-";
+    case Cell::State::kFailed:
+      return "failed";
+  }
+  return "";
+}
+
 Verdict verdict(const std::optional<Target>& target, double value) {
   if (!target) return Verdict::kNoTarget;
   // How far past the limit, in the bad direction (<= 0 meets).
@@ -158,7 +167,9 @@ cv::Scalar verdict_colour(Verdict verdict) {
 }
 
 std::string target_text(const Target& target) {
-  const std::string limit = fixed(target.limit, target.limit == std::round(target.limit) ? 0 : 2);
+  std::ostringstream limit_text;
+  limit_text << target.limit;  // the shortest form: 5, 0.5, 0.95
+  const std::string limit = limit_text.str();
   switch (target.kind) {
     case Target::Kind::kAtMost:
       return "target <= " + limit;

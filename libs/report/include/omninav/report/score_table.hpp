@@ -25,6 +25,9 @@ struct Cell {
   bool has_value() const { return state == State::kValue; }
 };
 
+// A cell as written in a table: the value with `decimals`, "-" when not applicable, "failed".
+std::string cell_text(const Cell& cell, int decimals);
+
 // What a measure should reach: a value at most, at least, or of magnitude at most `limit`;
 // up to `margin` past the limit is "near".
 struct Target {
