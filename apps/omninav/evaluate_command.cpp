@@ -49,6 +49,7 @@ void run_evaluate(const GlobalOptions& global, const EvaluateOptions& options) {
            std::to_string(suite.worlds.size()) + " worlds, outputs in " + out.string());
   const std::vector<evaluation::Measure>& columns = evaluation::measures();
   const std::filesystem::path csv = out / "evaluation.csv";
+  const std::filesystem::path worst = out / "evaluation_worst.csv";
   const auto start = std::chrono::steady_clock::now();
   std::vector<evaluation::Row> done;
   const evaluation::SuiteEvaluation result = evaluation::evaluate_suite(
@@ -56,6 +57,7 @@ void run_evaluate(const GlobalOptions& global, const EvaluateOptions& options) {
         // The table so far, so that an interrupted run leaves its finished worlds.
         done.push_back(row);
         write_output_file(csv, evaluation::table_csv(done, columns));
+        write_output_file(worst, evaluation::worst_csv(done, columns));
         const double minutes =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / 60;
         log_info(fmt::format("evaluate: {} done ({} of {}, {:.1f} min)", row.world, index + 1,
@@ -64,9 +66,10 @@ void run_evaluate(const GlobalOptions& global, const EvaluateOptions& options) {
   const std::filesystem::path picture = out / "evaluation.png";
   const std::filesystem::path commands = out / "commands.sh";
   write_output_file(csv, evaluation::table_csv(result.rows, columns));
-  measures::save_png(
-      evaluation::table_picture(result.rows, columns, "omninav evaluate --suite " + suite.name),
-      picture);
+  write_output_file(worst, evaluation::worst_csv(result.rows, columns));
+  measures::save_png(report::score_table_picture(evaluation::score_table(
+                         result.rows, columns, "omninav evaluate --suite " + suite.name)),
+                     picture);
   std::string script = "#!/bin/sh\n# The commands that remake every figure of " + csv.string() +
                        " (omninav evaluate --suite " + options.suite + ")\nset -e\n";
   for (const std::string& line : result.commands) script += line + "\n";
@@ -79,7 +82,8 @@ void run_evaluate(const GlobalOptions& global, const EvaluateOptions& options) {
     for (const std::string& note : row.notes)
       std::cout << "note: " << row.world << ": " << note << "\n";
   }
-  std::cout << "table: " << csv.string() << ", picture: " << picture.string()
+  std::cout << "table: " << csv.string() << ", worst rows: " << worst.string()
+            << ", picture: " << picture.string()
             << "; the commands that remake each figure: " << commands.string() << "\n";
   if (!result.failed_worlds.empty()) {
     // The table is written, but a world that could not be measured is a failed run.
@@ -103,7 +107,8 @@ void add_evaluate_command(CLI::App& app, const GlobalOptions& global) {
       "circle, a wander and a bumpy wander; explore, organise and localise on a grid; organise "
       "on zig-zag streams; navigate --trials), then print one table (a row per world, a column "
       "per measure, a last row WORST naming the worst family of each column) and write "
-      "evaluation.csv, evaluation.png and commands.sh (the command lines that remake each "
+      "evaluation.csv (a row per world), evaluation_worst.csv (the worst row of each column), "
+      "evaluation.png and commands.sh (the command lines that remake each "
       "figure) into --out. The same suite gives the same table.");
   command
       ->add_option(

@@ -3,14 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
-#include <map>
-#include <opencv2/imgproc.hpp>
 #include <sstream>
 
 #include "omninav/core/csv.hpp"
 #include "omninav/core/errors.hpp"
 #include "omninav/core/format.hpp"
-#include "omninav/measures/hershey_text.hpp"
 
 namespace omninav::evaluation {
 namespace {
@@ -28,16 +25,9 @@ double badness(const Measure& measure, double value) {
   return value;
 }
 
-std::string cell_text(const Cell& cell, int decimals) {
-  switch (cell.state) {
-    case Cell::State::kValue:
-      return fixed(cell.value, decimals);
-    case Cell::State::kNotApplicable:
-      return "-";
-    case Cell::State::kFailed:
-      return "failed";
-  }
-  return "";
+// A cell of evaluation.csv: its value with two more decimals than printed, else empty.
+std::string csv_number(const Cell& cell, const Measure& measure) {
+  return cell.has_value() ? fixed(cell.value, measure.decimals + 2) : "";
 }
 
 void check_rows(const std::vector<Row>& rows, const std::vector<Measure>& columns) {
@@ -50,53 +40,90 @@ void check_rows(const std::vector<Row>& rows, const std::vector<Measure>& column
   }
 }
 
+// The targets docs/evaluation.md lists under evaluation.png: a limit, and a margin past it that is
+// "near".
+report::Target at_most(double limit) {
+  return {report::Target::Kind::kAtMost, limit, limit / 2};
+}
+report::Target abs_at_most(double limit) {
+  return {report::Target::Kind::kAbsAtMost, limit, limit / 2};
+}
+report::Target at_least(double share) {
+  return {report::Target::Kind::kAtLeast, share, 0.1};
+}
+
 }  // namespace
 
 const std::vector<Measure>& measures() {
   static const std::vector<Measure> all = [] {
     std::vector<Measure> m;
-    for (const auto& [route, title] : std::vector<std::pair<std::string, std::string>>{
-             {"rotate", "rot"}, {"circle", "circ"}, {"wander", "wand"}, {"bumpy", "bumpy"}}) {
-      m.push_back({"compass_" + route + "_max_deg", "compass", title + " max", Worse::kHigher, 1});
-      m.push_back(
-          {"compass_" + route + "_mean_deg", "compass", title + " mean", Worse::kAbsHigher, 1});
-      m.push_back(
-          {"compass_" + route + "_end_deg", "compass", title + " end", Worse::kAbsHigher, 1});
+    // Max |error| targets per route: the circle and the wander 5 deg, the bumpy wander 8 deg;
+    // the rotation's end 0.5 deg.
+    for (const auto& [route, max_target] : std::vector<std::pair<std::string, double>>{
+             {"rotate", 0.0}, {"circle", 5.0}, {"wander", 5.0}, {"bumpy", 8.0}}) {
+      const auto max = max_target > 0 ? std::optional(at_most(max_target)) : std::nullopt;
+      const auto end = route == "rotate" ? std::optional(abs_at_most(0.5)) : std::nullopt;
+      m.push_back({"compass_" + route + "_max_deg", "compass", route + " max |e|", Worse::kHigher,
+                   1, "deg", max});
+      m.push_back({"compass_" + route + "_mean_deg", "compass", route + " mean e",
+                   Worse::kAbsHigher, 1, "deg", std::nullopt});
+      m.push_back({"compass_" + route + "_end_deg", "compass", route + " end e", Worse::kAbsHigher,
+                   1, "deg", end});
     }
     // The heading's standard deviation: the share of frames of the four routes within 1 and 2 of
     // it (ideally 0.68 and 0.95; lower means overconfident).
-    m.push_back({"compass_within_1_sigma", "compass", "in 1 sd", Worse::kLower, 2});
-    m.push_back({"compass_within_2_sigma", "compass", "in 2 sd", Worse::kLower, 2});
-    m.push_back({"memory_within_spacing", "memory", "within 1 sp", Worse::kLower, 3});
-    m.push_back({"memory_at_nearest", "memory", "at nearest", Worse::kLower, 3});
-    m.push_back({"memory_heading_error_deg", "memory", "heading err", Worse::kHigher, 1});
-    m.push_back({"memory_right_room", "memory", "right room", Worse::kLower, 3});
+    m.push_back(
+        {"compass_within_1_sigma", "compass", "in 1 sd", Worse::kLower, 2, "share", std::nullopt});
+    m.push_back(
+        {"compass_within_2_sigma", "compass", "in 2 sd", Worse::kLower, 2, "share", std::nullopt});
+    m.push_back({"memory_within_spacing", "memory", "within 1 spacing", Worse::kLower, 3, "share",
+                 at_least(0.95)});
+    m.push_back(
+        {"memory_at_nearest", "memory", "at nearest", Worse::kLower, 3, "share", std::nullopt});
+    m.push_back({"memory_heading_error_deg", "memory", "heading err", Worse::kHigher, 1, "deg",
+                 std::nullopt});
+    m.push_back(
+        {"memory_right_room", "memory", "right room", Worse::kLower, 3, "share", std::nullopt});
     // Min-warping's home vectors between grid places 1-3 spacings apart: |error| in degrees.
-    m.push_back({"memory_home_median_deg", "memory", "home med", Worse::kHigher, 1});
-    m.push_back({"memory_home_p90_deg", "memory", "home p90", Worse::kHigher, 1});
+    m.push_back({"memory_home_median_deg", "memory", "home vector median", Worse::kHigher, 1, "deg",
+                 at_most(10.0)});
+    m.push_back({"memory_home_p90_deg", "memory", "home vector p90", Worse::kHigher, 1, "deg",
+                 at_most(30.0)});
     for (const auto& [map, title] : std::vector<std::pair<std::string, std::string>>{
-             {"grid", "grid"}, {"zigzag30", "zz30"}, {"zigzag60", "zz60"}}) {
-      m.push_back({"lattice_" + map + "_rmse", "lattice", title + " all", Worse::kHigher, 2});
-      m.push_back(
-          {"lattice_" + map + "_rmse_interior", "lattice", title + " int", Worse::kHigher, 2});
-      m.push_back(
-          {"lattice_" + map + "_rmse_boundary", "lattice", title + " bnd", Worse::kHigher, 2});
-      m.push_back({"lattice_" + map + "_folds", "lattice", title + " folds", Worse::kHigher, 0});
+             {"grid", "grid"}, {"zigzag30", "zigzag 30"}, {"zigzag60", "zigzag 60"}}) {
+      m.push_back({"lattice_" + map + "_rmse", "lattice", title + " all", Worse::kHigher, 2,
+                   "spacings", std::nullopt});
+      m.push_back({"lattice_" + map + "_rmse_interior", "lattice", title + " interior",
+                   Worse::kHigher, 2, "spacings", at_most(0.5)});
+      m.push_back({"lattice_" + map + "_rmse_boundary", "lattice", title + " boundary",
+                   Worse::kHigher, 2, "spacings", std::nullopt});
+      m.push_back({"lattice_" + map + "_folds", "lattice", title + " folds", Worse::kHigher, 0,
+                   "count", std::nullopt});
     }
-    m.push_back({"navigation_reached", "navigation", "reached", Worse::kLower, 3});
-    m.push_back({"navigation_path_ratio", "navigation", "path/line", Worse::kHigher, 2});
-    m.push_back({"navigation_outside_m", "navigation", "out (m)", Worse::kHigher, 2});
-    m.push_back({"navigation_outside_spacings", "navigation", "out (sp)", Worse::kHigher, 1});
-    // The driven map: a tour of the grid's rectangle, explored by odometry.
-    m.push_back({"tour_coverage", "driven", "coverage", Worse::kLower, 3});
-    m.push_back({"lattice_driven_rmse", "driven", "lat all", Worse::kHigher, 2});
-    m.push_back({"lattice_driven_rmse_interior", "driven", "lat int", Worse::kHigher, 2});
-    m.push_back({"lattice_driven_rmse_boundary", "driven", "lat bnd", Worse::kHigher, 2});
-    m.push_back({"lattice_driven_folds", "driven", "lat folds", Worse::kHigher, 0});
-    m.push_back({"navigation_driven_reached", "driven", "reached", Worse::kLower, 3});
-    m.push_back({"navigation_driven_path_ratio", "driven", "path/line", Worse::kHigher, 2});
-    m.push_back({"navigation_driven_outside_m", "driven", "out (m)", Worse::kHigher, 2});
-    m.push_back({"navigation_driven_outside_spacings", "driven", "out (sp)", Worse::kHigher, 1});
+    for (const std::string map : {"", "driven_"}) {
+      const std::string group = map.empty() ? "navigation" : "driven";
+      if (!map.empty()) {
+        // The driven map: a tour of the grid's rectangle, explored by odometry.
+        m.push_back({"tour_coverage", group, "coverage", Worse::kLower, 3, "share", std::nullopt});
+        for (const auto& [measure, title] : std::vector<std::pair<std::string, std::string>>{
+                 {"rmse", "lattice all"},
+                 {"rmse_interior", "lattice interior"},
+                 {"rmse_boundary", "lattice boundary"}}) {
+          m.push_back({"lattice_driven_" + measure, group, title, Worse::kHigher, 2, "spacings",
+                       measure == "rmse_interior" ? std::optional(at_most(0.5)) : std::nullopt});
+        }
+        m.push_back({"lattice_driven_folds", group, "lattice folds", Worse::kHigher, 0, "count",
+                     std::nullopt});
+      }
+      m.push_back({"navigation_" + map + "reached", group, "goals reached", Worse::kLower, 3,
+                   "share", at_least(0.95)});
+      m.push_back({"navigation_" + map + "path_ratio", group, "path / line", Worse::kHigher, 2,
+                   "ratio", at_most(1.5)});
+      m.push_back({"navigation_" + map + "outside_m", group, "outside map", Worse::kHigher, 2, "m",
+                   std::nullopt});
+      m.push_back({"navigation_" + map + "outside_spacings", group, "outside map", Worse::kHigher,
+                   1, "spacings", at_most(1.0)});
+    }
     return m;
   }();
   return all;
@@ -125,7 +152,7 @@ std::vector<int> worst_rows(const std::vector<Row>& rows, const std::vector<Meas
 }
 
 std::string table_csv(const std::vector<Row>& rows, const std::vector<Measure>& columns) {
-  const std::vector<int> worst = worst_rows(rows, columns);
+  check_rows(rows, columns);
   std::ostringstream csv;
   std::vector<std::string> header{"world", "family"};
   for (const Measure& m : columns) header.push_back(m.key);
@@ -133,19 +160,32 @@ std::string table_csv(const std::vector<Row>& rows, const std::vector<Measure>& 
   for (const Row& row : rows) {
     std::vector<std::string> fields{row.world, row.family};
     for (std::size_t c = 0; c < columns.size(); ++c) {
-      const Cell& cell = row.cells[c];
-      fields.push_back(cell.state == Cell::State::kValue
-                           ? fixed(cell.value, columns[c].decimals + 2)
-                       : cell.state == Cell::State::kFailed ? "failed"
-                                                            : "");
+      fields.push_back(csv_number(row.cells[c], columns[c]));
     }
     write_csv_line(csv, fields);
   }
-  // The worst row of each column: its family, then its world.
-  for (const bool family : {true, false}) {
-    std::vector<std::string> fields{family ? "worst_family" : "worst_world", ""};
-    for (const int w : worst) {
-      fields.push_back(w < 0 ? "" : family ? rows[w].family : rows[w].world);
+  return csv.str();
+}
+
+std::string worst_csv(const std::vector<Row>& rows, const std::vector<Measure>& columns) {
+  const std::vector<int> worst = worst_rows(rows, columns);
+  std::ostringstream csv;
+  std::vector<std::string> header{"worst"};
+  for (const Measure& m : columns) header.push_back(m.key);
+  write_csv_line(csv, header);
+  for (const std::string line : {"family", "world", "value"}) {
+    std::vector<std::string> fields{line};
+    for (std::size_t c = 0; c < columns.size(); ++c) {
+      if (worst[c] < 0) {
+        fields.emplace_back();
+        continue;
+      }
+      const Row& row = rows[worst[c]];
+      const Cell& cell = row.cells[c];
+      fields.push_back(line == "family"                     ? row.family
+                       : line == "world"                    ? row.world
+                       : cell.state == Cell::State::kFailed ? "failed"
+                                                            : csv_number(cell, columns[c]));
     }
     write_csv_line(csv, fields);
   }
@@ -170,7 +210,7 @@ std::string table_text(const std::vector<Row>& rows, const std::vector<Measure>&
     for (const std::size_t c : in_group) {
       width[c] = columns[c].title.size();
       for (const Row& row : rows) {
-        width[c] = std::max(width[c], cell_text(row.cells[c], columns[c].decimals).size());
+        width[c] = std::max(width[c], report::cell_text(row.cells[c], columns[c].decimals).size());
       }
       if (worst[c] >= 0) width[c] = std::max(width[c], rows[worst[c]].family.size());
     }
@@ -183,7 +223,7 @@ std::string table_text(const std::vector<Row>& rows, const std::vector<Measure>&
       out << std::left << std::setw(static_cast<int>(label_width)) << row.world;
       for (const std::size_t c : in_group) {
         out << "  " << std::right << std::setw(static_cast<int>(width[c]))
-            << cell_text(row.cells[c], columns[c].decimals);
+            << report::cell_text(row.cells[c], columns[c].decimals);
       }
       out << '\n';
     }
@@ -197,67 +237,15 @@ std::string table_text(const std::vector<Row>& rows, const std::vector<Measure>&
   return out.str();
 }
 
-cv::Mat table_picture(const std::vector<Row>& rows, const std::vector<Measure>& columns,
-                      const std::string& title) {
-  const std::vector<int> worst = worst_rows(rows, columns);
-  constexpr int kCellW = 74, kCellH = 24, kLabelW = 150, kHeaderH = 150, kTitleH = 34;
-  const int width = kLabelW + kCellW * static_cast<int>(columns.size()) + 10;
-  const int height = kTitleH + kHeaderH + kCellH * (static_cast<int>(rows.size()) + 1) + 10;
-  cv::Mat picture(height, width, CV_8UC3, cv::Scalar(255, 255, 255));
-  const int font = cv::FONT_HERSHEY_SIMPLEX;
-  cv::putText(picture, measures::hershey_text(title), {8, 24}, font, 0.6, cv::Scalar(0, 0, 0), 1,
-              cv::LINE_AA);
-  // Headers written upwards, one per column.
-  for (std::size_t c = 0; c < columns.size(); ++c) {
-    cv::Mat header(kCellW, kHeaderH, CV_8UC3, cv::Scalar(255, 255, 255));
-    cv::putText(header, measures::hershey_text(columns[c].group + " " + columns[c].title),
-                {4, kCellW / 2 + 5}, font, 0.4, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
-    cv::Mat rotated;
-    cv::rotate(header, rotated, cv::ROTATE_90_COUNTERCLOCKWISE);
-    rotated.copyTo(
-        picture(cv::Rect(kLabelW + kCellW * static_cast<int>(c), kTitleH, kCellW, kHeaderH)));
+report::ScoreTable score_table(const std::vector<Row>& rows, const std::vector<Measure>& columns,
+                               const std::string& title) {
+  check_rows(rows, columns);
+  report::ScoreTable table{title, {}, {}};
+  for (const Measure& m : columns) {
+    table.columns.push_back({m.group, m.title, m.unit, m.decimals, m.target});
   }
-  const auto row_top = [&](std::size_t r) { return kTitleH + kHeaderH + kCellH * int(r); };
-  for (std::size_t r = 0; r <= rows.size(); ++r) {
-    const std::string label = r < rows.size() ? rows[r].world : "WORST";
-    cv::putText(picture, measures::hershey_text(label), {6, row_top(r) + 16}, font, 0.42,
-                cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
-  }
-  for (std::size_t c = 0; c < columns.size(); ++c) {
-    // Rank of each value in the column, 0 best .. 1 worst.
-    std::vector<double> values;
-    for (const Row& row : rows) {
-      if (row.cells[c].has_value()) values.push_back(badness(columns[c], row.cells[c].value));
-    }
-    std::sort(values.begin(), values.end());
-    const int x = kLabelW + kCellW * static_cast<int>(c);
-    for (std::size_t r = 0; r < rows.size(); ++r) {
-      const Cell& cell = rows[r].cells[c];
-      cv::Scalar colour(200, 200, 200);
-      if (cell.state == Cell::State::kFailed) colour = cv::Scalar(40, 40, 140);
-      if (cell.has_value()) {
-        const double b = badness(columns[c], cell.value);
-        const auto rank = std::lower_bound(values.begin(), values.end(), b) - values.begin();
-        const double share = values.size() > 1 ? double(rank) / double(values.size() - 1) : 0.0;
-        // Green (good) through yellow to red (bad), BGR.
-        colour = share < 0.5 ? cv::Scalar(120, 220, 120 + 260 * share)
-                             : cv::Scalar(120, 220 - 200 * (share - 0.5), 250);
-      }
-      const cv::Rect box(x, row_top(r), kCellW, kCellH);
-      cv::rectangle(picture, box, colour, cv::FILLED);
-      cv::rectangle(picture, box, cv::Scalar(255, 255, 255), 1);
-      const cv::Scalar ink =
-          cell.state == Cell::State::kFailed ? cv::Scalar(255, 255, 255) : cv::Scalar(0, 0, 0);
-      cv::putText(picture, cell_text(cell, columns[c].decimals), {x + 4, row_top(r) + 16}, font,
-                  0.4, ink, 1, cv::LINE_AA);
-    }
-    if (worst[c] >= 0) {
-      cv::putText(picture, measures::hershey_text(rows[worst[c]].family),
-                  {x + 4, row_top(rows.size()) + 16}, font, 0.4, cv::Scalar(0, 0, 160), 1,
-                  cv::LINE_AA);
-    }
-  }
-  return picture;
+  for (const Row& row : rows) table.rows.push_back({row.world, row.cells});
+  return table;
 }
 
 }  // namespace omninav::evaluation

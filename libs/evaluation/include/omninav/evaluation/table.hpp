@@ -2,10 +2,11 @@
 // The table of `omninav evaluate`: a row per world, a column per measure, and the worst world
 // of each column, worst meaning the direction that is bad for that measure.
 
-#include <filesystem>
-#include <opencv2/core.hpp>
+#include <optional>
 #include <string>
 #include <vector>
+
+#include "omninav/report/score_table.hpp"
 
 namespace omninav::evaluation {
 
@@ -22,6 +23,8 @@ struct Measure {
   std::string title;  // short header of the printed table
   Worse worse = Worse::kHigher;
   int decimals = 2;
+  std::string unit;                      // deg, share, spacings, m, ...
+  std::optional<report::Target> target;  // from docs/evaluation.md's targets; none: grey
 };
 
 // The measures of evaluate, in column order (docs/evaluation.md defines each).
@@ -30,16 +33,7 @@ const std::vector<Measure>& measures();
 // One cell: a value, or not applicable (a world without rooms has no "right room"; a path ratio
 // needs a trial that reached its goal), or failed (the stage threw; the reason is in the row's
 // notes). A failed cell is worse than any value.
-struct Cell {
-  enum class State { kValue, kNotApplicable, kFailed };
-  State state = State::kNotApplicable;
-  double value = 0.0;
-
-  static Cell of(double v) { return {State::kValue, v}; }
-  static Cell not_applicable() { return {State::kNotApplicable, 0.0}; }
-  static Cell failed() { return {State::kFailed, 0.0}; }
-  bool has_value() const { return state == State::kValue; }
-};
+using Cell = report::Cell;
 
 struct Row {
   std::string world;               // the row's label
@@ -53,20 +47,24 @@ struct Row {
 // first row). Throws UsageError when a row's cell count differs from the measures'.
 std::vector<int> worst_rows(const std::vector<Row>& rows, const std::vector<Measure>& columns);
 
-// The CSV: header "world,family,<keys>", a line per row (values with the measure's decimals
-// + 2, empty when not applicable, "failed"), then "worst_family" (the family of each column's
-// worst row) and "worst_world" lines.
+// evaluation.csv: header "world,family,<keys>", a line per row, every measure's cell a number
+// (with the measure's decimals + 2) or empty (not applicable, or failed: the row's notes say
+// why), so that a CSV reader types each measure's column as numbers.
 std::string table_csv(const std::vector<Row>& rows, const std::vector<Measure>& columns);
+
+// evaluation_worst.csv: header "worst,<keys>", then the lines "family" and "world" (the family
+// and the world of each column's worst row) and "value" (its cell as in table_csv, or "failed");
+// empty where the column has no worst row.
+std::string worst_csv(const std::vector<Row>& rows, const std::vector<Measure>& columns);
 
 // The printed table, one block per group (compass, memory, lattice, navigation) so that it
 // fits a terminal: rows as worlds, a column per measure, and a last line WORST with the worst
 // family per column.
 std::string table_text(const std::vector<Row>& rows, const std::vector<Measure>& columns);
 
-// A heat-table picture: each cell coloured from good (green) to bad (red) by its rank within
-// the column in the measure's direction, with its value written in it; failed cells dark red,
-// not applicable grey; the worst family per column in the last line.
-cv::Mat table_picture(const std::vector<Row>& rows, const std::vector<Measure>& columns,
-                      const std::string& title);
+// The table for evaluation.png (report::score_table_picture): a row per world, the measures
+// with their units and targets.
+report::ScoreTable score_table(const std::vector<Row>& rows, const std::vector<Measure>& columns,
+                               const std::string& title);
 
 }  // namespace omninav::evaluation
