@@ -221,7 +221,7 @@ class NavigationRun {
   void drop_link(int a, int b) {
     if (a < 0 || b < 0) return;
     std::erase_if(links_, [&](const MeasuredLink& link) {
-      return link.places == Edge(a, b) || link.places == Edge(b, a);
+      return link.places == PlacePair(a, b) || link.places == PlacePair(b, a);
     });
     belief_.remove_link(a, b);
     plan_ = plan_to_goal(setup_.places, links_, plan_.goal);
@@ -292,7 +292,7 @@ class NavigationRun {
 
   bool linked(int a, int b) const {
     return std::any_of(links_.begin(), links_.end(), [&](const MeasuredLink& link) {
-      return link.places == Edge(a, b) || link.places == Edge(b, a);
+      return link.places == PlacePair(a, b) || link.places == PlacePair(b, a);
     });
   }
 

@@ -61,7 +61,7 @@ namespace {
 // (§3.5's search tree). `direction_in_place(place, next, edge)` gives the direction from the
 // place to its next one, relative to the place's heading.
 template <typename Direction>
-RoutePlan search_tree(const std::vector<PlaceNode>& places, const std::vector<Edge>& edges,
+RoutePlan search_tree(const std::vector<PlaceNode>& places, const std::vector<PlacePair>& edges,
                       const std::vector<double>& lengths, int goal, Direction direction_in_place) {
   require_place(goal, places.size(), "the goal");
   Graph graph(places.size());
@@ -79,7 +79,7 @@ RoutePlan search_tree(const std::vector<PlaceNode>& places, const std::vector<Ed
   // The edge between each place and its predecessor (the shortest of them when several).
   std::vector<std::size_t> via(places.size(), edges.size());
   for (std::size_t i = 0; i < edges.size(); ++i) {
-    for (const auto& [place, other] : {edges[i], Edge(edges[i].second, edges[i].first)}) {
+    for (const auto& [place, other] : {edges[i], PlacePair(edges[i].second, edges[i].first)}) {
       if (static_cast<int>(predecessor[place]) != other) continue;
       if (via[place] == edges.size() || lengths[i] < lengths[via[place]]) via[place] = i;
     }
@@ -109,7 +109,7 @@ RoutePlan search_tree(const std::vector<PlaceNode>& places, const std::vector<Ed
 
 RoutePlan plan_to_goal(const std::vector<PlaceNode>& places, const std::vector<MeasuredLink>& links,
                        int goal) {
-  std::vector<Edge> edges;
+  std::vector<PlacePair> edges;
   std::vector<double> lengths;
   for (const MeasuredLink& link : links) {
     edges.push_back(link.places);

@@ -42,7 +42,7 @@ struct PlaceNode {
   double heading_rad = 0.0;
 };
 
-using Edge = std::pair<int, int>;
+using PlacePair = std::pair<int, int>;  // two places' indices (a link's ends)
 
 // The median distance from each place to its nearest neighbour on the lattice.
 double lattice_spacing(const std::vector<PlaceNode>& places);
