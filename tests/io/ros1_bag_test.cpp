@@ -13,6 +13,7 @@
 #include "bag_test_support.hpp"
 #include "omninav/core/errors.hpp"
 #include "omninav/io/panorama_input.hpp"
+#include "support/png_header.hpp"
 
 namespace omninav::io {
 namespace {
@@ -64,22 +65,10 @@ TEST(Ros1Bag, PoseStampedPosesThroughPanoramaInput) {
   expect_route(frames, Pixels::kColour, true);
 }
 
-// A PNG of its signature and an IHDR chunk declaring `width` x `height` (8-bit RGB), then
-// nothing: a decoder that trusts the header allocates width x height x 3 bytes before failing.
 std::filesystem::path header_only_png(const TempDir& dir, std::uint32_t width,
                                       std::uint32_t height) {
-  std::string png = "\x89PNG\r\n\x1a\n";
-  const auto big_endian = [&png](std::uint32_t value) {
-    for (int shift = 24; shift >= 0; shift -= 8) png += static_cast<char>((value >> shift) & 0xFF);
-  };
-  big_endian(13);
-  png += "IHDR";
-  big_endian(width);
-  big_endian(height);
-  png += std::string("\x08\x02\x00\x00\x00", 5);
-  big_endian(0);  // a CRC that does not match: broken as well as large
   const std::filesystem::path file = dir / "header.png";
-  std::ofstream(file, std::ios::binary) << png;
+  omninav::testing::write_header_only_png(file, width, height);
   return file;
 }
 
@@ -146,6 +135,69 @@ TEST(Ros1Bag, AChunkWhoseRecordRunsPastItsEndIsDamageNotACrash) {
   for (const std::string pose_topic : {"", "/odom"}) {
     EXPECT_INPUT_ERROR(read_bag(bag, {.topic = "", .pose_topic = pose_topic}), "damaged ROS 1 bag");
   }
+}
+
+TEST(Ros1Bag, ACompressedChunkWhoseRecordRunsPastItsEndIsDamage) {
+  // The first message declares 256 MB more data than it holds, inside its chunk before the
+  // chunk is compressed: sizes and index agree, and only the decompressed records show it.
+  // librosbag took such a bz2 or lz4 chunk as it came.
+  for (const std::string compression : {"bz2", "lz4", "none"}) {
+    SCOPED_TRACE(compression);
+    const TempDir dir;
+    const auto bag =
+        write_bag(dir, "--encoding png --overlong-message 0 --compression " + compression);
+    EXPECT_INPUT_ERROR(read_bag(bag, {}), "run.bag: damaged ROS 1 bag: the record at byte",
+                       "is a chunk whose record at its byte", "runs past its end");
+  }
+}
+
+// The bytes of `bag`, and the position of the data of its first record with `op` (its
+// header's "op=" field, 1 byte), after the data's 4-byte length.
+std::pair<std::string, std::size_t> first_record_data(const std::filesystem::path& bag, char op) {
+  std::ifstream in(bag, std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::size_t at = 13;  // "#ROSBAG V2.0\n"
+  const auto u32 = [&bytes](std::size_t i) {
+    std::uint32_t value = 0;
+    for (int b = 3; b >= 0; --b) value = value << 8 | static_cast<unsigned char>(bytes[i + b]);
+    return value;
+  };
+  while (at + 4 <= bytes.size()) {
+    const std::uint32_t header = u32(at);
+    const bool wanted =
+        bytes.substr(at + 4, header).find(std::string("op=") + op) != std::string::npos;
+    const std::size_t data = at + 4 + header + 4;
+    if (wanted) return {bytes, data};
+    at = data + u32(data - 4);
+  }
+  ADD_FAILURE() << "no record with op " << int(op);
+  return {bytes, 0};
+}
+
+TEST(Ros1Bag, ACompressedChunkThatDoesNotDecompressToItsSizeOrAnIndexIntoNoRecordIsDamage) {
+  for (const std::string compression : {"bz2", "lz4"}) {
+    SCOPED_TRACE(compression);
+    const TempDir dir;
+    const auto bag = write_bag(dir, "--encoding png --compression " + compression);
+    // A byte of the compressed stream flipped: it no longer decompresses to the chunk's declared
+    // size (or at all), which is said before any message is read.
+    auto [bytes, chunk] = first_record_data(bag, '\x05');
+    ASSERT_GT(chunk, 0u);
+    bytes[chunk + 200] = static_cast<char>(bytes[chunk + 200] ^ 0x55);
+    std::ofstream(bag, std::ios::binary | std::ios::trunc) << bytes;
+    EXPECT_INPUT_ERROR(read_bag(bag, {}), "run.bag: damaged ROS 1 bag: the record at byte",
+                       "chunk that does not decompress to the");
+  }
+  // An index entry (time, 8 bytes, then the message's offset in its chunk, 4) naming a byte
+  // beyond the chunk: librosbag read a record there (SEGV; the input is in the fuzz corpus).
+  const TempDir dir;
+  const auto bag = write_bag(dir, "--encoding png --compression bz2");
+  auto [bytes, index] = first_record_data(bag, '\x04');
+  ASSERT_GT(index, 0u);
+  bytes.replace(index + 8, 4, std::string("\x00\x00\x00\x10", 4));
+  std::ofstream(bag, std::ios::binary | std::ios::trunc) << bytes;
+  EXPECT_INPUT_ERROR(read_bag(bag, {}), "is an index naming byte 268435456 of its chunk",
+                     "where no record starts");
 }
 
 TEST(Ros1Bag, TwoImageTopicsNeedTopicAndTheErrorNamesBoth) {

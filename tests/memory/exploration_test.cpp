@@ -107,6 +107,47 @@ TEST(Exploration, DissimilarityThresholdSpacesPlacesByChangeOfView) {
   }
 }
 
+// The default threshold (auto) on frames rendered at one spot, turning: every frame is a view
+// of that spot, so the map needs one place, the run's first frame. A share of a plateau made of
+// the frames' noise (resampling a turn) made a place of nearly every frame; the turns on the spot
+// between the frames give the floor that noise stands on (exploration.hpp).
+TEST(Exploration, ATurnOnTheSpotIsOnePlace) {
+  for (const double step_deg : {0.7, 3.0}) {  // 0.7 px, and a whole 3 px, of the 360 columns
+    SCOPED_TRACE(step_deg);
+    VisualMemory memory;
+    Explorer explorer(memory, {}, "turn", "test");
+    for (int i = 0; i < 240; ++i) {
+      const CameraPose pose{2.1, 1.7, 1.0, wrap_angle(deg_to_rad(step_deg * i)), 0.0, 0.0};
+      explorer.add(testing::render_frame(pose, i, "turn#" + std::to_string(i)));
+    }
+    EXPECT_EQ(memory.place_count(), 1u);
+    EXPECT_FALSE(explorer.new_place_threshold()) << "no travel seen, no threshold";
+    ASSERT_TRUE(explorer.floor_per_value());
+    EXPECT_GE(*explorer.floor_per_value(), 0.25 * *explorer.plateau_per_value());
+  }
+}
+
+// ... and a stream that travels keeps making places all along its way: the straight part of the
+// route (3 m at 5 cm a frame), where the default spaces places by the view's change.
+TEST(Exploration, AStreamThatTravelsMakesPlacesAllAlongItsWay) {
+  VisualMemory memory;
+  Explorer explorer(memory, {}, "route", "test");
+  for (const io::Frame& f : route_frames()) explorer.add(f);
+  ASSERT_TRUE(explorer.new_place_threshold());
+  ASSERT_GE(memory.place_count(), 10u);  // a place at least every 0.3 m of the 3 m
+  // The first place by dissimilarity once the plateau's warm-up is over, then at most 0.3 m
+  // apart (the papers' spacing; the default spaces them by the view's change, closer here).
+  EXPECT_LE(memory.place(1).frame_index, static_cast<int>(Explorer::kAutoWarmupFrames));
+  for (PlaceIndex i = 2; i < memory.place_count(); ++i) {
+    const double apart_m =
+        (memory.place(i).truth->floor_position() - memory.place(i - 1).truth->floor_position())
+            .norm();
+    EXPECT_LE(apart_m, 0.3 + 1e-9) << "places " << i - 1 << " and " << i;
+  }
+  // The last place near the route's end (frame 59).
+  EXPECT_GE(memory.place(memory.place_count() - 1).frame_index, 50);
+}
+
 TEST(Exploration, EdgesCarryRelativeHeadingAndDirectionOfMotion) {
   VisualMemory memory;
   Explorer explorer(memory, only(0.0, 6, 0.0), "route", "test");

@@ -64,5 +64,29 @@ TEST(PlateauEstimate, KeepsSamplesEvenlySpreadOverALongStream) {
                                                        }));
 }
 
+TEST(PlateauEstimate, TheFloorIsTheLowTenthOfTheSampledTurnsOnTheSpot) {
+  // Steps of 1, 2, ..., 31 between consecutive frames, each a turn on the spot but every third;
+  // 16 samples hold the first 16 frames, then every other one of 32 (frames 0, 2, ..., 30).
+  PlateauEstimate plateau({}, 16);
+  EXPECT_FALSE(plateau.floor_per_value());
+  double at = 0.0;
+  std::vector<double> turns_sampled;
+  for (int i = 0; i < 32; ++i) {
+    const bool turn = i % 3 != 0;
+    const bool sampled = plateau.will_sample();
+    EXPECT_EQ(sampled, i < 16 || i % 2 == 0) << i;
+    at += i;  // the step from frame i − 1 is i
+    plateau.add_frame(scalar(at), turn);
+    if (i > 0 && turn && (i % 2 == 0)) turns_sampled.push_back(i);
+  }
+  ASSERT_TRUE(plateau.floor_per_value());
+  EXPECT_DOUBLE_EQ(*plateau.floor_per_value(), quantile(turns_sampled, kFloorQuantile));
+  // A map's place (add) brings no step of its own; it fills the samples, which are halved again
+  // (frames 0, 4, ..., 28 and the place): the floor is that of the turns still held.
+  plateau.add(scalar(1000.0));
+  EXPECT_DOUBLE_EQ(*plateau.floor_per_value(),
+                   quantile(std::vector<double>{4, 8, 16, 20, 28}, kFloorQuantile));
+}
+
 }  // namespace
 }  // namespace omninav::signature

@@ -13,6 +13,7 @@
 #include "omninav/core/panorama.hpp"
 #include "omninav/sim/renderer.hpp"
 #include "omninav/sim/world.hpp"
+#include "support/png_header.hpp"
 #include "support/shared_data.hpp"
 
 namespace omninav::sim {
@@ -96,6 +97,33 @@ TEST(ObjWorld, BadFilesAreClearErrors) {
   }
   std::ofstream(folder.path() / "empty.obj") << "# nothing\n";
   EXPECT_THROW(load_obj_world(folder.path() / "empty.obj"), InputError);
+}
+
+TEST(ObjWorld, ATextureDeclaringTooManyPixelsIsRefusedBeforeDecoding) {
+  // A texture is bounded as every input image is (core/image_size.hpp): a PNG header declaring
+  // 20000 x 20000 (1.2 GB decoded) is refused from the header, naming the texture.
+  TempFolder folder;
+  write_textured_cube(folder.path());
+  testing::write_header_only_png(folder.path() / "wall.png", 20000, 20000);
+  try {
+    load_obj_world(folder.path() / "cube.obj");
+    ADD_FAILURE() << "loaded";
+  } catch (const InputError& error) {
+    const std::string what = error.what();
+    EXPECT_NE(what.find("wall.png: image is 20000x20000 px, more than omninav reads"),
+              std::string::npos)
+        << what;
+  }
+  // Within the limit the header passes, and the missing pixels are what is wrong.
+  testing::write_header_only_png(folder.path() / "wall.png", 64, 64);
+  try {
+    load_obj_world(folder.path() / "cube.obj");
+    ADD_FAILURE() << "loaded";
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what()).find("cannot read the texture of material 'painted'"),
+              std::string::npos)
+        << error.what();
+  }
 }
 
 TEST(ObjWorld, VerticesThatAreNotFinitePositionsAreRefused) {

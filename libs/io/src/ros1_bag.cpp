@@ -1,22 +1,26 @@
 // ROS 1 bags through Debian's librosbag (rosbag_storage) and cv_bridge. Compiled as C++17: the
 // generated ROS 1 message headers use std::allocator<void>::rebind, which C++20 removed.
 
+#include <bzlib.h>
 #include <cv_bridge/cv_bridge.h>
 #include <geometry_msgs/PoseStamped.h>
 #include <nav_msgs/Odometry.h>
 #include <rosbag/bag.h>
 #include <rosbag/exceptions.h>
 #include <rosbag/view.h>
+#include <roslz4/lz4s.h>
 #include <sensor_msgs/CompressedImage.h>
 #include <sensor_msgs/Image.h>
 #include <sensor_msgs/image_encodings.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <fstream>
 #include <map>
 #include <opencv2/imgcodecs.hpp>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "bag_backend.hpp"
 #include "omninav/core/errors.hpp"
@@ -52,6 +56,34 @@ std::string reindex_advice(const std::filesystem::path& file) {
 // whose error says how to recover it.
 constexpr std::uint64_t kMaxChunkBytes = std::uint64_t{256} << 20;  // as MCAP's (mcap_reader)
 
+// A chunk's data as librosbag holds it after reading: the bytes themselves ("none"), or
+// decompressed by the libraries librosbag uses (bzip2, roslz4) into at most the chunk's declared
+// size. Nothing when they are not exactly that size (as a recorder writes them) or do not
+// decompress; a compression librosbag does not know is left to librosbag's own error.
+std::optional<std::string> chunk_records(const std::string& compression, std::string data,
+                                         std::uint32_t declared_bytes) {
+  std::string chunk(declared_bytes, '\0');
+  unsigned int decompressed = declared_bytes;
+  if (compression == "none") {
+    chunk = std::move(data);
+    decompressed = static_cast<unsigned int>(chunk.size());
+  } else if (compression == "bz2") {
+    if (BZ2_bzBuffToBuffDecompress(chunk.data(), &decompressed, data.data(),
+                                   static_cast<unsigned int>(data.size()), 0, 0) != BZ_OK) {
+      return std::nullopt;
+    }
+  } else if (compression == "lz4") {
+    if (roslz4_buffToBuffDecompress(data.data(), static_cast<unsigned int>(data.size()),
+                                    chunk.data(), &decompressed) != ROSLZ4_OK) {
+      return std::nullopt;
+    }
+  } else {
+    return std::string();
+  }
+  if (decompressed != declared_bytes) return std::nullopt;
+  return chunk;
+}
+
 void check_record_lengths(const std::filesystem::path& file) {
   std::ifstream stream(file, std::ios::binary);
   std::error_code error;
@@ -66,7 +98,8 @@ void check_record_lengths(const std::filesystem::path& file) {
     return value;
   };
   std::uint64_t at = sizeof magic;
-  std::optional<std::uint64_t> index_at;  // the bag header's index_pos
+  std::optional<std::uint64_t> index_at;           // the bag header's index_pos
+  std::vector<std::uint32_t> chunk_record_starts;  // of the last chunk, in increasing order
   while (at < size) {
     const auto damaged = [&](const std::string& what) {
       // Cut short before its index: librosbag's own error (and the advice to reindex).
@@ -114,20 +147,46 @@ void check_record_lengths(const std::filesystem::path& file) {
       return damaged("declares " + std::to_string(data_bytes) +
                      " bytes of data, beyond the end of the file");
     }
-    if (op == "\x05" && compression == "none") {
-      // An uncompressed chunk's records (messages, connections) are read from memory by
-      // librosbag without bounds: their lengths must fit in the chunk. (Compressed chunks are
-      // checked only by their declared size.)
-      std::string chunk(data_bytes, '\0');
+    if (op == "\x05" || op == "\x04") {
+      std::string data(data_bytes, '\0');
       stream.seekg(static_cast<std::streamoff>(at + 4));
-      stream.read(chunk.data(), data_bytes);
-      for (std::size_t inner = 0; inner < chunk.size();) {
-        for (int part = 0; part < 2; ++part) {  // header, then data
-          if (chunk.size() - inner < 4 || u32(chunk, inner) > chunk.size() - inner - 4) {
-            return damaged("is a chunk whose record at its byte " + std::to_string(inner) +
-                           " runs past its end");
+      stream.read(data.data(), data_bytes);
+      if (op == "\x04") {
+        // A chunk's index, after it: librosbag reads each message at the offset an entry gives
+        // (format 2.0, version 1: time, 8 bytes, then offset, 4), which must be where a record
+        // of that chunk starts.
+        for (std::size_t entry = 0; entry + 12 <= data.size(); entry += 12) {
+          const std::uint32_t offset = u32(data, entry + 8);
+          if (!std::binary_search(chunk_record_starts.begin(), chunk_record_starts.end(), offset)) {
+            return damaged("is an index naming byte " + std::to_string(offset) +
+                           " of its chunk, where no record starts");
           }
-          inner += 4 + u32(chunk, inner);
+        }
+      } else {
+        // A chunk's records (messages, connections) are read from memory by librosbag without
+        // bounds, in a buffer of the chunk's declared size: the chunk is decompressed here as
+        // librosbag decompresses it, and its records must fill exactly that size.
+        const std::uint32_t declared = chunk_size.value_or(0);
+        const std::optional<std::string> chunk =
+            chunk_records(compression, std::move(data), declared);
+        if (!chunk) {
+          return damaged(compression == "none"
+                             ? "is a chunk of " + std::to_string(data_bytes) +
+                                   " bytes that declares " + std::to_string(declared)
+                             : "is a " + printable_name(compression) +
+                                   " chunk that does not decompress to the " +
+                                   std::to_string(declared) + " bytes it declares");
+        }
+        chunk_record_starts.clear();
+        for (std::size_t inner = 0; inner < chunk->size();) {
+          chunk_record_starts.push_back(static_cast<std::uint32_t>(inner));
+          for (int part = 0; part < 2; ++part) {  // header, then data
+            if (chunk->size() - inner < 4 || u32(*chunk, inner) > chunk->size() - inner - 4) {
+              return damaged("is a chunk whose record at its byte " + std::to_string(inner) +
+                             " runs past its end");
+            }
+            inner += 4 + u32(*chunk, inner);
+          }
         }
       }
     }

@@ -147,6 +147,10 @@ std::optional<double> Explorer::plateau_per_value() const {
   return plateau_ ? plateau_->per_value() : std::nullopt;
 }
 
+std::optional<double> Explorer::floor_per_value() const {
+  return plateau_ ? plateau_->floor_per_value() : std::nullopt;
+}
+
 std::optional<double> Explorer::new_place_threshold() const {
   if (params_.new_place_dissimilarity) {
     if (*params_.new_place_dissimilarity > 0.0) return params_.new_place_dissimilarity;
@@ -156,7 +160,16 @@ std::optional<double> Explorer::new_place_threshold() const {
   if (!plateau || (!plateau_from_map_ && plateau_->signatures_seen() < kAutoWarmupFrames)) {
     return std::nullopt;
   }
+  if (threshold_within_floor()) return std::nullopt;
   return params_.new_place_plateau_share * *plateau;
+}
+
+bool Explorer::threshold_within_floor() const {
+  // Places a share of the way to the plateau apart must differ by more than views from one
+  // spot do: otherwise the plateau is the floor's noise, no evidence of travel (see the header).
+  const std::optional<double> plateau = plateau_per_value();
+  const std::optional<double> floor = floor_per_value();
+  return plateau && floor && params_.new_place_plateau_share * *plateau <= *floor;
 }
 
 const Run& Explorer::run() const {
@@ -168,7 +181,13 @@ std::optional<PlaceIndex> Explorer::add(const io::Frame& frame) {
   if (frame.odometry) check_pose(*frame.odometry, frame.source);
   const signature::Signature signature = extractor_.compute(frame.image, frame.source);
   track_heading(frame, signature);
-  if (plateau_) plateau_->add(signature);
+  if (plateau_) {
+    // Only a sampled frame's step counts for the floor: the compass is asked of those alone
+    // (previous_panorama_ is kept for them).
+    const cv::Mat panorama = at_compass_width(frame.image);
+    plateau_->add_frame(signature, !previous_panorama_.empty() && is_turn_on_the_spot(panorama));
+    previous_panorama_ = plateau_->will_sample() ? panorama : cv::Mat();
+  }
   ++frames_;
   memory_.record_run_progress(run_index_, frames_, places_);
   ++frames_since_place_;
@@ -221,10 +240,7 @@ void Explorer::track_heading(const io::Frame& frame, const signature::Signature&
     memory_.set_run_heading_source(run_index_, *heading_source_);
   }
   if (heading_source_ != HeadingSource::kCompass) return;
-  cv::Mat panorama = frame.image;
-  if (params_.compass_width_px && *params_.compass_width_px != panorama.cols) {
-    panorama = compass::resample_columns(panorama, *params_.compass_width_px);
-  }
+  const cv::Mat panorama = at_compass_width(frame.image);
   if (order_ == FrameOrder::kUnordered) {
     if (!place_matcher_) {
       place_matcher_ = std::make_unique<compass::PairMatcher>(params_.compass.matcher);
@@ -241,6 +257,25 @@ void Explorer::track_heading(const io::Frame& frame, const signature::Signature&
                                                         initial_heading(frame, signature));
   }
   compass_heading_rad_ = compass_->push(compass_frame).heading_rad;
+}
+
+cv::Mat Explorer::at_compass_width(const cv::Mat& panorama) const {
+  if (params_.compass_width_px && *params_.compass_width_px != panorama.cols) {
+    return compass::resample_columns(panorama, *params_.compass_width_px);
+  }
+  return panorama;
+}
+
+bool Explorer::is_turn_on_the_spot(const cv::Mat& panorama) {
+  // A turn leaves, after the compass's best rotation (sub-pixel), at most what rolling the
+  // image by half a column does: the rotation lies within half a column of a whole shift, and
+  // the distance grows about linearly with a small roll (PairMatch::self_step, one column's).
+  // More is parallax or a changed scene: the frames are not of one spot.
+  if (!step_matcher_)
+    step_matcher_ = std::make_unique<compass::PairMatcher>(params_.compass.matcher);
+  const compass::PairMatch match = step_matcher_->match(compass::CompassFrame(previous_panorama_),
+                                                        compass::CompassFrame(panorama));
+  return match.distance_min <= 0.5 * match.self_step;
 }
 
 double Explorer::heading_from_nearest_place(const cv::Mat& panorama,
@@ -399,6 +434,10 @@ Run explore_frames(VisualMemory& memory, const ExplorationParams& params,
     note << "plateau " << fixed(*explorer.plateau_per_value(), 3) << " per value, threshold "
          << fixed(params.new_place_plateau_share * *explorer.plateau_per_value(), 3)
          << " at the end";
+    if (explorer.threshold_within_floor()) {
+      note << ", within the floor between frames (" << fixed(*explorer.floor_per_value(), 3)
+           << "): no travel seen, no places by dissimilarity";
+    }
     memory.add_run_note(memory.runs().size() - 1, note.str());
     log_info("explore: " + note.str());
   }

@@ -12,6 +12,7 @@
 #include <string>
 
 #include "omninav/core/errors.hpp"
+#include "omninav/core/image_size.hpp"
 #include "omninav/core/log.hpp"
 #include "omninav/core/parse.hpp"
 #include "omninav/sim/world.hpp"
@@ -96,11 +97,15 @@ World load_obj_world(const std::filesystem::path& obj_file, const ObjWorldParams
         cv::Vec3f(source.diffuse[2], source.diffuse[1], source.diffuse[0]) * 255.f;
     if (!source.diffuse_texname.empty()) {
       const std::filesystem::path texture_file = obj_file.parent_path() / source.diffuse_texname;
+      // A texture is an image file like any other: its decoded size is bounded as an input
+      // image's, from its header before decoding and from the image after.
+      check_declared_image_pixels(texture_file);
       cv::Mat texture = cv::imread(texture_file.string(), cv::IMREAD_COLOR);
       if (texture.empty()) {
         throw InputError(texture_file.string() + ": cannot read the texture of material '" +
                          source.name + "' in " + obj_file.string());
       }
+      check_image_pixels(texture.size(), texture_file.string());
       world.textures.push_back(texture);
       material.texture = static_cast<int>(world.textures.size()) - 1;
     }

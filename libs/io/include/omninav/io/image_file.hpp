@@ -1,5 +1,7 @@
 #pragma once
 // Reading image files the way every reader of io does, and the one-size-per-sequence check.
+// The size limit and the headers' declared sizes are core's (core/image_size.hpp), shared with
+// sim's OBJ textures.
 
 #include <cstdint>
 #include <filesystem>
@@ -8,12 +10,9 @@
 #include <string>
 #include <vector>
 
-namespace omninav::io {
+#include "omninav/core/image_size.hpp"
 
-// The most pixels an input image may have: 8192 x 8192 (192 MB as 8-bit BGR), far beyond any
-// omnidirectional camera's frame. More is a damaged or hostile file (a 1 MB PNG can declare
-// 20000 x 20000 pixels, 1.2 GB once decoded).
-inline constexpr long long kMaxImagePixels = 8192LL * 8192LL;
+namespace omninav::io {
 
 // Reads `file` as 8-bit BGR (cv::IMREAD_COLOR, so grey files come back as three equal
 // channels: one pixel type for every sequence, whatever its source). Throws InputError naming
@@ -29,20 +28,9 @@ cv::Mat read_image(const std::filesystem::path& file);
 // returns an empty Mat when the bytes are no image OpenCV decodes (the caller says what it held).
 cv::Mat decode_image(const std::vector<std::uint8_t>& bytes, int flags, const std::string& where);
 
-// InputError "<where>: image is <w>x<h> px, more than omninav reads ..." beyond kMaxImagePixels:
-// for sizes declared before decoding (a raw image's header, a video's stream).
-void check_image_pixels(const cv::Size& size, const std::string& where);
-
 // Whether `file`'s extension, in any case, is one of the image formats omninav reads: png,
 // jpg, jpeg, bmp, tif, tiff, ppm, pgm (the one list: folders are read by it too).
 bool is_image_file_name(const std::filesystem::path& file);
-
-// The size a PNG or JPEG file declares in its header (PNG's IHDR, JPEG's start-of-frame), or
-// nothing for other formats and for headers too short or malformed to say.
-std::optional<cv::Size> declared_image_size(const std::filesystem::path& file);
-
-// "<width>x<height> px", as messages about image sizes say it.
-std::string size_text(const cv::Size& size);
 
 // Remembers the size of the first image of a sequence and rejects any other size: a sequence
 // of panoramas of mixed sizes cannot be compared column by column.

@@ -26,6 +26,20 @@
 // kAutoWarmupFrames frames (the run's first frame is a place as always). Exploring into a map,
 // the estimate starts from the map's places.
 //
+// A plateau is evidence of travel only when the threshold it gives stands above the floor: what
+// two frames of one spot differ by (signature/plateau.hpp). On a stream that never leaves its
+// spot (a turn on the spot, a camera standing still) the pairs far apart in time differ by the
+// same noise as neighbours, and a share of that plateau would make a place of nearly every
+// frame. The floor is read from the steps between consecutive frames that a turn on the spot
+// explains: the compass's pair matcher (libs/compass) finds the rotation between them, and what
+// that rotation leaves unexplained is no more than rolling the image by half a column leaves
+// (the most a turn can: its rotation lies within half a column of a whole shift). Steps with
+// more (parallax: the frames are of two spots) say nothing about the floor, so a stream whose
+// every step travels, however far, has no floor and keeps the threshold; the signatures alone
+// cannot tell such a stream (grass passing a lens 10 cm above it) from noise, since both differ
+// as much between neighbours as far apart. While the threshold is within the floor, no place is
+// made by dissimilarity: one spot, one place (the run's first frame).
+//
 // Headings. heading_source "auto" (the default) is "compass" for a stream and, for an unordered
 // input (a grid database) that records its images' headings, "truth": the database's own
 // headings, because the compass does worse there (below). The map says which, per place.
@@ -148,11 +162,15 @@ class Explorer {
   const Run& run() const;
   int frames_seen() const { return frames_; }
   // The dissimilarity per value that makes a new place now: new_place_dissimilarity, or with
-  // new_place_auto the share of the plateau estimated so far (none during the warm-up); none
-  // when the rule is off.
+  // new_place_auto the share of the plateau estimated so far (none during the warm-up, and
+  // while it is within the floor: no travel seen); none when the rule is off.
   std::optional<double> new_place_threshold() const;
-  // With new_place_auto, the plateau estimated so far (per value).
+  // With new_place_auto, the plateau estimated so far (per value), and the floor: what
+  // consecutive frames differ by at their closest (signature/plateau.hpp).
   std::optional<double> plateau_per_value() const;
+  std::optional<double> floor_per_value() const;
+  // With new_place_auto, whether the threshold is within the floor: no travel seen (above).
+  bool threshold_within_floor() const;
 
  private:
   // Feeds the frame to the visual compass (heading_source "compass"; otherwise does nothing):
@@ -166,6 +184,11 @@ class Explorer {
   // Where the compass starts for the run's first frame (the gauge, see above).
   double initial_heading(const io::Frame& frame, const signature::Signature& signature) const;
   PlaceIndex make_place(const io::Frame& frame, const signature::Signature& signature);
+  // The panorama resampled to the compass's width (compass_width_px), or itself.
+  cv::Mat at_compass_width(const cv::Mat& panorama) const;
+  // Whether the step from previous_panorama_ to `panorama` (both at compass width) is a turn on
+  // the spot: what the compass cannot explain by a rotation is no more than a turn leaves.
+  bool is_turn_on_the_spot(const cv::Mat& panorama);
 
   VisualMemory& memory_;
   ExplorationParams params_;
@@ -185,6 +208,10 @@ class Explorer {
   std::vector<cv::Mat> run_place_panoramas_;  // unordered: this run's places, at compass width
   double compass_heading_rad_ = 0.0;  // the compass's heading of the latest frame (unwrapped)
   std::unique_ptr<signature::PlateauEstimate> plateau_;  // new_place_auto
+  // new_place_auto: the last frame at compass width, while the next frame's step will count for
+  // the plateau's floor, and the matcher that judges that step.
+  cv::Mat previous_panorama_;
+  std::unique_ptr<compass::PairMatcher> step_matcher_;
   bool plateau_from_map_ = false;  // the estimate started from the places of the map extended
 };
 
