@@ -9,6 +9,7 @@
 #include <tuple>
 #include <utility>
 
+#include "odometry_step.hpp"
 #include "omninav/core/angles.hpp"
 #include "omninav/core/config.hpp"
 #include "omninav/core/log.hpp"
@@ -76,16 +77,13 @@ double per_value(const memory::VisualMemory& memory, int a, int b) {
 // from each end's front: the place's heading is the robot's); false when either place has no
 // odometry or the step is too short to have a direction.
 bool measure_by_odometry(const memory::VisualMemory& memory, MeasuredLink& link) {
-  const auto [a, b] = link.places;
-  const std::optional<CameraPose>& from = memory.place(a).odometry;
-  const std::optional<CameraPose>& to = memory.place(b).odometry;
-  if (!from || !to) return false;
-  const double dx = to->x_m - from->x_m, dy = to->y_m - from->y_m;
-  if (std::hypot(dx, dy) < kLeastOdometryStepM) return false;
-  const double direction = std::atan2(dy, dx);
-  link.length_m = std::hypot(dx, dy);
-  link.direction_at_first_rad = signed_difference(direction, from->heading_rad);
-  link.direction_at_second_rad = signed_difference(wrap_angle(direction + kPi), to->heading_rad);
+  const std::optional<OdometryStep> step =
+      odometry_step(memory, link.places.first, link.places.second);
+  if (!step || step->translation_m.norm() < kLeastOdometryStepM) return false;
+  link.length_m = step->translation_m.norm();
+  link.direction_at_first_rad = std::atan2(step->translation_m.y(), step->translation_m.x());
+  // Seen from b: back along the step, in b's frame, which is turned by the step's turn.
+  link.direction_at_second_rad = wrap_angle(link.direction_at_first_rad + kPi - step->turn_rad);
   return true;
 }
 

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <optional>
 
+#include "odometry_step.hpp"
 #include "omninav/core/angles.hpp"
 #include "omninav/signature/phase_heading.hpp"
 
@@ -17,24 +18,6 @@ bool driven_with_odometry(const memory::VisualMemory& memory) {
   }
   return false;
 }
-
-namespace {
-
-// The robot's step from a to b as its odometry measured it, in a's frame; false unless both
-// places have odometry.
-bool odometry_step(const memory::VisualMemory& memory, int a, int b,
-                   RelativePoseMeasurement& measurement) {
-  const std::optional<CameraPose>& from = memory.place(a).odometry;
-  const std::optional<CameraPose>& to = memory.place(b).odometry;
-  if (!from || !to) return false;
-  const double c = std::cos(from->heading_rad), s = std::sin(from->heading_rad);
-  const double dx = to->x_m - from->x_m, dy = to->y_m - from->y_m;
-  measurement.translation_m = {c * dx + s * dy, -s * dx + c * dy};
-  measurement.turn_rad = signed_difference(to->heading_rad, from->heading_rad);
-  return true;
-}
-
-}  // namespace
 
 std::vector<RelativePoseMeasurement> link_measurements(const memory::VisualMemory& memory,
                                                        const std::vector<MeasuredLink>& links,
@@ -52,7 +35,11 @@ std::vector<RelativePoseMeasurement> link_measurements(const memory::VisualMemor
     const double direction = link.direction_at_first_rad;
     m.translation_m = link.length_m * Eigen::Vector2d(std::cos(direction), std::sin(direction));
     m.turn_rad = signed_difference(headings_rad[b], headings_rad[a]);
-    if (link.kind == LinkKind::kTravelled && odometry_step(memory, a, b, m)) {
+    const std::optional<OdometryStep> step =
+        link.kind == LinkKind::kTravelled ? odometry_step(memory, a, b) : std::nullopt;
+    if (step) {
+      m.translation_m = step->translation_m;
+      m.turn_rad = step->turn_rad;
       // Wheel odometry's errors grow with the distance and the turn; a tenth of a spacing and
       // of a radian keep a step on the spot from claiming certainty.
       m.along_stddev_m = m.across_stddev_m = noise * (m.translation_m.norm() + 0.1 * spacing_m);
