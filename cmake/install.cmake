@@ -21,7 +21,7 @@ install(FILES ${CMAKE_CURRENT_BINARY_DIR}/omninavConfig.cmake
 
 # The static libraries in an order a linker takes (each before those it uses). The list must name
 # every omninav_library(): a library added without a place here stops the configuration.
-set(omninav_link_order evaluation report navigation lattice memory signature compass io omni sim
+set(omninav_link_order config evaluation report navigation lattice memory signature compass io omni sim
                        measures core)
 get_property(omninav_libraries GLOBAL PROPERTY OMNINAV_LIBRARIES)
 foreach(library IN LISTS omninav_libraries)

@@ -1,25 +1,25 @@
 #pragma once
-// The configuration folder's loaders live in libs/evaluation (config_folder.hpp), because
-// `omninav evaluate` loads the same files as the commands; the commands name them unqualified.
+// The configuration folder's loaders (libs/config, config_folder.hpp), which the commands name
+// unqualified.
 
 #include <CLI/CLI.hpp>
 #include <filesystem>
 
-#include "omninav/evaluation/config_folder.hpp"
+#include "omninav/config/config_folder.hpp"
 #include "omninav/io/bag_sequence.hpp"
 #include "omninav/io/panorama_input.hpp"
 
 namespace omninav::cli {
 
+using config::load_camera_config;
+using config::load_compass_config;
+using config::load_lattice_config;
+using config::load_memory_config;
+using config::load_navigation_config;
+using config::load_worlds_config;
+using config::use_compass_config;
 using evaluation::CameraConfig;
-using evaluation::load_camera_config;
-using evaluation::load_compass_config;
-using evaluation::load_lattice_config;
-using evaluation::load_memory_config;
-using evaluation::load_navigation_config;
-using evaluation::load_worlds_config;
 using evaluation::NavigationConfig;
-using evaluation::use_compass_config;
 
 // The frames of `input` as panoramas; raw omnidirectional images are unwrapped with the
 // `unwrap:` section of camera.yaml in `config_dir`, read at the first frame that needs it.

@@ -8,6 +8,7 @@
 #include <iostream>
 
 #include "cli.hpp"
+#include "omninav/config/config_folder.hpp"
 #include "omninav/core/errors.hpp"
 #include "omninav/core/log.hpp"
 #include "omninav/core/output_file.hpp"
@@ -41,7 +42,7 @@ void run_evaluate(const GlobalOptions& global, const EvaluateOptions& options) {
     }
     suite.worlds = chosen;
   }
-  const evaluation::ConfigFolder config = evaluation::load_config_folder(global.config_dir);
+  const evaluation::ConfigFolder configuration = config::load_config_folder(global.config_dir);
   const std::filesystem::path out =
       options.out.empty() ? std::filesystem::path("evaluation") / suite.name : options.out;
   std::filesystem::create_directories(out);
@@ -53,7 +54,7 @@ void run_evaluate(const GlobalOptions& global, const EvaluateOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   std::vector<evaluation::Row> done;
   const evaluation::SuiteEvaluation result = evaluation::evaluate_suite(
-      suite, config, out, [&](const evaluation::Row& row, std::size_t index) {
+      suite, configuration, out, [&](const evaluation::Row& row, std::size_t index) {
         // The table so far, so that an interrupted run leaves its finished worlds.
         done.push_back(row);
         write_output_file(csv, evaluation::table_csv(done, columns));

@@ -1,7 +1,7 @@
 #include "ros_session.hpp"
 
 #include "cli.hpp"
-#include "omninav/evaluation/config_folder.hpp"
+#include "omninav/config/config_folder.hpp"
 #include "omninav/io/bag_sequence.hpp"
 #include "omninav/navigation/live_session.hpp"
 
@@ -10,8 +10,8 @@ namespace omninav::ros_node {
 RosSession::RosSession(const std::string& config_dir, const std::string& map_file,
                        bool use_odometry, std::size_t max_waiting)
     : session_(std::make_unique<navigation::LiveSession>(
-          evaluation::load_live_session_params(
-              config_dir.empty() ? cli::default_config_dir() : std::filesystem::path(config_dir)),
+          config::load_live_session_params(config_dir.empty() ? cli::default_config_dir()
+                                                              : std::filesystem::path(config_dir)),
           map_file.empty() ? std::nullopt : std::optional<std::filesystem::path>(map_file))),
       use_odometry_(use_odometry),
       max_waiting_(std::max<std::size_t>(max_waiting, 1)) {}

@@ -2,8 +2,10 @@
 // brings): it explores three synthetic panoramas into a map, saves it, reads it back and
 // localises the second panorama as the robot sees it after a quarter turn. It writes the map and
 // the query image to the folder it is given, so that the installed `omninav` can read them too.
+// Given a configuration folder (the installed share/omninav/config), it localises with its
+// memory.yaml, read by omninav::memory's own loader.
 //
-//   omninav_consumer OUT_DIR   ->  OUT_DIR/map.vmem, OUT_DIR/query.png
+//   omninav_consumer OUT_DIR [CONFIG_DIR]   ->  OUT_DIR/map.vmem, OUT_DIR/query.png
 //
 // Exit status 0 when the query is localised at place 1 turned by 90 degrees, 1 otherwise.
 #include <cmath>
@@ -14,11 +16,13 @@
 #include <opencv2/imgproc.hpp>
 #include <vector>
 
+#include "omninav/core/config.hpp"
 #include "omninav/core/errors.hpp"
 #include "omninav/core/panorama.hpp"
 #include "omninav/memory/exploration.hpp"
 #include "omninav/memory/localisation.hpp"
 #include "omninav/memory/map_store.hpp"
+#include "omninav/memory/memory_config.hpp"
 #include "omninav/signature/signature.hpp"
 
 namespace {
@@ -37,8 +41,8 @@ cv::Mat synthetic_panorama(int seed) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc != 2) {
-    std::cerr << "usage: omninav_consumer OUT_DIR\n";
+  if (argc != 2 && argc != 3) {
+    std::cerr << "usage: omninav_consumer OUT_DIR [CONFIG_DIR]\n";
     return 2;
   }
   namespace fs = std::filesystem;
@@ -75,7 +79,13 @@ int main(int argc, char** argv) {
     cv::imwrite((out / "query.png").string(), query);
 
     const memory::VisualMemory loaded = memory::load_map(map_file);
-    const memory::Localiser localiser(loaded, {});
+    memory::LocalisationParams localisation;
+    if (argc == 3) {
+      localisation =
+          memory::load_memory_config(ConfigReader::from_file(fs::path(argv[2]) / "memory.yaml"))
+              .localisation;
+    }
+    const memory::Localiser localiser(loaded, localisation);
     const memory::Localisation result =
         localiser.localise(signature::compute_signature(query, loaded.parameters().signature));
     if (result.best.empty()) {

@@ -11,7 +11,7 @@
 #include <optional>
 #include <string>
 
-#include "omninav/evaluation/config_folder.hpp"
+#include "omninav/config/config_folder.hpp"
 #include "omninav/memory/map_store.hpp"
 #include "omninav/memory/visual_memory.hpp"
 

@@ -10,8 +10,8 @@
 #include "bind.hpp"
 #include "omninav/compass/compass_run.hpp"
 #include "omninav/compass/min_warping.hpp"
+#include "omninav/config/config_folder.hpp"
 #include "omninav/core/errors.hpp"
-#include "omninav/evaluation/config_folder.hpp"
 #include "omninav/io/frame.hpp"
 
 namespace omninav::python {
@@ -19,7 +19,7 @@ namespace {
 
 compass::CompassConfig config_or_load(const std::optional<compass::CompassConfig>& config,
                                       const std::optional<std::filesystem::path>& config_dir) {
-  return config ? *config : evaluation::load_compass_config(config_dir_or_default(config_dir));
+  return config ? *config : config::load_compass_config(config_dir_or_default(config_dir));
 }
 
 // Algorithm 1 over frames pushed one at a time, numbering them when the caller does not.
@@ -165,8 +165,8 @@ void bind_compass(py::module_& m) {
       .def(py::init([](std::optional<std::filesystem::path> config_dir) {
              const std::filesystem::path dir = config_dir_or_default(config_dir);
              return std::make_unique<compass::MinWarping>(
-                 evaluation::load_compass_config(dir).min_warping,
-                 evaluation::load_camera_config(dir).panorama);
+                 config::load_compass_config(dir).min_warping,
+                 config::load_camera_config(dir).panorama);
            }),
            py::arg("config_dir") = py::none())
       .def(

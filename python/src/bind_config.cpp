@@ -7,9 +7,9 @@
 #include <pybind11/stl/filesystem.h>
 
 #include "bind.hpp"
+#include "omninav/config/config_folder.hpp"
 #include "omninav/core/angles.hpp"
 #include "omninav/core/errors.hpp"
-#include "omninav/evaluation/config_folder.hpp"
 
 namespace omninav::python {
 namespace {
@@ -63,7 +63,7 @@ void bind_compass_config(py::module_& m) {
       .def_static(
           "load",
           [](const std::optional<std::filesystem::path>& config_dir) {
-            return evaluation::load_compass_config(config_dir_or_default(config_dir));
+            return config::load_compass_config(config_dir_or_default(config_dir));
           },
           py::arg("config_dir") = py::none(),
           "Reads <config_dir>/compass.yaml. Raises ConfigError "
@@ -146,8 +146,8 @@ void bind_memory_config(py::module_& m) {
           "load",
           [](const std::optional<std::filesystem::path>& config_dir) {
             const std::filesystem::path dir = config_dir_or_default(config_dir);
-            memory::MemoryConfig config = evaluation::load_memory_config(dir);
-            evaluation::use_compass_config(dir, config.exploration);
+            memory::MemoryConfig config = config::load_memory_config(dir);
+            config::use_compass_config(dir, config.exploration);
             return config;
           },
           py::arg("config_dir") = py::none(),
@@ -210,7 +210,7 @@ void bind_navigation_config(py::module_& m) {
       .def_static(
           "load",
           [](const std::optional<std::filesystem::path>& config_dir) {
-            return evaluation::load_navigation_config(config_dir_or_default(config_dir));
+            return config::load_navigation_config(config_dir_or_default(config_dir));
           },
           py::arg("config_dir") = py::none(),
           "Reads <config_dir>/navigation.yaml and lattice.yaml's links. Raises ConfigError naming "
@@ -227,7 +227,7 @@ void bind_navigation_config(py::module_& m) {
 evaluation::NavigationConfig navigation_config(
     const std::optional<evaluation::NavigationConfig>& config,
     const std::optional<std::filesystem::path>& config_dir) {
-  return config ? *config : evaluation::load_navigation_config(config_dir_or_default(config_dir));
+  return config ? *config : config::load_navigation_config(config_dir_or_default(config_dir));
 }
 
 void bind_config(py::module_& m) {

@@ -6,8 +6,8 @@
 #include <memory>
 
 #include "bind.hpp"
+#include "omninav/config/config_folder.hpp"
 #include "omninav/core/parse.hpp"
-#include "omninav/evaluation/config_folder.hpp"
 #include "omninav/io/image_file.hpp"
 #include "omninav/io/panorama_input.hpp"
 #include "omninav/io/sequence.hpp"
@@ -31,7 +31,7 @@ io::Frame next_frame(Reader& reader) {
 
 // camera.yaml's unwrap section of `config_dir` (or the default folder).
 omni::UnwrapParams unwrap_params(const std::optional<std::filesystem::path>& config_dir) {
-  return evaluation::load_camera_config(config_dir_or_default(config_dir)).unwrap;
+  return config::load_camera_config(config_dir_or_default(config_dir)).unwrap;
 }
 
 void bind_frame(py::module_& m) {

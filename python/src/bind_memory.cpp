@@ -7,8 +7,8 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "bind.hpp"
+#include "omninav/config/config_folder.hpp"
 #include "omninav/core/errors.hpp"
-#include "omninav/evaluation/config_folder.hpp"
 #include "omninav/evaluation/organised_map.hpp"
 #include "omninav/io/panorama_input.hpp"
 #include "omninav/lattice/organise.hpp"
@@ -27,8 +27,8 @@ memory::MemoryConfig memory_config(const std::optional<memory::MemoryConfig>& co
                                    const std::optional<fs::path>& config_dir) {
   if (config) return *config;
   const fs::path dir = config_dir_or_default(config_dir);
-  memory::MemoryConfig loaded = evaluation::load_memory_config(dir);
-  evaluation::use_compass_config(dir, loaded.exploration);
+  memory::MemoryConfig loaded = config::load_memory_config(dir);
+  config::use_compass_config(dir, loaded.exploration);
   return loaded;
 }
 
@@ -327,7 +327,7 @@ void bind_memory(py::module_& m) {
           [](Map& map, double step_m, bool motion_constraints, std::optional<fs::path> config_dir) {
             const Busy busy(&map, "this Map");
             lattice::OrganiseParams params =
-                evaluation::load_lattice_config(config_dir_or_default(config_dir));
+                config::load_lattice_config(config_dir_or_default(config_dir));
             if (step_m > 0.0) params.step_m = step_m;
             if (!motion_constraints) params.motion_constraints = false;
             py::gil_scoped_release release;

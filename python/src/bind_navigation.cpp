@@ -8,10 +8,10 @@
 #include <pybind11/stl/filesystem.h>
 
 #include "bind.hpp"
+#include "omninav/config/config_folder.hpp"
 #include "omninav/core/errors.hpp"
 #include "omninav/core/format.hpp"
 #include "omninav/core/parse.hpp"
-#include "omninav/evaluation/config_folder.hpp"
 #include "omninav/memory/localisation.hpp"
 #include "omninav/navigation/goal_navigation.hpp"
 #include "omninav/navigation/live_session.hpp"
@@ -86,7 +86,7 @@ void bind_live_session(py::module_& m) {
       "    output = session.push(panorama, stamp_s=0.1, odometry=omninav.Pose2(0, 0, 0))")
       .def(py::init([](std::optional<fs::path> map, std::optional<fs::path> config_dir) {
              return std::make_unique<LiveSession>(
-                 evaluation::load_live_session_params(config_dir_or_default(config_dir)), map);
+                 config::load_live_session_params(config_dir_or_default(config_dir)), map);
            }),
            py::arg("map") = py::none(), py::arg("config_dir") = py::none(),
            "map: the map file to recognise places in and explore into (loaded when it exists); "
@@ -208,7 +208,7 @@ void bind_navigation(py::module_& m, py::class_<Map>& map) {
         const Busy busy(&map, "this Map");
         const memory::VisualMemory& memory = map.memory;
         const fs::path dir = config_dir_or_default(config_dir);
-        const memory::MemoryConfig memory_config = evaluation::load_memory_config(dir);
+        const memory::MemoryConfig memory_config = config::load_memory_config(dir);
         evaluation::NavigationConfig navigation = navigation_config(config, config_dir);
         if (max_steps > 0) navigation.navigator.max_steps = max_steps;
         py::object keep;

@@ -6,7 +6,7 @@
 #include <memory>
 
 #include "bind.hpp"
-#include "omninav/evaluation/config_folder.hpp"
+#include "omninav/config/config_folder.hpp"
 #include "omninav/sim/renderer.hpp"
 #include "omninav/sim/trajectory.hpp"
 #include "omninav/sim/world_loader.hpp"
@@ -32,10 +32,10 @@ void bind_sim(py::module_& m) {
       .def(py::init([](const std::string& spec, std::optional<std::filesystem::path> config_dir,
                        int width_px, int height_px, int rays_per_pixel) {
              const std::filesystem::path dir = config_dir_or_default(config_dir);
-             PanoramaGeometry panorama = evaluation::load_camera_config(dir).panorama;
+             PanoramaGeometry panorama = config::load_camera_config(dir).panorama;
              if (width_px > 0) panorama.width_px = width_px;
              if (height_px > 0) panorama.height_px = height_px;
-             sim::WorldsConfig worlds = evaluation::load_worlds_config(dir, panorama);
+             sim::WorldsConfig worlds = config::load_worlds_config(dir, panorama);
              if (rays_per_pixel > 0) worlds.render.rays_per_pixel = rays_per_pixel;
              py::gil_scoped_release release;
              return std::make_unique<World>(World{sim::load_world(spec, worlds), worlds.render});

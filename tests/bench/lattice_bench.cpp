@@ -69,9 +69,6 @@ void organise_rendered_grid(benchmark::State& state) {
   memory::VisualMemory map = grid_map(static_cast<int>(state.range(0)));
   lattice::OrganiseParams params;
   params.step_m = kSpacing;
-  // The second argument: pieces joined by the best-fitting pairs (1, the default) or by the most
-  // similar pairs (0, before), so that one run gives both times.
-  params.joins_by_residual = state.range(1) != 0;
   lattice::OrganiseResult result;
   for (auto _ : state) result = lattice::organise(map, params);
   const double places = static_cast<double>(map.place_count());
@@ -132,13 +129,7 @@ void organise_driven_tour(benchmark::State& state) {
 BENCHMARK(organise_driven_tour)->Arg(36)->Arg(60)->Unit(benchmark::kMillisecond)->Iterations(1);
 
 // 36² and 114² grid points: about 1,000 and 10,000 places once furniture takes its share.
-BENCHMARK(organise_rendered_grid)
-    ->Args({36, 0})
-    ->Args({36, 1})
-    ->Args({114, 0})
-    ->Args({114, 1})
-    ->Unit(benchmark::kMillisecond)
-    ->Iterations(1);
+BENCHMARK(organise_rendered_grid)->Arg(36)->Arg(114)->Unit(benchmark::kMillisecond)->Iterations(1);
 
 }  // namespace
 

@@ -33,7 +33,8 @@ endforeach()
 run("configuring the example" ${CMAKE_COMMAND} -S ${SOURCE_DIR}/examples/cpp_consumer
     -B ${work}/consumer -G ${GENERATOR} -DCMAKE_CXX_COMPILER=${CXX} -DCMAKE_PREFIX_PATH=${prefix})
 run("building the example" ${CMAKE_COMMAND} --build ${work}/consumer)
-run("running the example" ${work}/consumer/omninav_consumer ${work}/out)
+run("running the example" ${work}/consumer/omninav_consumer ${work}/out
+    ${prefix}/share/omninav/config)
 message(STATUS "find_package build: ${output}")
 
 # The installed program with its installed configuration on the example's map.

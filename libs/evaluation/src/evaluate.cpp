@@ -293,7 +293,7 @@ class WorldRun {
       params.odometry = true;
       args.emplace_back("--odometry");
     }
-    use_compass_config(config_dir_, params);
+    memory::use_compass_config(config_.compass, params);
     const fs::path map_file = dir_ / (name + ".vmem");
     args.insert(args.end(), {"--out", map_file.string(), "--force"});
     memory::VisualMemory memory(memory_config.map);
@@ -563,18 +563,6 @@ class WorldRun {
 };
 
 }  // namespace
-
-ConfigFolder load_config_folder(const fs::path& dir) {
-  ConfigFolder config;
-  config.dir = fs::absolute(dir).lexically_normal();
-  config.camera = load_camera_config(dir);
-  config.worlds = load_worlds_config(dir, config.camera.panorama);
-  config.compass = load_compass_config(dir);
-  config.memory = load_memory_config(dir);
-  config.lattice = load_lattice_config(dir);
-  config.navigation = load_navigation_config(dir);
-  return config;
-}
 
 WorldLayout plan_layout(const sim::World& world, int nx, int ny, double spacing_m,
                         double circle_radius_m, double clearance_m) {

@@ -230,27 +230,19 @@ class MotionMeasurer {
     return dropped;
   }
 
-  // Joining: the most similar pairs first (or, joins_by_residual, the best-fitting first),
-  // among the dropped motions and each place's ranked places (those not tried yet are fitted
-  // now, or when joining by residual, all of them first).
+  // Joining: the best-fitting pairs first (the smallest fit residual), among the dropped motions
+  // and each place's ranked places not yet joined, each fitted. Not the most similar pairs,
+  // which are often look-alikes metres away (docs/evaluation.md, "Joins").
   void join_what_is_apart(const std::vector<Candidate>& dropped) {
-    std::vector<std::tuple<double, int, int, std::optional<Candidate>>> joins;
-    const auto order = [&](const Candidate& candidate, double pair_dissimilarity) {
-      return params_.joins_by_residual ? candidate.residual : pair_dissimilarity;
-    };
+    std::vector<std::tuple<double, int, int, Candidate>> joins;
     for (const Candidate& candidate : dropped) {
-      const double pair_dissimilarity = dissimilarity_(candidate.motion.from, candidate.motion.to);
-      joins.emplace_back(order(candidate, pair_dissimilarity), candidate.motion.from,
-                         candidate.motion.to, candidate);
+      joins.emplace_back(candidate.residual, candidate.motion.from, candidate.motion.to, candidate);
     }
     for (int a = 0; a < static_cast<int>(ranking_.size()); ++a) {
       for (const SimilarPlace& similar : ranking_[a]) {
-        if (!params_.joins_by_residual) {
-          joins.emplace_back(similar.dissimilarity, a, similar.place, std::nullopt);
-        } else if (!joined_.joined(a, similar.place)) {
-          if (auto candidate = neighbour(a, similar.place, similar.dissimilarity)) {
-            joins.emplace_back(candidate->residual, a, similar.place, *candidate);
-          }
+        if (joined_.joined(a, similar.place)) continue;
+        if (auto candidate = neighbour(a, similar.place, similar.dissimilarity)) {
+          joins.emplace_back(candidate->residual, a, similar.place, *candidate);
         }
       }
     }
@@ -262,12 +254,10 @@ class MotionMeasurer {
     for (const Candidate& candidate : dropped) {
       dropped_pairs.insert({candidate.motion.from, candidate.motion.to});
     }
-    for (auto& [key, a, b, candidate] : joins) {
+    for (const auto& [residual, a, b, candidate] : joins) {
       if (joined_.joined(a, b)) continue;
       const bool was_dropped = dropped_pairs.count({a, b}) > 0;
-      if (!candidate) candidate = neighbour(a, b, key);
-      if (!candidate) continue;
-      result_.motions.push_back(candidate->motion);
+      result_.motions.push_back(candidate.motion);
       joined_.join(a, b);
       ++result_.joins;
       result_.look_alikes_dropped -= was_dropped;

@@ -114,7 +114,6 @@ void load_organise_params(const ConfigReader& section, OrganiseParams& params) {
   section.read("motion_direction_stddev_deg", params.motion_direction_stddev_deg);
   section.read("motion_length_stddev", params.motion_length_stddev);
   section.read("neighbour_motion_length_stddev", params.neighbour_motion_length_stddev);
-  section.read("joins_by_residual", params.joins_by_residual);
   section.read("spring_weight", params.lattice.spring_weight);
   section.read("min_stiffness", params.lattice.min_stiffness);
   section.read("loss_scale_m", params.lattice.loss_scale_m);

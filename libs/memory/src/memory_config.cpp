@@ -19,4 +19,9 @@ MemoryConfig load_memory_config(const ConfigReader& config) {
   return out;
 }
 
+void use_compass_config(const compass::CompassConfig& compass, ExplorationParams& exploration) {
+  exploration.compass = compass.compass;
+  exploration.compass_width_px = compass.width_px;
+}
+
 }  // namespace omninav::memory

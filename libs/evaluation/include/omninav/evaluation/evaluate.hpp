@@ -36,24 +36,12 @@
 #include <vector>
 
 #include "omninav/core/pose.hpp"
-#include "omninav/evaluation/config_folder.hpp"
+#include "omninav/evaluation/configuration.hpp"
 #include "omninav/evaluation/suite.hpp"
 #include "omninav/evaluation/table.hpp"
 #include "omninav/sim/world.hpp"
 
 namespace omninav::evaluation {
-
-// Every configuration file of a folder, loaded once.
-struct ConfigFolder {
-  std::filesystem::path dir;
-  CameraConfig camera;
-  sim::WorldsConfig worlds;
-  compass::CompassConfig compass;
-  memory::MemoryConfig memory;
-  lattice::OrganiseParams lattice;
-  NavigationConfig navigation;
-};
-ConfigFolder load_config_folder(const std::filesystem::path& dir);
 
 // Where a world's trajectories go.
 struct WorldLayout {

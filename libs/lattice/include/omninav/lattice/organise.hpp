@@ -78,9 +78,6 @@ struct OrganiseParams {
   // saturates beyond about one step (two steps read as 1.4-1.6), so their direction is what
   // they contribute and their length is held loosely.
   double neighbour_motion_length_stddev = 1.0;
-  // Pieces that the checked motions leave apart are joined by the pairs across whose fit
-  // explains the two views best (the smallest residual), not by the most similar pairs.
-  bool joins_by_residual = true;
   LatticeParams lattice;       // correlation_range_m is set by the calibration
   LinkParams links;            // a map made by driving: its confirmed links ...
   DrivenLatticeParams driven;  // ... as the pose graph's measurements

@@ -3,6 +3,7 @@
 // (docs/design.md, Conventions: Config). The file documents every key with its unit, range and
 // source.
 
+#include "omninav/compass/compass_config.hpp"
 #include "omninav/memory/exploration.hpp"
 #include "omninav/memory/localisation.hpp"
 #include "omninav/memory/visual_memory.hpp"
@@ -22,5 +23,9 @@ struct MemoryConfig {
 // Reads sections signature (components, colour, weights), exploration and localisation, then
 // rejects unknown keys. Throws ConfigError naming the file and key.
 MemoryConfig load_memory_config(const ConfigReader& config);
+
+// The visual compass that heading_source compass (or auto) uses: compass.yaml's compass and its
+// input width.
+void use_compass_config(const compass::CompassConfig& compass, ExplorationParams& exploration);
 
 }  // namespace omninav::memory

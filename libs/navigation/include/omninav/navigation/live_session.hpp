@@ -35,8 +35,8 @@
 
 #include "omninav/compass/compass_run.hpp"
 #include "omninav/core/pose.hpp"
-#include "omninav/memory/memory_config.hpp"
 #include "omninav/lattice/confirmed_links.hpp"
+#include "omninav/memory/memory_config.hpp"
 #include "omninav/navigation/goal_navigation.hpp"
 #include "omninav/navigation/place_belief.hpp"
 
@@ -48,7 +48,7 @@ class MapStore;
 namespace omninav::navigation {
 
 // Everything a session reads from the configuration folder: compass.yaml, memory.yaml and
-// navigation.yaml's sections (evaluation/config_folder.hpp loads them).
+// navigation.yaml's sections (config/config_folder.hpp loads them).
 struct LiveSessionParams {
   compass::CompassParams compass;
   std::optional<int> compass_width_px;  // compass.yaml's input.width_px

@@ -1,8 +1,11 @@
-#include "omninav/evaluation/config_folder.hpp"
+#include "omninav/config/config_folder.hpp"
 
 #include "omninav/core/config.hpp"
 
-namespace omninav::evaluation {
+namespace omninav::config {
+
+using evaluation::CameraConfig;
+using evaluation::NavigationConfig;
 
 CameraConfig load_camera_config(const std::filesystem::path& config_dir) {
   const ConfigReader config = ConfigReader::from_file(config_dir / "camera.yaml");
@@ -40,11 +43,9 @@ void use_compass_config(const std::filesystem::path& config_dir,
                         memory::ExplorationParams& exploration) {
   if (exploration.heading_source != memory::HeadingPolicy::kCompass &&
       exploration.heading_source != memory::HeadingPolicy::kAuto) {
-    return;
+    return;  // a compass.yaml that would not be used is not read
   }
-  const compass::CompassConfig compass = load_compass_config(config_dir);
-  exploration.compass = compass.compass;
-  exploration.compass_width_px = compass.width_px;
+  memory::use_compass_config(load_compass_config(config_dir), exploration);
 }
 
 lattice::OrganiseParams load_lattice_config(const std::filesystem::path& config_dir) {
@@ -67,7 +68,7 @@ NavigationConfig load_navigation_config(const std::filesystem::path& config_dir)
   navigation::load_belief_params(config.section("belief"), navigation.belief);
   navigation::load_navigator_params(config.section("navigator"), navigation.navigator);
   sim::load_robot_params(config.section("robot"), navigation.robot);
-  load_trial_params(config.section("trials"), navigation.trials);
+  evaluation::load_trial_params(config.section("trials"), navigation.trials);
   config.require_all_known();
   return navigation;
 }
@@ -87,4 +88,16 @@ navigation::LiveSessionParams load_live_session_params(const std::filesystem::pa
   return params;
 }
 
-}  // namespace omninav::evaluation
+evaluation::ConfigFolder load_config_folder(const std::filesystem::path& config_dir) {
+  evaluation::ConfigFolder config;
+  config.dir = std::filesystem::absolute(config_dir).lexically_normal();
+  config.camera = load_camera_config(config_dir);
+  config.worlds = load_worlds_config(config_dir, config.camera.panorama);
+  config.compass = load_compass_config(config_dir);
+  config.memory = load_memory_config(config_dir);
+  config.lattice = load_lattice_config(config_dir);
+  config.navigation = load_navigation_config(config_dir);
+  return config;
+}
+
+}  // namespace omninav::config

@@ -1,6 +1,8 @@
 // Every YAML file shipped in config/ loads strictly (no unknown key, every value in range)
 // through the loader the commands use; a file no loader reads is a failure, so that a new
 // configuration file cannot ship untested.
+#include "omninav/config/config_folder.hpp"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -9,11 +11,9 @@
 #include <set>
 #include <string>
 
-#include "omninav/evaluation/config_folder.hpp"
-#include "omninav/evaluation/suite.hpp"
 #include "support/shared_data.hpp"
 
-namespace omninav::evaluation {
+namespace omninav::config {
 namespace {
 
 TEST(ShippedConfig, EveryFileLoadsStrictlyThroughItsLoader) {
@@ -42,16 +42,5 @@ TEST(ShippedConfig, EveryFileLoadsStrictlyThroughItsLoader) {
   EXPECT_EQ(loaded.size(), loaders.size()) << "a configuration file the commands need is missing";
 }
 
-TEST(ShippedConfig, EverySuiteLoadsStrictly) {
-  int suites = 0;
-  for (const std::filesystem::directory_entry& entry :
-       std::filesystem::directory_iterator(omninav::testing::config_dir() / "suites")) {
-    EXPECT_EQ(entry.path().extension(), ".yaml") << entry.path();
-    EXPECT_NO_THROW(load_suite(entry.path().string(), {})) << entry.path();
-    ++suites;
-  }
-  EXPECT_GE(suites, 2) << "the quick and full suites";
-}
-
 }  // namespace
-}  // namespace omninav::evaluation
+}  // namespace omninav::config
