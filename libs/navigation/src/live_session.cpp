@@ -238,7 +238,7 @@ std::optional<LiveCommand> LiveSession::command(const LiveFrame& frame) {
     next.state = LiveNavigationState::kDriving;
     next.turn_rad = command.turn_rad;
     next.distance_m = command.distance_m;
-    under_way_ = CommandUnderWay{command, frame.odometry, false};
+    under_way_ = CommandUnderWay{command, frame.odometry, frame.odometry.value_or(Pose2{})};
   } else {
     next.state = LiveNavigationState::kReached;
   }
@@ -249,9 +249,11 @@ bool LiveSession::command_done(const Pose2& odometry, LiveCommand& left) {
   CommandUnderWay& command = *under_way_;
   const Pose2& start = *command.start;
   const double turn_rad = command.command.turn_rad;
-  // Turned by the command's turn, or past it (the odometry's yaw, along the shorter arc).
-  const double still_to_turn =
-      signed_difference(turn_rad, signed_difference(odometry.heading_rad, start.heading_rad));
+  // Turned by the command's turn, or past it: the odometry's yaw summed from frame to frame
+  // (each along the shorter arc), so that a robot turning the other way never gets there.
+  command.turned_rad += signed_difference(odometry.heading_rad, command.last.heading_rad);
+  command.last = odometry;
+  const double still_to_turn = turn_rad - command.turned_rad;
   const bool was_turned = command.turned;
   command.turned =
       command.turned || still_to_turn * turn_rad <= 0.0 || std::fabs(still_to_turn) < kDoneWithin;

@@ -32,11 +32,12 @@
 // Navigating, the navigator keeps its own belief, moved by its commands as in `navigate` (the
 // recognised place above stays the session's). A command is a turn, then a drive. With
 // odometry at the command's frame and at later frames, each later frame is answered with what
-// is left of it (the turn is done once the odometry's heading has turned by it, the drive once
-// the odometry has moved by its distance from the command's frame), and the first frame at
-// which both are done becomes the navigator's next view, with the distance the odometry moved;
-// a frame at which the odometry's position has not changed since the last frame, the turn
-// done before it, ends the command as blocked (the navigator's recovery then turns aside).
+// is left of it (the turn is done once the odometry's heading, summed frame to frame, has
+// turned by it, the drive once the odometry has moved by its distance from the command's
+// frame), and the first frame at which both are done becomes the navigator's next view, with
+// the distance the odometry moved; a frame at which the odometry's position has not changed
+// since the last frame, the turn done before it, ends the command as blocked (the navigator's
+// recovery then turns aside).
 // Without odometry, each frame is the next view and the last command counts as carried out
 // whole before it (a caller that acts on each command, then pushes the frame it then sees).
 
@@ -200,6 +201,8 @@ class LiveSession {
   struct CommandUnderWay {
     DriveCommand command;
     std::optional<Pose2> start;  // the odometry at the command's frame
+    Pose2 last;                  // the odometry at the last frame
+    double turned_rad = 0.0;     // the odometry's turn since the command's frame
     bool turned = false;         // the turn is done
   };
   std::optional<CommandUnderWay> under_way_;
