@@ -17,11 +17,13 @@
 
 #include <cmath>
 #include <csignal>
+#include <cstdint>
 #include <exception>
 #include <memory>
 #include <set>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "omninav/io/ros_image.hpp"
@@ -33,13 +35,22 @@ namespace {
 // The fields of ~place, in order (its layout's label says them too).
 constexpr const char* kPlaceFields =
     "place,similarity,dissimilarity_per_value,probability,confidence,lost";
-constexpr int kPlaceFieldCount = 6;
 // The fields of ~navigation, in order (state: 0 driving, 1 reached, 2 failed).
 constexpr const char* kNavigationFields = "state,step,place,turn_rad,distance_m,homing,lost";
-constexpr int kNavigationFieldCount = 7;
 // The covariance of the parts of ~heading the node does not measure (position, roll, pitch):
 // unknown, as robot_localization and REP 145 read a huge variance.
 constexpr double kUnknownVariance = 1e9;
+
+// A Float64MultiArray of one dimension whose label names its fields.
+std_msgs::Float64MultiArray labelled(const char* fields, std::vector<double> data) {
+  std_msgs::Float64MultiArray array;
+  array.layout.dim.resize(1);
+  array.layout.dim[0].label = fields;
+  array.layout.dim[0].size = static_cast<std::uint32_t>(data.size());
+  array.layout.dim[0].stride = static_cast<std::uint32_t>(data.size());
+  array.data = std::move(data);
+  return array;
+}
 
 class Node {
  public:
@@ -164,18 +175,9 @@ class Node {
       heading.pose.covariance[35] = frame.heading_sigma_rad * frame.heading_sigma_rad;
       heading_.publish(heading);
       if (frame.has_place) {
-        std_msgs::Float64MultiArray place;
-        place.layout.dim.resize(1);
-        place.layout.dim[0].label = kPlaceFields;
-        place.layout.dim[0].size = kPlaceFieldCount;
-        place.layout.dim[0].stride = kPlaceFieldCount;
-        place.data = {static_cast<double>(frame.place),
-                      frame.similarity,
-                      frame.dissimilarity_per_value,
-                      frame.probability,
-                      frame.confidence,
-                      frame.lost ? 1.0 : 0.0};
-        place_.publish(place);
+        place_.publish(labelled(kPlaceFields, {static_cast<double>(frame.place), frame.similarity,
+                                               frame.dissimilarity_per_value, frame.probability,
+                                               frame.confidence, frame.lost ? 1.0 : 0.0}));
       }
       if (frame.new_place) {
         std_msgs::UInt32 added;
@@ -193,19 +195,11 @@ class Node {
     twist.linear.x = velocity.linear_m_s;
     twist.angular.z = velocity.angular_rad_s;
     cmd_vel_.publish(twist);
-    std_msgs::Float64MultiArray navigation;
-    navigation.layout.dim.resize(1);
-    navigation.layout.dim[0].label = kNavigationFields;
-    navigation.layout.dim[0].size = kNavigationFieldCount;
-    navigation.layout.dim[0].stride = kNavigationFieldCount;
-    navigation.data = {static_cast<double>(frame.navigation_state),
-                       static_cast<double>(frame.step),
-                       static_cast<double>(frame.acted_on),
-                       frame.turn_rad,
-                       frame.distance_m,
-                       frame.homing ? 1.0 : 0.0,
-                       frame.navigation_lost ? 1.0 : 0.0};
-    navigation_.publish(navigation);
+    navigation_.publish(
+        labelled(kNavigationFields,
+                 {static_cast<double>(frame.navigation_state), static_cast<double>(frame.step),
+                  static_cast<double>(frame.acted_on), frame.turn_rad, frame.distance_m,
+                  frame.homing ? 1.0 : 0.0, frame.navigation_lost ? 1.0 : 0.0}));
   }
 
   // A top speed parameter: in (0, `most`], else the node does not start.
