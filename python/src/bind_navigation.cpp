@@ -102,8 +102,9 @@ void bind_live_session(py::module_& m) {
       m, "LiveSession",
       "A robot's frames pushed one at a time, each answered at once, as the ROS node omninav_ros "
       "runs it (docs/ros.md): the compass's heading (as `omninav compass`), with a map that "
-      "has a lattice the place the belief over places recognises, and while exploring the place "
-      "the frame became. Bad frames (an empty or non-8-bit image, a size change, a stamp not "
+      "has a lattice the place the belief over places recognises, while exploring the place "
+      "the frame became, and after navigate_to(goal_image) the command toward the goal. Bad "
+      "frames (an empty or non-8-bit image, a size change, a stamp not "
       "after the last) are skipped and counted: push returns None.\n\n"
       "    session = omninav.LiveSession('maps/lab.vmem')\n"
       "    output = session.push(panorama, stamp_s=0.1, odometry=omninav.Pose2(0, 0, 0))")

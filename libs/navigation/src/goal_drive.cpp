@@ -91,6 +91,10 @@ class GoalDrive::Run {
   // links dropped; the distance carries the belief at the next view.
   void moved(double driven_m) {
     if (!waiting_) throw UsageError("GoalDrive::moved: no command is waiting for its motion");
+    if (!std::isfinite(driven_m)) {
+      throw InputError("GoalDrive::moved: " + std::to_string(driven_m) +
+                       " is not the metres driven (a finite distance)");
+    }
     const Waiting waiting = *waiting_;
     waiting_.reset();
     driven_ = driven_m;

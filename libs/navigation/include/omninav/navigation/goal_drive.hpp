@@ -47,7 +47,8 @@ class GoalDrive {
   // motion has not been reported (moved).
   DriveCommand step(const cv::Mat& view);
   // The distance the robot actually drove on the last command (0 when blocked): the belief's
-  // motion and the recovery from blocks read it. UsageError when no command is waiting for it.
+  // motion and the recovery from blocks read it. UsageError when no command is waiting for it,
+  // InputError for a distance that is not finite.
   void moved(double driven_m);
 
   // The goal reached, or navigator.max_steps views spent.
