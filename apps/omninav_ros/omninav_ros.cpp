@@ -1,9 +1,11 @@
 // omninav_ros: the live session (libs/navigation/.../live_session.hpp) as a ROS 1 node, a thin
-// adapter: messages in, the session's outputs out, the session's commands as services.
+// adapter: messages in, the session's outputs out (navigating, its command as a Twist on
+// cmd_vel), the session's commands as services.
 // docs/ros.md documents its topics, services and parameters. Compiled as C++17: ROS 1's
 // generated message headers use std::allocator<void>::rebind, which C++20 removed.
 
 #include <geometry_msgs/PoseWithCovarianceStamped.h>
+#include <geometry_msgs/Twist.h>
 #include <nav_msgs/Odometry.h>
 #include <ros/callback_queue.h>
 #include <ros/ros.h>
@@ -15,10 +17,13 @@
 
 #include <cmath>
 #include <csignal>
+#include <cstdint>
 #include <exception>
 #include <memory>
 #include <set>
+#include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "omninav/io/ros_image.hpp"
@@ -30,20 +35,34 @@ namespace {
 // The fields of ~place, in order (its layout's label says them too).
 constexpr const char* kPlaceFields =
     "place,similarity,dissimilarity_per_value,probability,confidence,lost";
-constexpr int kPlaceFieldCount = 6;
+// The fields of ~navigation, in order (state: 0 driving, 1 reached, 2 failed).
+constexpr const char* kNavigationFields = "state,step,place,turn_rad,distance_m,homing,lost";
 // The covariance of the parts of ~heading the node does not measure (position, roll, pitch):
 // unknown, as robot_localization and REP 145 read a huge variance.
 constexpr double kUnknownVariance = 1e9;
+
+// A Float64MultiArray of one dimension whose label names its fields.
+std_msgs::Float64MultiArray labelled(const char* fields, std::vector<double> data) {
+  std_msgs::Float64MultiArray array;
+  array.layout.dim.resize(1);
+  array.layout.dim[0].label = fields;
+  array.layout.dim[0].size = static_cast<std::uint32_t>(data.size());
+  array.layout.dim[0].stride = static_cast<std::uint32_t>(data.size());
+  array.data = std::move(data);
+  return array;
+}
 
 class Node {
  public:
   Node(ros::NodeHandle& node, ros::NodeHandle& private_node) {
     const std::string config_dir = private_node.param<std::string>("config_dir", "");
     const std::string map = private_node.param<std::string>("map", "");
-    const bool use_odometry = private_node.param("use_odometry", false);
+    use_odometry_ = private_node.param("use_odometry", false);
     const int queue = private_node.param("queue_size", 100);
     frame_id_ = private_node.param<std::string>("frame_id", "odom");
-    session_ = std::make_unique<RosSession>(config_dir, map, use_odometry,
+    max_linear_m_s_ = speed(private_node, "max_linear_speed", 0.2, 10.0);
+    max_angular_rad_s_ = speed(private_node, "max_angular_speed", 0.5, 20.0);
+    session_ = std::make_unique<RosSession>(config_dir, map, use_odometry_,
                                             static_cast<std::size_t>(std::max(queue, 1)));
     if (!session_->no_belief_reason().empty()) {
       ROS_WARN_STREAM("no places are recognised: " << session_->no_belief_reason());
@@ -51,6 +70,9 @@ class Node {
     heading_ = private_node.advertise<geometry_msgs::PoseWithCovarianceStamped>("heading", queue);
     place_ = private_node.advertise<std_msgs::Float64MultiArray>("place", queue);
     new_place_ = private_node.advertise<std_msgs::UInt32>("new_place", queue);
+    navigation_ = private_node.advertise<std_msgs::Float64MultiArray>("navigation", queue);
+    // In the node's namespace, not private: where a base controller listens (move_base's name).
+    cmd_vel_ = node.advertise<geometry_msgs::Twist>("cmd_vel", queue);
     const uint32_t size = static_cast<uint32_t>(std::max(queue, 1));
     if (private_node.param("compressed", false)) {
       // As image_transport names it: the raw topic's name (after remapping) + "/compressed".
@@ -59,14 +81,17 @@ class Node {
     } else {
       image_ = node.subscribe("image", size, &Node::on_image, this);
     }
-    if (use_odometry) odometry_ = node.subscribe("odom", size, &Node::on_odometry, this);
+    if (use_odometry_) odometry_ = node.subscribe("odom", size, &Node::on_odometry, this);
     services_.push_back(private_node.advertiseService("start_exploring", &Node::start, this));
     services_.push_back(private_node.advertiseService("stop_exploring", &Node::stop, this));
     services_.push_back(private_node.advertiseService("save_map", &Node::save, this));
+    services_.push_back(private_node.advertiseService("navigate", &Node::navigate, this));
+    services_.push_back(
+        private_node.advertiseService("stop_navigating", &Node::stop_navigating, this));
     if (private_node.param("explore", false)) session_->start_exploring();
     ROS_INFO_STREAM("omninav: listening on "
                     << image_.getTopic()
-                    << (use_odometry ? " and " + odometry_.getTopic() : std::string()));
+                    << (use_odometry_ ? " and " + odometry_.getTopic() : std::string()));
   }
 
   // What was skipped, logged when the node stops.
@@ -150,25 +175,80 @@ class Node {
       heading.pose.covariance[35] = frame.heading_sigma_rad * frame.heading_sigma_rad;
       heading_.publish(heading);
       if (frame.has_place) {
-        std_msgs::Float64MultiArray place;
-        place.layout.dim.resize(1);
-        place.layout.dim[0].label = kPlaceFields;
-        place.layout.dim[0].size = kPlaceFieldCount;
-        place.layout.dim[0].stride = kPlaceFieldCount;
-        place.data = {static_cast<double>(frame.place),
-                      frame.similarity,
-                      frame.dissimilarity_per_value,
-                      frame.probability,
-                      frame.confidence,
-                      frame.lost ? 1.0 : 0.0};
-        place_.publish(place);
+        place_.publish(labelled(kPlaceFields, {static_cast<double>(frame.place), frame.similarity,
+                                               frame.dissimilarity_per_value, frame.probability,
+                                               frame.confidence, frame.lost ? 1.0 : 0.0}));
       }
       if (frame.new_place) {
         std_msgs::UInt32 added;
         added.data = *frame.new_place;
         new_place_.publish(added);
       }
+      if (frame.navigating) publish_navigation(frame);
     }
+  }
+
+  // The frame's command as a Twist (velocity_for), and where navigating stands.
+  void publish_navigation(const FrameOutputs& frame) {
+    const Velocity velocity = velocity_for(frame, max_linear_m_s_, max_angular_rad_s_);
+    geometry_msgs::Twist twist;
+    twist.linear.x = velocity.linear_m_s;
+    twist.angular.z = velocity.angular_rad_s;
+    cmd_vel_.publish(twist);
+    navigation_.publish(
+        labelled(kNavigationFields,
+                 {static_cast<double>(frame.navigation_state), static_cast<double>(frame.step),
+                  static_cast<double>(frame.acted_on), frame.turn_rad, frame.distance_m,
+                  frame.homing ? 1.0 : 0.0, frame.navigation_lost ? 1.0 : 0.0}));
+  }
+
+  // A top speed parameter: in (0, `most`], else the node does not start.
+  static double speed(ros::NodeHandle& private_node, const std::string& name, double fallback,
+                      double most) {
+    const double value = private_node.param(name, fallback);
+    if (!(value > 0.0 && value <= most)) {
+      throw std::runtime_error("~" + name + " is " + std::to_string(value) +
+                               ", out of its range (0, " + std::to_string(most) + "]");
+    }
+    return value;
+  }
+
+  // Navigates to the panorama in the file ~goal_image names, read at the call.
+  bool navigate(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response) {
+    std::string goal;
+    if (!use_odometry_) {
+      // Without it every frame would be the navigator's next view, the last command counted as
+      // carried out whole: a robot driving between frames does not do that (docs/ros.md).
+      response.success = false;
+      response.message = "navigating needs ~use_odometry";
+      return true;
+    }
+    if (!ros::param::get("~goal_image", goal) || goal.empty()) {
+      response.success = false;
+      response.message = "set ~goal_image to the goal panorama's file first";
+      return true;
+    }
+    try {
+      const std::uint32_t place = session_->navigate_to(goal);
+      response.success = true;
+      response.message = "navigating to " + goal + ", place " + std::to_string(place);
+      ROS_INFO_STREAM("omninav: " << response.message);
+    } catch (const std::exception& error) {
+      response.success = false;
+      response.message = error.what();
+      ROS_ERROR_STREAM("navigate: " << error.what());
+    }
+    return true;
+  }
+
+  // Stops navigating: the robot is told to stand still at once.
+  bool stop_navigating(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response) {
+    const bool was = session_->navigating();
+    session_->stop_navigating();
+    cmd_vel_.publish(geometry_msgs::Twist());
+    response.success = true;
+    response.message = was ? "stopped navigating" : "was not navigating";
+    return true;
   }
 
   bool start(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response) {
@@ -205,7 +285,10 @@ class Node {
 
   std::unique_ptr<RosSession> session_;
   std::string frame_id_;
-  ros::Publisher heading_, place_, new_place_;
+  bool use_odometry_ = false;
+  double max_linear_m_s_ = 0.0;
+  double max_angular_rad_s_ = 0.0;
+  ros::Publisher heading_, place_, new_place_, navigation_, cmd_vel_;
   ros::Subscriber image_, odometry_;
   std::vector<ros::ServiceServer> services_;
   std::set<std::string> warned_;

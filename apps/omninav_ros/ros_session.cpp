@@ -1,8 +1,11 @@
 #include "ros_session.hpp"
 
+#include <cmath>
+
 #include "cli.hpp"
 #include "omninav/config/config_folder.hpp"
 #include "omninav/io/bag_sequence.hpp"
+#include "omninav/io/image_file.hpp"
 #include "omninav/navigation/live_session.hpp"
 
 namespace omninav::ros_node {
@@ -42,6 +45,16 @@ void RosSession::process(const Waiting& frame, bool with_pose,
     result.lost = output->place->lost;
   }
   if (output->new_place) result.new_place = static_cast<std::uint32_t>(*output->new_place);
+  if (const std::optional<navigation::LiveCommand>& command = output->command) {
+    result.navigating = true;
+    result.navigation_state = static_cast<int>(command->state);
+    result.turn_rad = command->turn_rad;
+    result.distance_m = command->distance_m;
+    result.step = command->step;
+    result.homing = command->phase == navigation::NavigationPhase::kHoming;
+    result.acted_on = static_cast<std::uint32_t>(command->place);
+    result.navigation_lost = command->lost;
+  }
   completed.push_back(result);
 }
 
@@ -82,6 +95,34 @@ bool RosSession::odometry(const OdometryPose& pose, std::vector<FrameOutputs>& c
       {pose.stamp_s, pose.x_m, pose.y_m, pose.z_m, pose.qx, pose.qy, pose.qz, pose.qw});
   drain(completed);
   return true;
+}
+
+Velocity velocity_for(const FrameOutputs& frame, double max_linear_m_s, double max_angular_rad_s) {
+  Velocity velocity;
+  if (!frame.navigating ||
+      frame.navigation_state != static_cast<int>(navigation::LiveNavigationState::kDriving)) {
+    return velocity;
+  }
+  if (frame.turn_rad != 0.0) {
+    velocity.angular_rad_s = std::copysign(max_angular_rad_s, frame.turn_rad);
+  } else if (frame.distance_m > 0.0) {
+    velocity.linear_m_s = max_linear_m_s;
+  }
+  return velocity;
+}
+
+std::uint32_t RosSession::navigate_to(const std::string& goal_image_file) {
+  const memory::PlaceMatch goal =
+      session_->navigate_to(io::read_image(goal_image_file), goal_image_file);
+  return static_cast<std::uint32_t>(goal.place);
+}
+
+void RosSession::stop_navigating() {
+  session_->stop_navigating();
+}
+
+bool RosSession::navigating() const {
+  return session_->navigating();
 }
 
 void RosSession::start_exploring() {

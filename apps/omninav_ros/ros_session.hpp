@@ -35,7 +35,30 @@ struct FrameOutputs {
   double confidence = 0.0;
   bool lost = false;
   std::optional<std::uint32_t> new_place;  // exploring
+  // Navigating (LiveCommand): where it stands and what is left of the navigator's command.
+  bool navigating = false;
+  int navigation_state = 0;      // 0 driving, 1 reached, 2 failed (LiveNavigationState's order)
+  double turn_rad = 0.0;         // still to turn on the spot, counter-clockwise positive
+  double distance_m = 0.0;       // still to drive forwards after it
+  int step = 0;                  // the navigator's step the command is of
+  bool homing = false;           // the navigator homes on the goal image
+  std::uint32_t acted_on = 0;    // the place the navigator acted on
+  bool navigation_lost = false;  // the navigator's belief was spread
 };
+
+// A velocity command: forwards in m/s, counter-clockwise in rad/s (geometry_msgs/Twist's
+// linear.x and angular.z).
+struct Velocity {
+  double linear_m_s = 0.0;
+  double angular_rad_s = 0.0;
+};
+
+// The velocity that carries out what is left of a frame's command: the turn on the spot at
+// `max_angular_rad_s` in its direction, then the drive at `max_linear_m_s`; zero when nothing is
+// left, reached or failed. A function of the frame's outputs only, not of when it comes: the
+// session decides from the odometry when a part is done (live_session.hpp), so the robot
+// overshoots a part by at most what it moves in one frame period.
+Velocity velocity_for(const FrameOutputs& frame, double max_linear_m_s, double max_angular_rad_s);
 
 // An odometry message's pose.
 struct OdometryPose {
@@ -62,6 +85,12 @@ class RosSession {
   // Likewise for the frames an odometry message completes. An odometry message not after the
   // last is ignored (returns false).
   bool odometry(const OdometryPose& pose, std::vector<FrameOutputs>& completed);
+
+  // Navigating to the panorama in `goal_image_file` (LiveSession::navigate_to); returns the
+  // goal's place. Throws omninav's errors (the image unreadable, matching no place).
+  std::uint32_t navigate_to(const std::string& goal_image_file);
+  void stop_navigating();
+  bool navigating() const;
 
   void start_exploring();
   void stop_exploring();

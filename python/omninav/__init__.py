@@ -30,6 +30,7 @@ from ._omninav import (  # noqa: F401 (re-exported)
     Frame,
     GoalRun,
     InputError,
+    LiveCommand,
     LiveOutput,
     LivePlace,
     LiveSession,
@@ -107,7 +108,7 @@ for _type in (SamplingParams, MinimiserParams, CompassConfig, SignatureParams,
               ExplorationParams, LocalisationParams, MemoryConfig, RouteParams, LinkParams,
               BeliefParams, NavigatorParams,
               NavigationConfig, Place, Edge, Localisation, RoutePlan, Run, NavigationStep, GoalRun,
-              LivePlace, LiveOutput):
+              LivePlace, LiveOutput, LiveCommand):
     _type.__repr__ = _fields_repr
 del _type
 

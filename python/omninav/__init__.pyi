@@ -387,18 +387,33 @@ class LivePlace:
     confidence: float  # the belief on the place and the places linked to it
     lost: bool
 
+class LiveCommand:
+    state: str  # "driving", "reached" or "failed": stand still unless driving
+    turn_rad: float  # still to turn on the spot, counter-clockwise positive
+    distance_m: float  # still to drive forwards after the turn
+    step: int  # the navigator's step (view) the command is of
+    new_step: bool  # this frame was that step's view
+    phase: str  # "route" or "homing"
+    place: int  # the place the navigator acted on
+    lost: bool  # the navigator's belief was spread then
+
 class LiveOutput:
     frame: int
     stamp_s: float
     compass: CompassEstimate
     place: Optional[LivePlace]  # None without a map that has a lattice
     new_place: Optional[int]  # exploring: the place the frame became
+    command: Optional[LiveCommand]  # navigating: the command toward the goal
 
 class LiveSession:
     def __init__(self, map: Optional[PathArg] = None,
                  config_dir: Optional[PathArg] = None) -> None: ...
     def push(self, panorama: Image, stamp_s: float,
              odometry: Optional[Pose2] = None) -> Optional[LiveOutput]: ...
+    def navigate_to(self, goal_image: Image) -> PlaceMatch: ...
+    def stop_navigating(self) -> None: ...
+    @property
+    def navigating(self) -> bool: ...
     def start_exploring(self) -> None: ...
     def stop_exploring(self) -> None: ...
     def save(self) -> None: ...

@@ -1,5 +1,5 @@
 // Parameters as objects whose fields are the YAML keys of config/*.yaml, loaded by the library's
-// own readers (evaluation/config_folder.hpp), so that a file means the same from Python as from
+// own readers (config/config_folder.hpp), so that a file means the same from Python as from
 // the command line. Sections are attributes (config.sampling.threshold_norm_amp is compass.yaml's
 // sampling: threshold_norm_amp); keys given in degrees in YAML are radians in C++ and are
 // offered under both names.

@@ -3,7 +3,8 @@
 // metres driven, and truth() -> CameraPose (for the step log only). So a user drives their own
 // robot or simulator from Python, the navigator deciding each turn and step from the panoramas.
 // And the live session (navigation/live_session.hpp), as the ROS node runs it: a robot's frames
-// pushed as they come, each answered with its heading, place and new place.
+// pushed as they come, each answered with its heading, place, new place and, navigating to a
+// goal image, the command toward it.
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
@@ -66,6 +67,26 @@ void bind_live_session(py::module_& m) {
       .def_readonly("confidence", &LivePlace::confidence,
                     "The belief's on the place and the places linked to it.")
       .def_readonly("lost", &LivePlace::lost, "confidence below belief.confident_share.");
+  using navigation::LiveCommand;
+  py::class_<LiveCommand>(
+      m, "LiveCommand",
+      "What the robot is to do after a frame while navigating (LiveSession.navigate_to): what "
+      "is left of the navigator's command, turn on the spot first, then drive forwards.")
+      .def_property_readonly(
+          "state", [](const LiveCommand& c) { return std::string(navigation::to_string(c.state)); },
+          "'driving' (a command under way), 'reached' (stopped at the goal) or 'failed' "
+          "(navigator.max_steps views spent): stand still unless driving.")
+      .def_readonly("turn_rad", &LiveCommand::turn_rad,
+                    "Still to turn, counter-clockwise positive (0 once turned).")
+      .def_readonly("distance_m", &LiveCommand::distance_m, "Still to drive after the turn.")
+      .def_readonly("step", &LiveCommand::step, "The navigator's step (view) the command is of.")
+      .def_readonly("new_step", &LiveCommand::new_step, "This frame was that step's view.")
+      .def_property_readonly(
+          "phase",
+          [](const LiveCommand& c) { return std::string(navigation::phase_name(c.phase)); },
+          "'route' or 'homing'.")
+      .def_readonly("place", &LiveCommand::place, "The place the navigator acted on.")
+      .def_readonly("lost", &LiveCommand::lost, "The navigator's belief was spread then.");
   py::class_<LiveOutput>(m, "LiveOutput", "A frame's outputs (LiveSession.push).")
       .def_readonly("frame", &LiveOutput::frame, "Frames accepted before this one.")
       .def_readonly("stamp_s", &LiveOutput::stamp_s)
@@ -74,13 +95,16 @@ void bind_live_session(py::module_& m) {
                     "The recognised LivePlace; None without a map "
                     "that has a lattice.")
       .def_readonly("new_place", &LiveOutput::new_place,
-                    "Exploring: the index of the place the frame became, else None.");
+                    "Exploring: the index of the place the frame became, else None.")
+      .def_readonly("command", &LiveOutput::command,
+                    "Navigating (navigate_to): the LiveCommand toward the goal, else None.");
   py::class_<LiveSession>(
       m, "LiveSession",
       "A robot's frames pushed one at a time, each answered at once, as the ROS node omninav_ros "
       "runs it (docs/ros.md): the compass's heading (as `omninav compass`), with a map that "
-      "has a lattice the place the belief over places recognises, and while exploring the place "
-      "the frame became. Bad frames (an empty or non-8-bit image, a size change, a stamp not "
+      "has a lattice the place the belief over places recognises, while exploring the place "
+      "the frame became, and after navigate_to(goal_image) the command toward the goal. Bad "
+      "frames (an empty or non-8-bit image, a size change, a stamp not "
       "after the last) are skipped and counted: push returns None.\n\n"
       "    session = omninav.LiveSession('maps/lab.vmem')\n"
       "    output = session.push(panorama, stamp_s=0.1, odometry=omninav.Pose2(0, 0, 0))")
@@ -105,6 +129,31 @@ void bind_live_session(py::module_& m) {
           py::arg("panorama"), py::arg("stamp_s"), py::arg("odometry") = py::none(),
           "The frame's LiveOutput, or None when it was skipped (last_skip says why). The stamps "
           "must grow; odometry: the robot's Pose2 at the stamp.")
+      .def(
+          "navigate_to",
+          [](LiveSession& session, const py::array& goal_image) {
+            const Busy busy(&session, "this LiveSession");
+            py::object keep;
+            const cv::Mat image = array_to_mat(goal_image, "goal image", keep);
+            py::gil_scoped_release release;
+            return session.navigate_to(image, "goal image");
+          },
+          py::arg("goal_image"),
+          "Navigates to where goal_image was taken: returns the goal's PlaceMatch, and each "
+          "frame pushed from now on gets a LiveCommand in its output (`omninav navigate`'s "
+          "navigator, a frame at a time: docs/navigation.md). With odometry, the frames between "
+          "two of the navigator's views get what is left of its command; without, each frame "
+          "is a view and the last command counts as carried out before it.")
+      .def("stop_navigating",
+           [](LiveSession& session) {
+             const Busy busy(&session, "this LiveSession");
+             session.stop_navigating();
+           })
+      .def_property_readonly("navigating",
+                             [](const LiveSession& session) {
+                               const Busy busy(&session, "this LiveSession");
+                               return session.navigating();
+                             })
       .def(
           "start_exploring",
           [](LiveSession& session) {

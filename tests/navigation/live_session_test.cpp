@@ -15,6 +15,7 @@
 #include "omninav/core/angles.hpp"
 #include "omninav/core/errors.hpp"
 #include "omninav/memory/map_store.hpp"
+#include "omninav/sim/virtual_robot.hpp"
 #include "support/room_navigation_map.hpp"
 
 namespace omninav::navigation {
@@ -130,6 +131,104 @@ TEST_F(LiveSessionTest, BadFramesAreSkippedAndCountedWithoutChangingTheOthers) {
   LiveSession session(LiveSessionParams{}, file);
   EXPECT_FALSE(session.push({cv::Mat(30, 180, CV_8UC3, cv::Scalar::all(9)), 1.0, {}}));
   EXPECT_EQ(session.last_skip()->first, SkipReason::kSizeChange);
+}
+
+TEST_F(LiveSessionTest, ItsCommandsDriveARenderedRobotToTheGoal) {
+  // The closed loop of a robot: the session sees the rendered frame at the robot's true pose,
+  // with that pose as odometry; the robot carries out what is left of the command (turn, then
+  // drive, with the virtual robot's motion noise) and the next frame is pushed. Start and goal
+  // as in the navigator's own short run (tests/evaluation/navigation_trials_test.cpp): 1.8 m
+  // apart past the end of a table.
+  ScratchDir scratch("live_session_navigate");
+  LiveSession session(LiveSessionParams{}, saved_map(scratch));
+  const CameraPose start{2.55, 1.15, 1.0, deg_to_rad(150.0), 0.0, 0.0};
+  const CameraPose goal{2.3, 2.9, 1.0, deg_to_rad(-60.0), 0.0, 0.0};
+  EXPECT_FALSE(session.push({map().renderer->render(start), 1.0, start.on_floor()})->command);
+  const memory::PlaceMatch goal_place = session.navigate_to(map().renderer->render(goal), "goal");
+  EXPECT_EQ(static_cast<int>(goal_place.place), nearest_place(goal.x_m, goal.y_m));
+  sim::VirtualRobot robot(map().world, start, sim::RobotParams{});
+  std::optional<LiveCommand> command;
+  double path_m = 0.0;
+  int steps = 0;
+  // navigator.max_steps views, each followed by a few frames that finish its command.
+  for (int frame = 1; frame < 2000; ++frame) {
+    const CameraPose pose = robot.pose();
+    const std::optional<LiveOutput> output =
+        session.push({map().renderer->render(pose), 1.0 + 0.1 * frame, pose.on_floor()});
+    ASSERT_TRUE(output && output->command) << frame;
+    command = output->command;
+    if (command->new_step) {
+      EXPECT_EQ(command->step, steps++);
+    }
+    if (command->state != LiveNavigationState::kDriving) break;
+    path_m += robot.move(command->turn_rad, command->distance_m);
+  }
+  ASSERT_EQ(command->state, LiveNavigationState::kReached) << steps << " steps";
+  // The trials' criterion (trials.goal_radius_m): the robot truly stands within 0.3 m of the
+  // goal, and it did not wander (the navigator's own run drives less than 1.5 × the straight
+  // line here; the live commands are finished by odometry, so a little more is allowed).
+  EXPECT_LT(std::hypot(robot.pose().x_m - goal.x_m, robot.pose().y_m - goal.y_m), 0.3);
+  EXPECT_LT(path_m, 2.0 * std::hypot(goal.x_m - start.x_m, goal.y_m - start.y_m));
+  // Reached, the robot is told to stand still, frame after frame, until told otherwise.
+  const CameraPose pose = robot.pose();
+  const std::optional<LiveOutput> after =
+      session.push({map().renderer->render(pose), 1000.0, pose.on_floor()});
+  ASSERT_TRUE(after && after->command);
+  EXPECT_EQ(after->command->state, LiveNavigationState::kReached);
+  EXPECT_EQ(after->command->turn_rad, 0.0);
+  EXPECT_EQ(after->command->distance_m, 0.0);
+  session.stop_navigating();
+  EXPECT_FALSE(session.push({map().renderer->render(pose), 1001.0, pose.on_floor()})->command);
+}
+
+TEST_F(LiveSessionTest, ARobotThatStopsMovingEndsItsCommandAsBlocked) {
+  // Frames of a robot that turns as told, then does not get anywhere (its odometry's position
+  // stays): the frame after the turn still waits for the drive; the next, with no motion since,
+  // ends the command as blocked and is the navigator's next view. A robot that moves on, by
+  // contrast, keeps the command until it has driven its distance.
+  ScratchDir scratch("live_session_blocked");
+  const std::filesystem::path file = saved_map(scratch);
+  const CameraPose start{2.55, 1.15, 1.0, deg_to_rad(150.0), 0.0, 0.0};
+  const cv::Mat goal = map().renderer->render({2.3, 2.9, 1.0, deg_to_rad(-60.0), 0.0, 0.0});
+  const auto frame = [&](const CameraPose& pose, double stamp_s) {
+    return LiveFrame{map().renderer->render(pose), stamp_s, pose.on_floor()};
+  };
+  for (const bool moving : {false, true}) {
+    LiveSession session(LiveSessionParams{}, file);
+    session.navigate_to(goal, "goal");
+    const LiveCommand first = *session.push(frame(start, 1.0))->command;
+    ASSERT_EQ(first.state, LiveNavigationState::kDriving);
+    ASSERT_TRUE(first.new_step);
+    ASSERT_GT(first.distance_m, 0.0);
+    CameraPose turned = start;
+    turned.heading_rad = wrap_angle(start.heading_rad + first.turn_rad);
+    const LiveCommand after_turn = *session.push(frame(turned, 1.1))->command;
+    EXPECT_FALSE(after_turn.new_step);
+    EXPECT_EQ(after_turn.turn_rad, 0.0);
+    EXPECT_EQ(after_turn.distance_m, first.distance_m);
+    CameraPose next = turned;  // a third of the way, or nowhere
+    if (moving) {
+      next.x_m += first.distance_m / 3.0 * std::cos(turned.heading_rad);
+      next.y_m += first.distance_m / 3.0 * std::sin(turned.heading_rad);
+    }
+    const LiveCommand third = *session.push(frame(next, 1.2))->command;
+    EXPECT_EQ(third.new_step, !moving);
+    EXPECT_EQ(third.step, moving ? 0 : 1);
+    if (moving) {
+      EXPECT_NEAR(third.distance_m, first.distance_m * 2.0 / 3.0, 1e-9);
+    }
+  }
+}
+
+TEST_F(LiveSessionTest, AGoalImageThatMatchesNoPlaceIsRefused) {
+  ScratchDir scratch("live_session_bad_goal");
+  LiveSession session(LiveSessionParams{}, saved_map(scratch));
+  EXPECT_THROW(session.navigate_to(cv::Mat(30, 180, CV_8UC3, cv::Scalar::all(9)), "goal.png"),
+               InputError);
+  EXPECT_FALSE(session.navigating());
+  EXPECT_THROW(LiveSession(LiveSessionParams{}, std::nullopt)
+                   .navigate_to(map().renderer->render({2.3, 2.9, 1.0, 0.0, 0.0, 0.0}), "goal"),
+               UsageError);
 }
 
 TEST_F(LiveSessionTest, ExploresIntoAMapFileAndSavesIt) {

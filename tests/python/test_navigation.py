@@ -174,3 +174,35 @@ def test_a_live_session_recognises_places_and_agrees_with_the_compass(organised_
     assert session.push(image, 0.0) is None
     assert session.last_skip[0] == "stamp not increasing"
     assert session.skipped["stamp not increasing"] == 1
+
+
+@pytest.mark.parametrize("with_odometry", [True, False])
+def test_a_live_sessions_commands_drive_a_rendered_robot_to_the_goal(organised_grid, tmp_path,
+                                                                      with_odometry):
+    # The closed loop of a robot of the caller's: push the frame it sees, carry out what is left
+    # of the command, push the next frame. With odometry (the renderer's poses) the session
+    # follows each command by it; without, each frame is the navigator's next view.
+    map_file = tmp_path / "grid.vmem"
+    organised_grid.save(map_file)
+    world = omninav.World(WORLD, width_px=WIDTH_PX, height_px=HEIGHT_PX, rays_per_pixel=1)
+    renderer = omninav.Renderer(world)
+    places = organised_grid.places()
+    goal_pose, start = places[-1].truth, places[0].truth
+    robot = RenderedRobot(renderer, omninav.CameraPose(start.x_m, start.y_m, start.z_m,
+                                                       heading_rad=start.heading_rad + 2.0))
+    session = omninav.LiveSession(map_file)
+    assert session.navigate_to(renderer.render(goal_pose)).place == len(places) - 1
+    assert session.navigating
+    states = []
+    for index in range(400):
+        odometry = robot.pose.on_floor() if with_odometry else None
+        command = session.push(robot.view(index), 0.1 * index, odometry).command
+        states.append(command.state)
+        if command.state != "driving":
+            break
+        robot.move(command.turn_rad, command.distance_m)
+    assert states[-1] == "reached", states[-1]
+    assert distance_m(robot.pose, goal_pose) < 0.3, "stopped more than a grid spacing away"
+    assert command.turn_rad == 0 and command.distance_m == 0  # stand still
+    session.stop_navigating()
+    assert session.push(robot.view(400), 100.0).command is None

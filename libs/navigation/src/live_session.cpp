@@ -1,5 +1,6 @@
 #include "omninav/navigation/live_session.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -7,12 +8,19 @@
 #include "omninav/core/errors.hpp"
 #include "omninav/core/log.hpp"
 #include "omninav/memory/exploration.hpp"
+#include "omninav/memory/localisation.hpp"
 #include "omninav/memory/map_store.hpp"
 #include "omninav/navigation/memory_places.hpp"
 #include "omninav/signature/dissimilarity.hpp"
 #include "omninav/signature/phase_heading.hpp"
 
 namespace omninav::navigation {
+
+namespace {
+// A part of a command (rad, m) with less than this left is done: odometry's rounding (a
+// command's turn read back from a yaw), not a tolerance of the robot's.
+constexpr double kDoneWithin = 1e-6;
+}  // namespace
 
 const char* to_string(SkipReason reason) {
   switch (reason) {
@@ -22,6 +30,18 @@ const char* to_string(SkipReason reason) {
       return "size change";
     case SkipReason::kStamp:
       return "stamp not increasing";
+  }
+  return "?";
+}
+
+const char* to_string(LiveNavigationState state) {
+  switch (state) {
+    case LiveNavigationState::kDriving:
+      return "driving";
+    case LiveNavigationState::kReached:
+      return "reached";
+    case LiveNavigationState::kFailed:
+      return "failed";
   }
   return "?";
 }
@@ -108,6 +128,7 @@ std::optional<LiveOutput> LiveSession::push(const LiveFrame& frame) {
       frame.odometry ? std::optional<double>(frame.odometry->heading_rad) : std::nullopt;
   output.compass = compass_.push(frame.image, frames_, source, start_heading);
   output.place = recognise(frame.image, frame.odometry);
+  output.command = command(frame);
   last_odometry_ = frame.odometry;
   ++frames_;
   if (explorer_) {
@@ -162,6 +183,91 @@ std::optional<LivePlace> LiveSession::recognise(const cv::Mat& panorama,
   place.confidence = belief_->neighbourhood_probability(best);
   place.lost = belief_->lost();
   return place;
+}
+
+memory::PlaceMatch LiveSession::navigate_to(const cv::Mat& goal_image, const std::string& what) {
+  if (!belief_) throw UsageError("cannot navigate: " + no_belief_reason_.value_or(""));
+  if (!localiser_) {
+    extractor_ = std::make_unique<signature::SignatureExtractor>(memory_->parameters().signature);
+    localiser_ = std::make_unique<memory::Localiser>(*memory_, params_.memory.localisation);
+  }
+  const memory::PlaceMatch goal = match_image(memory_localiser(*localiser_, *extractor_),
+                                              goal_image, setup_->match_limit, what);
+  drive_ = std::make_unique<GoalDrive>(*setup_, static_cast<int>(goal.place),
+                                       goal_homing(goal_image, setup_->homing));
+  under_way_.reset();
+  last_command_ = LiveCommand{};
+  log_info("navigating to " + what + ", place " + std::to_string(goal.place));
+  return goal;
+}
+
+void LiveSession::stop_navigating() {
+  drive_.reset();
+  under_way_.reset();
+}
+
+std::optional<LiveCommand> LiveSession::command(const LiveFrame& frame) {
+  if (!drive_) return std::nullopt;
+  if (under_way_) {
+    LiveCommand left = last_command_;
+    left.new_step = false;
+    if (frame.odometry && under_way_->start) {
+      if (!command_done(*frame.odometry, left)) return last_command_ = left;
+    } else {
+      // No odometry to follow it by: the caller carried the command out before this frame.
+      drive_->moved(under_way_->command.distance_m);
+    }
+    under_way_.reset();
+  }
+  LiveCommand next = last_command_;
+  next.new_step = false;
+  next.turn_rad = 0.0;
+  next.distance_m = 0.0;
+  if (drive_->finished()) {
+    next.state =
+        drive_->result().reached ? LiveNavigationState::kReached : LiveNavigationState::kFailed;
+    return last_command_ = next;
+  }
+  const DriveCommand command = drive_->step(frame.image);
+  next.step = command.step.index;
+  next.new_step = true;
+  next.phase = command.step.phase;
+  next.place = command.step.match->place;
+  next.lost = command.step.lost;
+  if (command.moves) {
+    next.state = LiveNavigationState::kDriving;
+    next.turn_rad = command.turn_rad;
+    next.distance_m = command.distance_m;
+    under_way_ = CommandUnderWay{command, frame.odometry, frame.odometry.value_or(Pose2{})};
+  } else {
+    next.state = LiveNavigationState::kReached;
+  }
+  return last_command_ = next;
+}
+
+bool LiveSession::command_done(const Pose2& odometry, LiveCommand& left) {
+  CommandUnderWay& command = *under_way_;
+  const Pose2& start = *command.start;
+  const double turn_rad = command.command.turn_rad;
+  // Turned by the command's turn, or past it: the odometry's yaw summed from frame to frame
+  // (each along the shorter arc), so that a robot turning the other way never gets there.
+  command.turned_rad += signed_difference(odometry.heading_rad, command.last.heading_rad);
+  command.last = odometry;
+  const double still_to_turn = turn_rad - command.turned_rad;
+  const bool was_turned = command.turned;
+  command.turned =
+      command.turned || still_to_turn * turn_rad <= 0.0 || std::fabs(still_to_turn) < kDoneWithin;
+  const double driven_m = std::hypot(odometry.x_m - start.x_m, odometry.y_m - start.y_m);
+  // Turned before the last frame and not moved since: something stops the robot.
+  const bool blocked = was_turned && last_odometry_ && odometry.x_m == last_odometry_->x_m &&
+                       odometry.y_m == last_odometry_->y_m;
+  if ((command.turned && driven_m >= command.command.distance_m - kDoneWithin) || blocked) {
+    drive_->moved(driven_m);
+    return true;
+  }
+  left.turn_rad = command.turned ? 0.0 : still_to_turn;
+  left.distance_m = std::max(0.0, command.command.distance_m - driven_m);
+  return false;
 }
 
 void LiveSession::start_exploring() {

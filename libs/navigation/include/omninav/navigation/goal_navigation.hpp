@@ -44,8 +44,9 @@ struct GoalNavigationSetup {
 };
 
 // Drives `world`'s robot to place `goal` (navigator.hpp), then homes on the goal image with
-// `homing` (none: stops on reaching the goal's place). Throws UsageError for a goal that names
-// no place or a setup without places.
+// `homing` (none: stops on reaching the goal's place): a loop of view, GoalDrive::step, move,
+// GoalDrive::moved (goal_drive.hpp), the steps' truth read from the world for the log. Throws
+// UsageError for a goal that names no place or a setup without places.
 NavigationResult navigate(NavigationWorld& world, const GoalNavigationSetup& setup, int goal,
                           const GoalHoming& homing = {});
 

@@ -7,8 +7,9 @@
 // links. Once the belief is on the goal's place it homes on the goal image (homing.hpp). It
 // never reads the robot's true pose: the map, the plan and the images are all it knows.
 //
-// The parts: belief (place_belief.hpp), plan (route_planner.hpp), motion (this loop: turn,
-// step, home) and recovery, which is two rules about links, each learnt by driving:
+// The parts: belief (place_belief.hpp), plan (route_planner.hpp), motion (goal_drive.hpp, one
+// view at a time: turn, step, home) and recovery, which is two rules about links, each learnt
+// by driving:
 //   - blocked (the robot drove less than half a step): the links that lead the way it tried,
 //     from every place the belief holds, are dropped and the plan made again; with nothing left
 //     to drop that way (or while lost) it turns aside, wider each time;
