@@ -11,6 +11,7 @@
 #include "omninav/sim/room.hpp"
 #include "omninav/sim/trajectory.hpp"
 #include "omninav/sim/world_loader.hpp"
+#include "route_checks.hpp"
 
 namespace omninav::sim {
 namespace {
@@ -149,14 +150,7 @@ TEST(Saccade, KeepsClearOfObstaclesInEveryFamily) {
     const World world = load_world(spec, WorldsConfig{});
     const Trajectory route = make_trajectory("saccade:length_m=30,fps=5,seed=3", world);
     ASSERT_FALSE(route.poses.empty());
-    for (std::size_t i = 0; i < route.poses.size(); ++i) {
-      const CameraPose& p = route.poses[i].pose;
-      ASSERT_TRUE(world.is_free(p.x_m, p.y_m, 0.24)) << spec << " pose " << i;
-      if (i > 0) {
-        const CameraPose& q = route.poses[i - 1].pose;
-        ASSERT_TRUE(world.segment_is_free(q.x_m, q.y_m, p.x_m, p.y_m, 0.24)) << spec << " " << i;
-      }
-    }
+    testing::expect_in_free_space(world, route, 0.24, spec);
     EXPECT_GE(route.length_m(), 30.0 - 1e-6) << spec;
   }
 }
@@ -179,18 +173,11 @@ TEST(Saccade, IsSeededAndTimedByTheFrameRate) {
   EXPECT_EQ(make_trajectory("saccade:duration_s=5,fps=4", world).poses.size(), 21u);
 }
 
-// The error `make_trajectory(spec)` throws holds every fragment.
+// The error `make_trajectory(spec)` throws holds every fragment, and is a bad spec's.
 void expect_error(const std::string& spec, const World& world,
                   const std::vector<std::string>& fragments) {
-  try {
-    make_trajectory(spec, world);
-    ADD_FAILURE() << "no error for " << spec;
-  } catch (const UsageError& error) {
-    for (const std::string& fragment : fragments) {
-      EXPECT_NE(std::string(error.what()).find(fragment), std::string::npos)
-          << spec << " gave: " << error.what();
-    }
-  }
+  EXPECT_THROW(make_trajectory(spec, world), UsageError) << spec;
+  testing::expect_trajectory_error(spec, world, fragments);
 }
 
 TEST(Saccade, BadParametersAreRefusedNamingTheKey) {
