@@ -105,9 +105,10 @@ void add_evaluate_command(CLI::App& app, const GlobalOptions& global) {
       "evaluate",
       "Measure every capability on every world of a suite (docs/evaluation.md): for each world, "
       "render the routes and run what the commands run (compass --truth on a rotation, a "
-      "circle, a wander and a bumpy wander; explore, organise and localise on a grid; organise "
-      "on zig-zag streams; navigate --trials), then print one table (a row per world, a column "
-      "per measure, a last row WORST naming the worst family of each column) and write "
+      "circle, a wander, a bumpy wander and a saccadic route; explore, organise and localise on "
+      "a grid; organise on zig-zag streams; navigate --trials), then print one table (a row per "
+      "world, a column per measure, a last row WORST naming the worst family of each column) "
+      "and write "
       "evaluation.csv (a row per world), evaluation_worst.csv (the worst row of each column), "
       "evaluation.png and commands.sh (the command lines that remake each "
       "figure) into --out. The same suite gives the same table.");

@@ -152,7 +152,7 @@ TEST(EvaluationTable, EveryMeasureHasAUniqueKeyAndAKnownGroup) {
     }
   }
   EXPECT_EQ(measures().size(),
-            12u + 2u + 6u + 12u + 4u + 1u + 4u + 4u);  // memory: 4 + home vectors
+            15u + 2u + 6u + 12u + 4u + 1u + 4u + 4u);  // memory: 4 + home vectors
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include "omninav/sim/room.hpp"
 #include "omninav/sim/trajectory.hpp"
 #include "omninav/sim/world_loader.hpp"
+#include "route_checks.hpp"
 
 namespace omninav::sim {
 namespace {
@@ -32,14 +33,7 @@ TEST(Wander, StaysInTheFreeSpaceOfEveryFamily) {
     const World world = load_world(spec, WorldsConfig{});
     const Trajectory route = make_trajectory("wander:length_m=40,fps=5,seed=3", world);
     ASSERT_FALSE(route.poses.empty());
-    for (std::size_t i = 0; i < route.poses.size(); ++i) {
-      const CameraPose& p = route.poses[i].pose;
-      ASSERT_TRUE(world.is_free(p.x_m, p.y_m, 0.24)) << spec << " pose " << i;
-      if (i > 0) {
-        const CameraPose& q = route.poses[i - 1].pose;
-        ASSERT_TRUE(world.segment_is_free(q.x_m, q.y_m, p.x_m, p.y_m, 0.24)) << spec << " " << i;
-      }
-    }
+    testing::expect_in_free_space(world, route, 0.24, spec);
     // It keeps moving: most of the asked length is travelled.
     EXPECT_GT(route.length_m(), 0.9 * 40.0) << spec;
   }

@@ -235,7 +235,7 @@ class WorldRun {
   }
 
   void compass_routes() {
-    comment("compass: Tables 3-4 on four routes");
+    comment("compass: Tables 3-4 on five routes");
     const std::string at = "x=" + num(layout_.centre.x()) + ",y=" + num(layout_.centre.y());
     const std::string fps = ",fps=" + num(params_.fps);
     const double speed = params_.speed_m_s * scale_;
@@ -245,21 +245,23 @@ class WorldRun {
                                         ",cy=" + num(layout_.centre.y()) +
                                         ",radius_m=" + num(layout_.circle_radius_m) +
                                         ",speed_m_s=" + num(speed) + fps));
-    const std::string wander = wander_spec(at, speed);
+    const std::string wander = free_route_spec("wander", at, speed);
     compass_route("wander", with_height(wander));
     compass_route("bumpy", with_height(wander + ",pitch_noise_deg=" + num(params_.tilt_noise_deg) +
                                        ",roll_noise_deg=" + num(params_.tilt_noise_deg) +
                                        ",noise_seed=" + std::to_string(suite_world_.seed)));
+    compass_route("saccade", with_height(free_route_spec("saccade", at, speed)));
     if (sigma_frames_ > 0) {
       set("compass_within_1_sigma", static_cast<double>(within_1_sigma_) / sigma_frames_);
       set("compass_within_2_sigma", static_cast<double>(within_2_sigma_) / sigma_frames_);
     }
   }
 
-  // The wandering route (sim's `wander`) of wander_length_m from the centre, kept as clear of
-  // obstacles as the centre is (the robot's radius).
-  std::string wander_spec(const std::string& at, double speed_m_s) const {
-    return "wander:" + at + ",length_m=" + num(params_.wander_length_m * scale_) +
+  // A route in the free space (sim's `wander` or `saccade`, `kind`) of wander_length_m from the
+  // centre, kept as clear of obstacles as the centre is (the robot's radius).
+  std::string free_route_spec(const std::string& kind, const std::string& at,
+                              double speed_m_s) const {
+    return kind + ":" + at + ",length_m=" + num(params_.wander_length_m * scale_) +
            ",speed_m_s=" + num(speed_m_s) + ",clearance_m=" + num(clearance_m()) +
            ",seed=" + std::to_string(suite_world_.seed) + ",fps=" + num(params_.fps);
   }

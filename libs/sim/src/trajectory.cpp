@@ -7,12 +7,14 @@
 #include <opencv2/core.hpp>
 #include <set>
 
+#include "free_space.hpp"
 #include "omninav/core/angles.hpp"
 #include "omninav/core/csv.hpp"
 #include "omninav/core/errors.hpp"
 #include "omninav/core/log.hpp"
 #include "omninav/core/parse.hpp"
 #include "omninav/sim/tour.hpp"
+#include "saccade.hpp"
 
 namespace omninav::sim {
 namespace {
@@ -195,107 +197,48 @@ struct KindContext {
   std::vector<TimedPose> polyline_poses(TrajectoryKind kind) const;
   std::vector<TimedPose> circle_poses() const;
   std::vector<TimedPose> walk_poses() const;
+  FreeRouteSettings free_route(double wobble_deg, double wobble_period_s) const;
   std::vector<TimedPose> wander_poses() const;
+  std::vector<TimedPose> saccade_poses() const;
   std::vector<TimedPose> grid_poses() const;
   std::vector<TimedPose> tour_poses() const;
   std::vector<TimedPose> csv_poses() const;
 };
 
-// The settings of a wander, from its spec.
-struct WanderSettings {
-  double speed_m_s = 0.2;
-  double seconds = 0.0;
-  double mean_turn_rate_rad_s = 0.0;
-  double wobble_rad = 0.0;
-  double wobble_period_s = 2.0;
-  double clearance_m = 0.25;
-  int seed = 1;
-};
-
-WanderSettings read_wander(SpecArguments& args, const std::string& spec) {
-  WanderSettings w;
-  w.speed_m_s = args.number("speed_m_s", 0.2);
-  require_positive(w.speed_m_s, "speed_m_s", spec);
-  const double length = args.number("length_m", 0.0);
-  const double duration = args.number("duration_s", 0.0);
-  if (length < 0.0 || duration < 0.0 || (length > 0.0 && duration > 0.0)) {
+// The settings a route in the free space (kinds wander and saccade) shares, from its spec, with
+// the given defaults of its heading's wobble; the start moved to the free point nearest the
+// floor's centre unless the spec gives it.
+FreeRouteSettings KindContext::free_route(double wobble_deg, double wobble_period_s) const {
+  FreeRouteSettings route;
+  route.x = args.number("x", centre_x);
+  route.y = args.number("y", centre_y);
+  route.heading_rad = deg_to_rad(args.number("heading_deg", 0.0));
+  route.speed_m_s = args.number("speed_m_s", 0.2);
+  require_positive(route.speed_m_s, "speed_m_s", spec);
+  route.length_m = args.number("length_m", 0.0);
+  route.duration_s = args.number("duration_s", 0.0);
+  if (route.length_m < 0.0 || route.duration_s < 0.0 ||
+      (route.length_m > 0.0 && route.duration_s > 0.0)) {
     throw UsageError("trajectory '" + spec + "': give length_m or duration_s (positive), not both");
   }
-  w.seconds = duration > 0.0 ? duration : (length > 0.0 ? length : 10.0) / w.speed_m_s;
-  w.mean_turn_rate_rad_s = deg_to_rad(args.number("turn_rate_deg_s", 30.0));
-  w.wobble_rad = deg_to_rad(args.number("wobble_deg", 15.0));
-  w.wobble_period_s = args.number("wobble_period_s", 2.0);
-  w.clearance_m = args.number("clearance_m", 0.25);
-  w.seed = args.whole("seed", 1);
-  if (w.seed < 0) throw UsageError("trajectory '" + spec + "': seed must not be negative");
-  if (w.mean_turn_rate_rad_s < 0.0 || w.wobble_rad < 0.0 || w.clearance_m < 0.0) {
-    throw UsageError("trajectory '" + spec +
-                     "': turn_rate_deg_s, wobble_deg and clearance_m must not be negative");
+  if (route.duration_s == 0.0 && route.length_m == 0.0) route.length_m = 10.0;
+  route.wobble_rad = deg_to_rad(args.number("wobble_deg", wobble_deg));
+  route.wobble_period_s = args.number("wobble_period_s", wobble_period_s);
+  route.clearance_m = args.number("clearance_m", 0.25);
+  route.seed = args.whole("seed", 1);
+  if (route.seed < 0) throw UsageError("trajectory '" + spec + "': seed must not be negative");
+  if (route.wobble_rad < 0.0 || route.clearance_m < 0.0) {
+    throw UsageError("trajectory '" + spec + "': wobble_deg and clearance_m must not be negative");
   }
-  require_positive(w.wobble_period_s, "wobble_period_s", spec);
-  return w;
+  require_positive(route.wobble_period_s, "wobble_period_s", spec);
+  if (route.x == centre_x && route.y == centre_y) {
+    move_to_free_point(world, route.clearance_m, route.x, route.y);
+  }
+  if (!world.is_free(route.x, route.y, route.clearance_m)) {
+    log_warning("trajectory '" + spec + "': the start is closer than clearance_m to an obstacle");
+  }
+  return route;
 }
-
-// The free point nearest (x, y), searched on rings 5 cm apart (x, y unchanged when none is).
-void move_to_free_point(const World& world, double clearance_m, double& x, double& y) {
-  const double centre_x = x, centre_y = y;
-  for (int ring = 1; ring < 400 && !world.is_free(x, y, clearance_m); ++ring) {
-    for (int k = 0; k < 8 * ring && !world.is_free(x, y, clearance_m); ++k) {
-      const double angle = kTwoPi * k / (8 * ring);
-      x = centre_x + 0.05 * ring * std::cos(angle);
-      y = centre_y + 0.05 * ring * std::sin(angle);
-    }
-  }
-}
-
-// Steers away from what lies ahead: the smallest turn, either way, in steps of 10°, that
-// leaves the `lookahead_m` ahead free by `keep_m`, turning on (`turn_rate` keeps turning away).
-// False when no direction is free: the walker stands and turns.
-bool steer_clear(const World& world, double x, double y, double lookahead_m, double keep_m,
-                 double& travel, double& turn_rate) {
-  const auto clear = [&](double direction) {
-    return world.segment_is_free(x, y, x + lookahead_m * std::cos(direction),
-                                 y + lookahead_m * std::sin(direction), keep_m);
-  };
-  if (clear(travel)) return true;
-  for (int k = 1; k <= 18; ++k) {
-    for (const double side : {1.0, -1.0}) {
-      const double direction = wrap_angle(travel + side * k * deg_to_rad(10.0));
-      if (clear(direction)) {
-        travel = direction;
-        turn_rate = side * std::abs(turn_rate);
-        return true;
-      }
-    }
-  }
-  return false;
-}
-
-// The body's heading about the direction of travel: a sinusoid whose amplitude and period are
-// jittered by ±30 % each cycle.
-class Wobble {
- public:
-  Wobble(const WanderSettings& settings, cv::RNG& rng)
-      : settings_(settings),
-        phase_(rng.uniform(0.0, kTwoPi)),
-        amplitude_(settings.wobble_rad),
-        rate_(kTwoPi / settings.wobble_period_s) {}
-
-  double offset_rad() const { return amplitude_ * std::sin(phase_); }
-
-  void advance(double fps, cv::RNG& rng) {
-    const double previous = phase_;
-    phase_ += rate_ / fps;
-    if (std::floor(phase_ / kTwoPi) != std::floor(previous / kTwoPi)) {
-      amplitude_ = settings_.wobble_rad * rng.uniform(0.7, 1.3);
-      rate_ = kTwoPi / (settings_.wobble_period_s * rng.uniform(0.7, 1.3));
-    }
-  }
-
- private:
-  const WanderSettings& settings_;
-  double phase_, amplitude_, rate_;
-};
 
 // An animal's or a small robot's route (kind `wander`): the direction of travel turns at a
 // rate that changes at random moments, mostly gently and now and then sharply (the rate's
@@ -305,45 +248,68 @@ class Wobble {
 // away from walls, obstacles and the floor's edge by the smallest turn that keeps it
 // clearance_m clear, so that every pose is in the free space.
 std::vector<TimedPose> KindContext::wander_poses() const {
-  double x = args.number("x", centre_x), y = args.number("y", centre_y);
-  double travel = deg_to_rad(args.number("heading_deg", 0.0));
-  const WanderSettings settings = read_wander(args, spec);
-  cv::RNG rng(static_cast<std::uint64_t>(settings.seed) * 2654435761ULL + 7);
-  const double clearance = settings.clearance_m;
-  if (x == centre_x && y == centre_y) move_to_free_point(world, clearance, x, y);
-  if (!world.is_free(x, y, clearance)) {
-    log_warning("trajectory '" + spec + "': the start is closer than clearance_m to an obstacle");
+  const FreeRouteSettings route = free_route(15.0, 2.0);
+  const double mean_turn_rate = deg_to_rad(args.number("turn_rate_deg_s", 30.0));
+  if (mean_turn_rate < 0.0) {
+    throw UsageError("trajectory '" + spec + "': turn_rate_deg_s must not be negative");
   }
-
-  const int frames = pose_count(std::floor(settings.seconds * fps + 1e-9) + 1, spec);
-  const double step = settings.speed_m_s / fps;
-  const double lookahead = std::max(0.5 * settings.speed_m_s, 2.0 * step);
+  cv::RNG rng(static_cast<std::uint64_t>(route.seed) * 2654435761ULL + 7);
+  double x = route.x, y = route.y, travel = route.heading_rad;
+  const double seconds =
+      route.duration_s > 0.0 ? route.duration_s : route.length_m / route.speed_m_s;
+  const int frames = pose_count(std::floor(seconds * fps + 1e-9) + 1, spec);
+  const double step = route.speed_m_s / fps;
+  const double lookahead = lookahead_m(route.speed_m_s, fps);
   double turn_rate = 0.0, next_change_s = 0.0;
-  Wobble wobble(settings, rng);
+  Wobble wobble(route.wobble_rad, route.wobble_period_s, rng);
   std::vector<TimedPose> poses;
   for (int frame = 0; frame < frames; ++frame) {
     const double time = frame / fps;
     if (time >= next_change_s) {  // a new turn: mostly gentle, sometimes sharp
       const double sign = rng.uniform(0, 2) == 0 ? -1.0 : 1.0;
-      turn_rate = sign * settings.mean_turn_rate_rad_s * -std::log(1.0 - rng.uniform(0.0, 1.0));
+      turn_rate = sign * mean_turn_rate * -std::log(1.0 - rng.uniform(0.0, 1.0));
       next_change_s = time + rng.uniform(0.5, 3.0);
     }
     if (frame > 0) travel = wrap_angle(travel + turn_rate / fps);
     // A walker closer than clearance_m to something, at its start, keeps out of it only.
-    const double keep = world.is_free(x, y, clearance) ? clearance : 0.0;
-    const bool moving = steer_clear(world, x, y, lookahead, keep, travel, turn_rate);
+    const double keep = world.is_free(x, y, route.clearance_m) ? route.clearance_m : 0.0;
+    // Steering away from what lies ahead, it turns on the way it turned (it keeps turning away).
+    const std::optional<double> turn = turn_to_clear(world, x, y, lookahead, keep, travel);
+    if (turn && *turn != 0.0) {
+      travel = wrap_angle(travel + *turn);
+      turn_rate = std::copysign(turn_rate, *turn);
+    }
     // The body faces the direction it is about to travel in, give or take the wobble.
     poses.push_back(
         {time, {x, y, 0.0, wrap_angle(travel + wobble.offset_rad()), 0.0, 0.0}, {}, {}});
     wobble.advance(fps, rng);
-    if (moving) {
+    if (turn) {
       x += step * std::cos(travel);
       y += step * std::sin(travel);
-    } else {
+    } else {  // no direction is free: it stands and turns
       travel = wrap_angle(travel + kPi / 2.0 / fps);
     }
   }
   return poses;
+}
+
+// kind saccade: straight stretches broken by saccades, stops and turns on the spot
+// (saccade.hpp).
+std::vector<TimedPose> KindContext::saccade_poses() const {
+  const FreeRouteSettings route = free_route(10.0, 1.0);
+  SaccadeParams params;
+  params.stretch_s = args.number("stretch_s", params.stretch_s);
+  params.saccade_min_rad = deg_to_rad(args.number("saccade_min_deg", 30.0));
+  params.saccade_max_rad = deg_to_rad(args.number("saccade_max_deg", 120.0));
+  params.saccade_rate_rad_s = deg_to_rad(args.number("saccade_rate_deg_s", 500.0));
+  params.stop_share = args.number("stop_share", params.stop_share);
+  params.stop_s = args.number("stop_s", params.stop_s);
+  params.spot_turn_rate_rad_s = deg_to_rad(args.number("spot_turn_rate_deg_s", 60.0));
+  try {
+    return saccade_route(world, route, params, fps, static_cast<std::size_t>(kMaxPoses));
+  } catch (const UsageError& error) {
+    throw UsageError("trajectory '" + spec + "': " + error.what());
+  }
 }
 
 // kind rotate: on the spot at a constant rate.
@@ -524,6 +490,8 @@ std::vector<TimedPose> kind_poses(TrajectoryKind kind, const KindContext& contex
       return context.walk_poses();
     case TrajectoryKind::kWander:
       return context.wander_poses();
+    case TrajectoryKind::kSaccade:
+      return context.saccade_poses();
     case TrajectoryKind::kGrid:
       return context.grid_poses();
     case TrajectoryKind::kTour:
@@ -535,10 +503,11 @@ std::vector<TimedPose> kind_poses(TrajectoryKind kind, const KindContext& contex
 }
 
 // The kinds in the order the spec's help lists them.
-constexpr std::array<TrajectoryKind, 9> kKinds = {
+constexpr std::array<TrajectoryKind, 10> kKinds = {
     TrajectoryKind::kRotate, TrajectoryKind::kLine,   TrajectoryKind::kCircle,
-    TrajectoryKind::kWalk,   TrajectoryKind::kWander, TrajectoryKind::kGrid,
-    TrajectoryKind::kZigzag, TrajectoryKind::kTour,   TrajectoryKind::kCsv};
+    TrajectoryKind::kWalk,   TrajectoryKind::kWander, TrajectoryKind::kSaccade,
+    TrajectoryKind::kGrid,   TrajectoryKind::kZigzag, TrajectoryKind::kTour,
+    TrajectoryKind::kCsv};
 
 }  // namespace
 
@@ -554,6 +523,8 @@ std::string to_string(TrajectoryKind kind) {
       return "walk";
     case TrajectoryKind::kWander:
       return "wander";
+    case TrajectoryKind::kSaccade:
+      return "saccade";
     case TrajectoryKind::kGrid:
       return "grid";
     case TrajectoryKind::kZigzag:
@@ -633,7 +604,7 @@ Trajectory make_trajectory(const std::string& spec, const World& world) {
   const std::optional<TrajectoryKind> kind = trajectory_kind_from_string(kind_text);
   if (!kind) {
     throw UsageError("trajectory '" + spec + "': unknown kind '" + kind_text +
-                     "' (rotate, line, circle, walk, wander, grid, zigzag, tour, csv)");
+                     "' (rotate, line, circle, walk, wander, saccade, grid, zigzag, tour, csv)");
   }
   Trajectory trajectory;
   trajectory.kind = *kind;

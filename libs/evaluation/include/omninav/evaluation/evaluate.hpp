@@ -6,8 +6,10 @@
 //
 // Per world (lengths scale with the world's spacing_m / 0.3 m where it has its own):
 //   compass: `rotate` on the spot at the free centre, a `circle` round it (the largest free
-//     radius up to circle_radius_m), a `wander` from it, and the same wander with pitch and roll
-//     noise ("bumpy"), each through `omninav compass --truth`: max |e|, mean e, end e (degrees);
+//     radius up to circle_radius_m), a `wander` from it, the same wander with pitch and roll
+//     noise ("bumpy"), and a `saccade` route from it (straight stretches, saccades, stops and
+//     turns on the spot), each through `omninav compass --truth`: max |e|, mean e, end e
+//     (degrees);
 //   memory: a grid_nx x grid_ny grid at spacing_m centred on the floor (shrunk to fit; points in
 //     obstacles left out), explored (every image a place), organised (--step-m spacing); queries
 //     at seeded random free poses and headings inside the grid's rectangle, localised: share
@@ -45,7 +47,7 @@ namespace omninav::evaluation {
 
 // Where a world's trajectories go.
 struct WorldLayout {
-  Eigen::Vector2d centre;  // a free point near the floor's centre: rotation, circle, wander
+  Eigen::Vector2d centre;  // a free point near the floor's centre: rotation, circle, wanders
   double circle_radius_m;  // the largest free circle round `centre` up to the suite's radius
   // The grid: nx x ny points `spacing_m` apart from `first_point` (its least x and y).
   Eigen::Vector2d first_point = Eigen::Vector2d::Zero();

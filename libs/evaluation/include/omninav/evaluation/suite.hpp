@@ -21,8 +21,8 @@ struct SuiteParams {
   double rotate_turns = 3.0;        // on-the-spot rotation
   double rotate_rate_deg_s = 30.0;  // its turning speed
   double circle_radius_m = 1.0;     // largest circle radius (smaller where furniture is near)
-  double speed_m_s = 0.2;           // circle, wander and zig-zag speed
-  double wander_length_m = 8.0;     // the wandering route's length
+  double speed_m_s = 0.2;           // circle, wander, saccadic route and zig-zag speed
+  double wander_length_m = 8.0;     // the wandering route's length, the saccadic route's travel
   double tilt_noise_deg = 2.0;      // pitch and roll noise of the bumpy wander
   // Memory: a grid explored, queries localised.
   int grid_nx = 10;

@@ -14,6 +14,15 @@
 //                           rates, changed every 0.5-3 s), wobble_deg (15) and wobble_period_s
 //                           (2: heading oscillation about the direction of travel),
 //                           clearance_m (0.25), seed (1); steers clear of obstacles
+//   saccade insect-like:    x, y, heading_deg, length_m (10: distance travelled) or duration_s,
+//                           speed_m_s (0.2), clearance_m (0.25), seed (1) as wander; straight
+//                           stretches of exponential duration, mean stretch_s (2), the heading
+//                           scanning about them (wobble_deg 10, wobble_period_s 1), each ended
+//                           by a saccade on the spot of saccade_min_deg..saccade_max_deg (30..120)
+//                           either way at saccade_rate_deg_s (500), or with probability
+//                           stop_share (0.25) by a stop of 0.5-1.5 stop_s (1) and a turn on the
+//                           spot to a random direction at spot_turn_rate_deg_s (60); steers clear
+//                           of obstacles as wander (saccade.hpp in src/)
 //   grid    grid sweep:     x0, y0, nx (10), ny (8), spacing_m (0.3), heading_deg (0); points
 //                           inside furniture are left out (their grid index is skipped)
 //   zigzag  boustrophedon:  x0, y0, x1, y1, rows (4), speed_m_s (0.2): rows from y0 to y1, each
@@ -56,7 +65,18 @@ struct TimedPose {
 };
 
 // The kinds of trajectory a spec names (the list above).
-enum class TrajectoryKind { kRotate, kLine, kCircle, kWalk, kWander, kGrid, kZigzag, kTour, kCsv };
+enum class TrajectoryKind {
+  kRotate,
+  kLine,
+  kCircle,
+  kWalk,
+  kWander,
+  kSaccade,
+  kGrid,
+  kZigzag,
+  kTour,
+  kCsv
+};
 
 std::string to_string(TrajectoryKind kind);
 // The kind a spec's name gives, or nothing for an unknown name.
