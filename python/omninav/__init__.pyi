@@ -109,7 +109,8 @@ class LinkParams:
     revisit_ratio: float
     revisit_disagreement_deg: float
     revisits_per_place: int
-    odometry_drift: float
+    revisit_candidates: int
+    odometry_noise: float
 
 class BeliefParams:
     view_scale: float

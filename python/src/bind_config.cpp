@@ -180,7 +180,8 @@ void bind_navigation_config(py::module_& m) {
       .def_readwrite("revisit_ratio", &LinkParams::revisit_ratio)
       .def_readwrite("revisit_disagreement_deg", &LinkParams::revisit_disagreement_deg)
       .def_readwrite("revisits_per_place", &LinkParams::revisits_per_place)
-      .def_readwrite("odometry_drift", &LinkParams::odometry_drift);
+      .def_readwrite("revisit_candidates", &LinkParams::revisit_candidates)
+      .def_readwrite("odometry_noise", &LinkParams::odometry_noise);
 
   using navigation::BeliefParams;
   py::class_<BeliefParams>(m, "BeliefParams", "navigation.yaml's belief section.")

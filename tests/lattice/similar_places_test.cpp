@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <opencv2/core.hpp>
 #include <random>
 
 #include "omninav/core/statistics.hpp"
@@ -11,14 +13,12 @@
 namespace omninav::lattice {
 namespace {
 
-// A map of `count` places with random signatures (3 lines of 15 components, the last lines'
-// layout in float) and Eq. 6 weights, so that folding the weights in is checked too.
-memory::VisualMemory random_map(int count, unsigned seed) {
-  memory::MapParameters parameters;
-  parameters.weights.alpha = {1.0, 0.5, 2.0};
+// A map of `count` places whose signatures (3 lines of 15 components, the last lines' layout in
+// float) hold magnitude(i, v) at value v of place i.
+template <typename Magnitude>
+memory::VisualMemory map_of(int count, const memory::MapParameters& parameters,
+                            Magnitude magnitude) {
   memory::VisualMemory map(parameters);
-  std::mt19937 random(seed);
-  std::uniform_real_distribution<float> magnitude(0.0F, 40.0F);
   for (int i = 0; i < count; ++i) {
     memory::Place place;
     signature::Signature& s = place.signature;
@@ -27,10 +27,19 @@ memory::VisualMemory random_map(int count, unsigned seed) {
     s.width_px = 64;
     s.magnitude.resize(s.size());
     s.phase_rad.assign(s.size(), 0.0F);
-    for (float& value : s.magnitude) value = magnitude(random);
+    for (std::size_t v = 0; v < s.magnitude.size(); ++v) s.magnitude[v] = magnitude(i, v);
     map.add_place(std::move(place));
   }
   return map;
+}
+
+// Random signatures and Eq. 6 weights, so that folding the weights in is checked too.
+memory::VisualMemory random_map(int count, unsigned seed) {
+  memory::MapParameters parameters;
+  parameters.weights.alpha = {1.0, 0.5, 2.0};
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<float> magnitude(0.0F, 40.0F);
+  return map_of(count, parameters, [&](int, std::size_t) { return magnitude(random); });
 }
 
 TEST(PlaceDissimilarities, IsEquation6) {
@@ -69,10 +78,58 @@ TEST(PlaceDissimilarities, MostSimilarIsWhatRankingEveryPairGives) {
   }
 }
 
+// A map whose places' signatures change smoothly along a path, as a driven stream's do: place
+// i's nearest places by Eq. 6 are those beside it along the path.
+memory::VisualMemory path_map(int count) {
+  return map_of(count, memory::MapParameters{}, [](int i, std::size_t v) {
+    return static_cast<float>(
+        20.0 + 10.0 * std::sin(0.37 * static_cast<double>(v) + 0.02 * static_cast<double>(i)));
+  });
+}
+
+TEST(PlaceDissimilarities, TheIndexFindsTheNearestPlacesAlongAPathWithoutComparingEveryPair) {
+  const memory::VisualMemory map = path_map(600);
+  const PlaceDissimilarities dissimilarity(map);
+  const int count = 4;
+  const std::vector<std::vector<SimilarPlace>> exact = dissimilarity.most_similar(count);
+  cv::theRNG() = cv::RNG(7);
+  const std::vector<std::vector<SimilarPlace>> indexed = dissimilarity.most_similar_indexed(count);
+  // The caller's random generator is left as it was.
+  EXPECT_EQ(cv::theRNG().next(), cv::RNG(7).next());
+  ASSERT_EQ(indexed.size(), exact.size());
+  std::size_t found = 0;
+  for (std::size_t a = 0; a < exact.size(); ++a) {
+    ASSERT_EQ(indexed[a].size(), static_cast<std::size_t>(count)) << a;
+    for (std::size_t rank = 0; rank < indexed[a].size(); ++rank) {
+      const SimilarPlace& place = indexed[a][rank];
+      EXPECT_NE(place.place, static_cast<int>(a));
+      EXPECT_DOUBLE_EQ(place.dissimilarity, dissimilarity(static_cast<int>(a), place.place));
+      if (rank > 0) {
+        EXPECT_GE(place.dissimilarity, indexed[a][rank - 1].dissimilarity);
+      }
+    }
+    for (const SimilarPlace& truth : exact[a]) {
+      for (const SimilarPlace& place : indexed[a]) found += place.place == truth.place ? 1 : 0;
+    }
+  }
+  // An approximate search, but on a path it misses few of the nearest places.
+  EXPECT_GT(static_cast<double>(found) / static_cast<double>(exact.size() * count), 0.95);
+  // The same lists for the same map.
+  const std::vector<std::vector<SimilarPlace>> again = dissimilarity.most_similar_indexed(count);
+  for (std::size_t a = 0; a < exact.size(); ++a) {
+    for (std::size_t rank = 0; rank < again[a].size(); ++rank) {
+      EXPECT_EQ(again[a][rank].place, indexed[a][rank].place);
+    }
+  }
+}
+
 TEST(PlaceDissimilarities, FewerPlacesThanAsked) {
   const memory::VisualMemory map = random_map(3, 3);
   const std::vector<std::vector<SimilarPlace>> similar = PlaceDissimilarities(map).most_similar(24);
   for (const std::vector<SimilarPlace>& list : similar) EXPECT_EQ(list.size(), 2u);
+  const std::vector<std::vector<SimilarPlace>> indexed =
+      PlaceDissimilarities(map).most_similar_indexed(24);
+  for (const std::vector<SimilarPlace>& list : indexed) EXPECT_EQ(list.size(), 2u);
 }
 
 TEST(PlaceDissimilarities, PairQuantileOverAllPairsOrAnEvenSample) {

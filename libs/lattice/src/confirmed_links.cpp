@@ -3,12 +3,14 @@
 #include <algorithm>
 #include <boost/pending/disjoint_sets.hpp>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <optional>
 #include <set>
 #include <tuple>
 #include <utility>
 
+#include "odometry_spread.hpp"
 #include "odometry_step.hpp"
 #include "omninav/core/angles.hpp"
 #include "omninav/core/config.hpp"
@@ -27,7 +29,8 @@ void LinkParams::check() const {
   check_range("links.revisit_ratio", revisit_ratio, 0.1, 100.0);
   check_range("links.revisit_disagreement_deg", revisit_disagreement_deg, 0.0, 180.0);
   check_range("links.revisits_per_place", revisits_per_place, 0, 100);
-  check_range("links.odometry_drift", odometry_drift, 0.0, 10.0);
+  check_range("links.revisit_candidates", revisit_candidates, 1, 1000);
+  check_range("links.odometry_noise", odometry_noise, 0.0, 10.0);
 }
 
 void load_link_params(const ConfigReader& section, LinkParams& params) {
@@ -37,7 +40,8 @@ void load_link_params(const ConfigReader& section, LinkParams& params) {
   section.read("revisit_ratio", params.revisit_ratio);
   section.read("revisit_disagreement_deg", params.revisit_disagreement_deg);
   section.read("revisits_per_place", params.revisits_per_place);
-  section.read("odometry_drift", params.odometry_drift);
+  section.read("revisit_candidates", params.revisit_candidates);
+  section.read("odometry_noise", params.odometry_noise);
   check_loaded(section.source_name(), [&] { params.check(); });
   if (params.revisit_run % 2 == 0) ++params.revisit_run;
 }
@@ -254,11 +258,13 @@ std::vector<std::vector<int>> streams(const memory::VisualMemory& memory) {
 }
 
 // Sequence matching over the streams: for each place with a full run of views round it, the
-// places whose runs (forwards or backwards) match it best.
-std::vector<MeasuredLink> revisit_links(const memory::VisualMemory& memory,
-                                        const std::vector<double>& headings,
-                                        const std::vector<MeasuredLink>& travelled,
-                                        double spacing_m, const LinkParams& params) {
+// places whose runs (forwards or backwards) match it best, among the runs at its most similar
+// places and downhill from them along their streams.
+std::vector<MeasuredLink> revisit_links(
+    const memory::VisualMemory& memory, const std::vector<double>& headings,
+    const std::vector<MeasuredLink>& travelled, double spacing_m, const LinkParams& params,
+    const PlaceDissimilarities& dissimilarity,
+    const std::vector<std::vector<SimilarPlace>>& most_similar) {
   if (params.revisits_per_place <= 0 || travelled.empty()) return {};
   const std::vector<std::vector<int>> chains = streams(memory);
   // Every place of a stream with its stream and position there.
@@ -268,27 +274,27 @@ std::vector<MeasuredLink> revisit_links(const memory::VisualMemory& memory,
   };
   std::vector<int> members;
   std::vector<At> at;
+  std::vector<int> member_of(memory.place_count(), -1);
   for (std::size_t c = 0; c < chains.size(); ++c) {
     for (std::size_t k = 0; k < chains[c].size(); ++k) {
+      member_of[chains[c][k]] = static_cast<int>(members.size());
       members.push_back(chains[c][k]);
       at.push_back({static_cast<int>(c), static_cast<int>(k)});
     }
   }
   const std::size_t n = members.size();
-  // Every pair's dissimilarity per value, indexed by stream order (members).
-  std::vector<std::vector<float>> d(n, std::vector<float>(n, 0.0f));
-  for (std::size_t i = 0; i < n; ++i) {
-    for (std::size_t j = i + 1; j < n; ++j) {
-      d[i][j] = d[j][i] = static_cast<float>(per_value(memory, members[i], members[j]));
-    }
+  // Eq. 6 per value between the places at two indices of `members`, from one source for the
+  // runs and for the travelled links they are measured against.
+  const double values = static_cast<double>(memory.place(0).signature.size());
+  const auto d = [&](std::size_t i, std::size_t j) {
+    return dissimilarity(members[i], members[j]) / values;
+  };
+  std::vector<double> travelled_values;
+  for (const MeasuredLink& link : travelled) {
+    travelled_values.push_back(dissimilarity(link.places.first, link.places.second) / values);
   }
-  const double limit = params.revisit_ratio * *median_dissimilarity_per_value(memory, travelled);
+  const double limit = params.revisit_ratio * median(std::move(travelled_values));
   const int half = params.revisit_run / 2;
-  // The index in `members` of stream c's place k: streams are stored one after the other.
-  std::vector<int> first_of(chains.size(), 0);
-  for (std::size_t c = 1; c < chains.size(); ++c) {
-    first_of[c] = first_of[c - 1] + static_cast<int>(chains[c - 1].size());
-  }
   const auto full_run = [&](const At& where) {
     return where.position - half >= 0 &&
            where.position + half < static_cast<int>(chains[where.chain].size());
@@ -296,18 +302,19 @@ std::vector<MeasuredLink> revisit_links(const memory::VisualMemory& memory,
   // The mean over the run of d between i's views and j's, j's stretch forwards (+1) or back (−1).
   const auto run_score = [&](std::size_t i, std::size_t j, int direction) {
     double sum = 0.0;
-    for (int t = -half; t <= half; ++t) sum += d[i + t][j + direction * t];
+    for (int t = -half; t <= half; ++t) sum += d(i + t, j + direction * t);
     return sum / static_cast<double>(params.revisit_run);
   };
   // With odometry, two places of one stream can only be neighbours when the odometry puts them
-  // within a spacing and a half, give or take its drift over the way between them.
+  // within a spacing and a half, give or take three standard deviations of its drift over the
+  // way between them (a Gaussian's 99.7 %).
+  const OdometrySpread spread(memory, chains, params.odometry_noise, spacing_m);
   const auto odometry_allows = [&](std::size_t i, std::size_t j) {
     const std::optional<CameraPose>& a = memory.place(members[i]).odometry;
     const std::optional<CameraPose>& b = memory.place(members[j]).odometry;
     if (!a || !b || at[i].chain != at[j].chain) return true;
-    const double between_m = spacing_m * std::abs(at[i].position - at[j].position);
     return std::hypot(a->x_m - b->x_m, a->y_m - b->y_m) <=
-           1.5 * spacing_m + params.odometry_drift * between_m;
+           1.5 * spacing_m + 3.0 * spread.stddev_m(at[i].chain, at[i].position, at[j].position);
   };
   std::set<Pair> seen;
   for (const MeasuredLink& link : travelled)
@@ -316,29 +323,40 @@ std::vector<MeasuredLink> revisit_links(const memory::VisualMemory& memory,
   std::vector<MeasuredLink> links;
   for (std::size_t i = 0; i < n; ++i) {
     if (!full_run(at[i])) continue;
-    // The run's score against every other place with a full run, not within the same stretch.
-    std::vector<std::pair<double, std::size_t>> scores(
-        n, {std::numeric_limits<double>::infinity(), 0});
-    for (std::size_t j = 0; j < n; ++j) {
-      if (!full_run(at[j])) continue;
-      if (at[j].chain == at[i].chain && std::abs(at[j].position - at[i].position) <= 2 * half) {
-        continue;
+    // The run's score against another place with a full run, not within the same stretch
+    // (infinite where there is none), computed once per place compared.
+    std::map<std::size_t, double> scores;
+    const auto score = [&](std::size_t j) {
+      const auto [known, added] = scores.try_emplace(j, std::numeric_limits<double>::infinity());
+      if (!added) return known->second;
+      const bool compared =
+          full_run(at[j]) &&
+          !(at[j].chain == at[i].chain && std::abs(at[j].position - at[i].position) <= 2 * half) &&
+          odometry_allows(i, j);
+      if (compared) known->second = std::min(run_score(i, j, 1), run_score(i, j, -1));
+      return known->second;
+    };
+    const auto same_stream = [&](std::size_t j, std::size_t k) {
+      return k < n && at[k].chain == at[j].chain;
+    };
+    // From each of the place's most similar places, downhill along that stream to a local
+    // minimum of the runs' scores; those within the limit, best first.
+    std::set<std::pair<double, std::size_t>> found;
+    for (const SimilarPlace& similar :
+         most_similar_first(most_similar[members[i]], params.revisit_candidates)) {
+      if (member_of[similar.place] < 0) continue;
+      std::size_t j = static_cast<std::size_t>(member_of[similar.place]);
+      for (double here = score(j); std::isfinite(here);) {
+        const double before = same_stream(j, j - 1) ? score(j - 1) : here;
+        const double after = same_stream(j, j + 1) ? score(j + 1) : here;
+        if (before >= here && after >= here) break;
+        j = before < after ? j - 1 : j + 1;
+        here = std::min(before, after);
       }
-      if (!odometry_allows(i, j)) continue;
-      scores[j] = {std::min(run_score(i, j, 1), run_score(i, j, -1)), j};
+      if (score(j) <= limit) found.insert({score(j), j});
     }
-    // Local minima along the other stream that match within the limit, best first.
-    std::vector<std::pair<double, std::size_t>> found;
-    for (std::size_t j = 0; j < n; ++j) {
-      const double s = scores[j].first;
-      if (!(s <= limit)) continue;
-      const bool before = j > 0 && at[j - 1].chain == at[j].chain && scores[j - 1].first < s;
-      const bool after = j + 1 < n && at[j + 1].chain == at[j].chain && scores[j + 1].first < s;
-      if (!before && !after) found.push_back(scores[j]);
-    }
-    std::sort(found.begin(), found.end());
     int kept = 0;
-    for (const auto& [score, j] : found) {
+    for (const auto& [run, j] : found) {
       if (kept >= params.revisits_per_place) break;
       const int a = members[i], b = members[j];
       if (!seen.insert(ordered(a, b)).second) continue;
@@ -370,13 +388,15 @@ std::optional<double> median_dissimilarity_per_value(const memory::VisualMemory&
   return median(std::move(values));
 }
 
-std::vector<MeasuredLink> confirmed_links(const memory::VisualMemory& memory,
-                                          const std::vector<double>& headings, double spacing_m,
-                                          const LinkParams& params) {
+std::vector<MeasuredLink> confirmed_links(
+    const memory::VisualMemory& memory, const std::vector<double>& headings, double spacing_m,
+    const LinkParams& params, const PlaceDissimilarities& dissimilarity,
+    const std::vector<std::vector<SimilarPlace>>& most_similar) {
   params.check();
   std::vector<MeasuredLink> links = travelled_links(memory, headings, spacing_m);
   const std::size_t travelled = links.size();
-  std::vector<MeasuredLink> revisits = revisit_links(memory, headings, links, spacing_m, params);
+  std::vector<MeasuredLink> revisits =
+      revisit_links(memory, headings, links, spacing_m, params, dissimilarity, most_similar);
   std::vector<MeasuredLink> grid = grid_links(memory, headings, params);
   log_info("the plan runs over " + std::to_string(travelled + revisits.size() + grid.size()) +
            " confirmed links: " + std::to_string(travelled) + " travelled, " +
@@ -385,6 +405,15 @@ std::vector<MeasuredLink> confirmed_links(const memory::VisualMemory& memory,
   links.insert(links.end(), revisits.begin(), revisits.end());
   links.insert(links.end(), grid.begin(), grid.end());
   return links;
+}
+
+std::vector<MeasuredLink> confirmed_links(const memory::VisualMemory& memory,
+                                          const std::vector<double>& headings, double spacing_m,
+                                          const LinkParams& params) {
+  params.check();
+  const PlaceDissimilarities dissimilarity(memory);
+  return confirmed_links(memory, headings, spacing_m, params, dissimilarity,
+                         dissimilarity.most_similar_indexed(params.revisit_candidates));
 }
 
 }  // namespace omninav::lattice

@@ -40,10 +40,9 @@ std::vector<RelativePoseMeasurement> link_measurements(const memory::VisualMemor
     if (step) {
       m.translation_m = step->translation_m;
       m.turn_rad = step->turn_rad;
-      // Wheel odometry's errors grow with the distance and the turn; a tenth of a spacing and
-      // of a radian keep a step on the spot from claiming certainty.
-      m.along_stddev_m = m.across_stddev_m = noise * (m.translation_m.norm() + 0.1 * spacing_m);
-      m.turn_stddev_rad = noise * (std::abs(m.turn_rad) + 0.1);
+      const OdometryStepStddev stddev = odometry_step_stddev(*step, noise, spacing_m);
+      m.along_stddev_m = m.across_stddev_m = stddev.translation_m;
+      m.turn_stddev_rad = stddev.turn_rad;
     } else if (link.kind == LinkKind::kRevisit) {
       // Two stretches seen again: the places lie within about a spacing of each other, a
       // baseline too short for the phases' direction to say much; their turn from the phases.
@@ -64,6 +63,8 @@ std::vector<RelativePoseMeasurement> link_measurements(const memory::VisualMemor
 }
 
 void organise_driven(memory::VisualMemory& memory, const OrganiseParams& params,
+                     const PlaceDissimilarities& dissimilarity,
+                     const std::vector<std::vector<SimilarPlace>>& most_similar,
                      OrganiseResult& result) {
   const int count = static_cast<int>(memory.place_count());
   const double spacing_m = result.calibration.step_m;
@@ -72,7 +73,7 @@ void organise_driven(memory::VisualMemory& memory, const OrganiseParams& params,
     headings.push_back(heading.value_or(0.0));
   }
   const std::vector<MeasuredLink> links =
-      confirmed_links(memory, headings, spacing_m, params.links);
+      confirmed_links(memory, headings, spacing_m, params.links, dissimilarity, most_similar);
   const std::vector<RelativePoseMeasurement> measurements =
       link_measurements(memory, links, headings, spacing_m, params);
   LatticeParams springs = params.lattice;

@@ -3,6 +3,7 @@
 // pose graph (pose_graph.hpp), solved, and the result in organise's terms.
 
 #include "omninav/lattice/organise.hpp"
+#include "omninav/lattice/similar_places.hpp"
 
 namespace omninav::lattice::detail {
 
@@ -20,8 +21,11 @@ std::vector<RelativePoseMeasurement> link_measurements(const memory::VisualMemor
 
 // Solves the map's pose graph, with `result`'s springs as weak constraints, into `result`
 // (lattice, motions, link counts; the calibration and the springs are already set) and stores
-// the positions in `memory`.
+// the positions in `memory`. The revisits are searched among each place's most similar places
+// (`most_similar`, as the springs were).
 void organise_driven(memory::VisualMemory& memory, const OrganiseParams& params,
+                     const PlaceDissimilarities& dissimilarity,
+                     const std::vector<std::vector<SimilarPlace>>& most_similar,
                      OrganiseResult& result);
 
 }  // namespace omninav::lattice::detail

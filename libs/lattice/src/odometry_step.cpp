@@ -16,4 +16,9 @@ std::optional<OdometryStep> odometry_step(const memory::VisualMemory& memory, in
                       signed_difference(to->heading_rad, from->heading_rad)};
 }
 
+OdometryStepStddev odometry_step_stddev(const OdometryStep& step, double noise, double spacing_m) {
+  return {noise * (step.translation_m.norm() + 0.1 * spacing_m),
+          noise * (std::abs(step.turn_rad) + 0.1)};
+}
+
 }  // namespace omninav::lattice

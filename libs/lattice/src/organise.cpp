@@ -202,8 +202,13 @@ OrganiseResult organise(memory::VisualMemory& memory, const OrganiseParams& para
   std::tie(calibration.step_m, calibration.step_source) = scale_of(memory, params);
   const bool driven = detail::driven_with_odometry(memory);
   const PlaceDissimilarities dissimilarity(memory);
+  // One search of each place's most similar places for the calibration, the springs and the
+  // motions (and a driven map's revisits): exact for the spring model, whose lattice rests on
+  // them; from an index for a driven map, whose pose graph may reject what they propose.
+  const int ranked = std::max({1, params.neighbours, params.motion_neighbours,
+                               driven ? params.links.revisit_candidates : 0});
   const Ranking ranking =
-      dissimilarity.most_similar(std::max({1, params.neighbours, params.motion_neighbours}));
+      driven ? dissimilarity.most_similar_indexed(ranked) : dissimilarity.most_similar(ranked);
   try {
     calibrate(dissimilarity, ranking, params, calibration);
   } catch (const UsageError& error) {
@@ -226,7 +231,7 @@ OrganiseResult organise(memory::VisualMemory& memory, const OrganiseParams& para
     }
   }
   if (driven) {
-    detail::organise_driven(memory, params, result);
+    detail::organise_driven(memory, params, dissimilarity, ranking, result);
     memory.set_lattice_quality(result.quality);
     log_info("organise: a pose graph of " + std::to_string(result.travelled_links) +
              " travelled links and " + std::to_string(result.revisits) + " revisits (" +

@@ -181,6 +181,67 @@ std::vector<int> dead_reckoning(int count, const std::vector<RelativePoseMeasure
   return piece;
 }
 
+// One measurement's turn against the two headings, in standard deviations.
+struct TurnCost {
+  double turn_rad;
+  double stddev_rad;
+  template <typename T>
+  bool operator()(const T* from, const T* to, T* residual) const {
+    residual[0] = wrapped(to[0] - from[0] - T(turn_rad)) / T(stddev_rad);
+    return true;
+  }
+};
+
+ceres::Solver::Options solver_options(int max_iterations, int threads) {
+  ceres::Solver::Options options;
+  // Sparse Cholesky of the normal equations: each pose meets only its links' neighbours.
+  options.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
+  options.max_num_iterations = max_iterations;
+  options.num_threads = threads;
+  options.logging_type = ceres::SILENT;
+  return options;
+}
+
+// A start nearer the truth than dead reckoning when the odometry's heading drifts: the headings
+// first, from the turns alone (the odometry's and the revisits', a revisit's under a Cauchy loss
+// of one standard deviation), then the positions with the headings held, the same way (LAGO's
+// order, Carlone et al. 2014, made robust). Each piece's first place keeps its pose.
+void heading_first_start(const std::vector<RelativePoseMeasurement>& measurements,
+                         const std::vector<int>& piece, const PoseGraphParams& params,
+                         std::vector<Eigen::Vector3d>& poses) {
+  const int count = static_cast<int>(poses.size());
+  std::vector<double> headings(count);
+  for (int place = 0; place < count; ++place) headings[place] = poses[place].z();
+  ceres::Problem turns;
+  for (double& heading : headings) turns.AddParameterBlock(&heading, 1);
+  for (int place = 0; place < count; ++place) {
+    if (piece[place] == place) turns.SetParameterBlockConstant(&headings[place]);
+  }
+  for (const RelativePoseMeasurement& m : measurements) {
+    turns.AddResidualBlock(new ceres::AutoDiffCostFunction<TurnCost, 1, 1, 1>(
+                               new TurnCost{m.turn_rad, m.turn_stddev_rad}),
+                           m.switchable ? new ceres::CauchyLoss(1.0) : nullptr, &headings[m.from],
+                           &headings[m.to]);
+  }
+  ceres::Solver::Summary summary;
+  ceres::Solve(solver_options(params.max_iterations, params.threads), &turns, &summary);
+  for (int place = 0; place < count; ++place) poses[place].z() = wrapped(headings[place]);
+  ceres::Problem positions;
+  for (Eigen::Vector3d& pose : poses) {
+    positions.AddParameterBlock(pose.data(), 3, new ceres::SubsetManifold(3, {2}));
+  }
+  for (int place = 0; place < count; ++place) {
+    if (piece[place] == place) positions.SetParameterBlockConstant(poses[place].data());
+  }
+  for (const RelativePoseMeasurement& m : measurements) {
+    positions.AddResidualBlock(
+        new ceres::AutoDiffCostFunction<FixedCost, 3, 3, 3>(new FixedCost(m)),
+        m.switchable ? new ceres::CauchyLoss(1.0) : nullptr, poses[m.from].data(),
+        poses[m.to].data());
+  }
+  ceres::Solve(solver_options(params.max_iterations, params.threads), &positions, &summary);
+}
+
 }  // namespace
 
 PoseGraphResult solve_pose_graph(int place_count,
@@ -207,6 +268,7 @@ PoseGraphResult solve_pose_graph(int place_count,
   }
   PoseGraphResult result;
   const std::vector<int> piece = dead_reckoning(place_count, measurements, result.poses);
+  heading_first_start(measurements, piece, params, result.poses);
 
   ceres::Problem problem;
   for (Eigen::Vector3d& pose : result.poses) problem.AddParameterBlock(pose.data(), 3);
@@ -247,14 +309,8 @@ PoseGraphResult solve_pose_graph(int place_count,
                              new ceres::CauchyLoss(spring_params.loss_scale_m),
                              result.poses[spring.a].data(), result.poses[spring.b].data());
   }
-  ceres::Solver::Options options;
-  // Sparse Cholesky of the normal equations: each pose meets only its links' neighbours.
-  options.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
-  options.max_num_iterations = params.max_iterations;
-  options.num_threads = params.threads;
-  options.logging_type = ceres::SILENT;
   ceres::Solver::Summary summary;
-  ceres::Solve(options, &problem, &summary);
+  ceres::Solve(solver_options(params.max_iterations, params.threads), &problem, &summary);
   result.converged = summary.termination_type == ceres::CONVERGENCE;
   result.summary = summary.BriefReport();
   for (Eigen::Vector3d& pose : result.poses) pose.z() = wrapped(pose.z());

@@ -17,13 +17,16 @@
 //     consecutive places (sequence matching, Milford & Wyeth 2012, SeqSLAM: forwards or
 //     backwards along the earlier stretch) about as well as consecutive places match each
 //     other, and the motion fitted between the two places agrees from both ends. Direction from
-//     that fit, length one spacing.
+//     that fit, length one spacing. The runs compared are those of each view's most similar
+//     places (an index, similar_places.hpp), not of every place: Fast-SeqSLAM's candidates
+//     (Siam & Zhang 2017), so the search grows with the places, not with their pairs.
 
 #include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "omninav/lattice/similar_places.hpp"
 #include "omninav/memory/visual_memory.hpp"
 
 namespace omninav {
@@ -60,15 +63,19 @@ struct LinkParams {
   int revisit_run = 5;
   // A revisit's run must match within this many times the median dissimilarity per value of the
   // map's travelled links (places one spacing apart).
-  double revisit_ratio = 1.0;
+  double revisit_ratio = 1.25;
   // The two fits of a revisit's motion (from each end) must agree within this (degrees).
   double revisit_disagreement_deg = 20.0;
   // At most this many revisits per place (its best runs).
   int revisits_per_place = 2;
-  // How far the odometry may drift, as a share of the distance travelled: a revisit's places
-  // must lie within 1.5 spacings plus that share of the way between them by their odometry
-  // (when both have it; Menegatti et al. 2004, §3.4, know the distance "within 10 %").
-  double odometry_drift = 0.02;
+  // The runs compared with a place's: those at its most similar places, this many (chosen
+  // across the zoo: more candidates let more look-alikes' runs in).
+  int revisit_candidates = 3;
+  // The odometry's relative standard deviation of a step's distance and turn. Two places of one
+  // stream are a revisit only when their odometry puts them within 1.5 spacings plus three
+  // standard deviations of its drift over the way between them (odometry_spread.hpp): a turn's
+  // error swings all that follows, so the drift grows with the turns as well as the distance.
+  double odometry_noise = 0.05;
 
   // The ranges of navigation.yaml's links section. Throws UsageError naming the key
   // (core/param_check.hpp); the loader and confirmed_links call it.
@@ -84,6 +91,14 @@ void load_link_params(const ConfigReader& section, LinkParams& params);
 std::vector<MeasuredLink> confirmed_links(const memory::VisualMemory& memory,
                                           const std::vector<double>& headings_rad, double spacing_m,
                                           const LinkParams& params);
+
+// The same, with the places' dissimilarities and each place's most similar places (at least
+// params.revisit_candidates of them, most similar first) already searched: organise shares
+// them with the springs.
+std::vector<MeasuredLink> confirmed_links(
+    const memory::VisualMemory& memory, const std::vector<double>& headings_rad, double spacing_m,
+    const LinkParams& params, const PlaceDissimilarities& dissimilarity,
+    const std::vector<std::vector<SimilarPlace>>& most_similar);
 
 // The median over `links` of their places' mean dissimilarity per value (Eq. 6, the map's
 // weights): what one link's length costs in appearance. None without links.

@@ -9,7 +9,9 @@
 // its residual is scaled by a switch s in [0, 1] that the solver optimises with the poses,
 // against a prior (1 − s)/Ξ that keeps it on unless the rest of the graph disagrees.
 // The gauge is fixed explicitly: the first place of each connected piece keeps its starting
-// pose (place 0 at the origin, facing +x). Sparse: one block per measurement, solved by sparse
+// pose (place 0 at the origin, facing +x). The start: dead reckoning, then the headings from
+// the turns alone and the positions with the headings held, revisits under a Cauchy loss
+// (LAGO's order, Carlone et al. 2014). Sparse: one block per measurement, solved by sparse
 // Cholesky; nothing is done for all pairs of places.
 
 #include <Eigen/Core>

@@ -5,6 +5,10 @@
 // lattice needs each place's few most similar places (springs, motions, its local step), the
 // pairs of consecutive places, and one statistic of all pairs (the plateau of Fig. 7).
 //
+// The map made by driving searches an index instead (most_similar_indexed): there, the most
+// similar places propose springs and revisits that the pose graph may still reject, so a place
+// missed now and then costs little, and no work grows with the square of the places.
+//
 // Storage: one contiguous row-major float matrix, a row per place holding its α_k·|F_y(k)|
 // (27 MB for 10,000 places of 45 lines × 15 components). The most similar places are found by
 // comparing every pair once, block of places against block, with vectorised L1 sums. We tried
@@ -48,6 +52,13 @@ class PlaceDissimilarities {
   // Each place's `count` most similar other places (fewer when the map has fewer), most similar
   // first, ties broken by the lower place index: exactly what ranking every pair would give.
   std::vector<std::vector<SimilarPlace>> most_similar(int count) const;
+
+  // The same, searched without comparing every pair: an approximate nearest-neighbour index
+  // (FLANN's randomised k-d trees, Muja & Lowe 2009, under Eq. 6's L1 distance) that compares
+  // each place with a fixed number of others. A list may miss a few of the exact one's places
+  // (then it holds the next most similar instead); its dissimilarities are operator()'s, and it
+  // is the same for the same map.
+  std::vector<std::vector<SimilarPlace>> most_similar_indexed(int count) const;
 
   // The `share` quantile (core/statistics.hpp's rank) of the dissimilarity of all pairs when
   // there are at most `max_pairs` of them, else of about `max_pairs` pairs spread evenly over
