@@ -9,6 +9,7 @@
 
 #include "omninav/core/errors.hpp"
 #include "omninav/core/param_check.hpp"
+#include "omninav/core/turn_residual.hpp"
 #include "omninav/lattice/residuals.hpp"
 
 namespace omninav::lattice {
@@ -20,14 +21,6 @@ void PoseGraphParams::check() const {
 }
 
 namespace {
-
-// An angle into [−π, π) in a form Ceres' automatic derivatives go through (its floor is
-// defined for Jets).
-template <typename T>
-T wrapped(const T& angle) {
-  const T two_pi(2.0 * M_PI);
-  return angle - two_pi * ceres::floor((angle + T(M_PI)) / two_pi);
-}
 
 // One measurement's residual: the pose of `to` seen from `from` against the measured one, in
 // standard deviations, the translation's along and across its measured direction. A
@@ -52,7 +45,7 @@ class RelativePoseCost {
     residuals[1] =
         (T(-along_.y()) * error_x + T(along_.x()) * error_y) / T(measurement_.across_stddev_m);
     residuals[2] =
-        wrapped(to[2] - from[2] - T(measurement_.turn_rad)) / T(measurement_.turn_stddev_rad);
+        wrapped_angle(to[2] - from[2] - T(measurement_.turn_rad)) / T(measurement_.turn_stddev_rad);
     return true;
   }
 
@@ -103,13 +96,13 @@ Eigen::Vector3d compose(const Eigen::Vector3d& pose, const Eigen::Vector2d& tran
                         double turn) {
   const double c = std::cos(pose.z()), s = std::sin(pose.z());
   return {pose.x() + c * translation.x() - s * translation.y(),
-          pose.y() + s * translation.x() + c * translation.y(), wrapped(pose.z() + turn)};
+          pose.y() + s * translation.x() + c * translation.y(), wrapped_angle(pose.z() + turn)};
 }
 
 // `pose` un-composed: the pose `from` of which `to` is the measurement's result.
 Eigen::Vector3d decompose(const Eigen::Vector3d& to, const Eigen::Vector2d& translation,
                           double turn) {
-  const double heading = wrapped(to.z() - turn);
+  const double heading = wrapped_angle(to.z() - turn);
   const double c = std::cos(heading), s = std::sin(heading);
   return {to.x() - (c * translation.x() - s * translation.y()),
           to.y() - (s * translation.x() + c * translation.y()), heading};
@@ -118,11 +111,11 @@ Eigen::Vector3d decompose(const Eigen::Vector3d& to, const Eigen::Vector2d& tran
 // `pose` moved rigidly so that `from` lands on `to`.
 Eigen::Vector3d moved(const Eigen::Vector3d& pose, const Eigen::Vector3d& from,
                       const Eigen::Vector3d& to) {
-  const double turn = wrapped(to.z() - from.z());
+  const double turn = wrapped_angle(to.z() - from.z());
   const double c = std::cos(turn), s = std::sin(turn);
   const Eigen::Vector2d offset = pose.head<2>() - from.head<2>();
   return {to.x() + c * offset.x() - s * offset.y(), to.y() + s * offset.x() + c * offset.y(),
-          wrapped(pose.z() + turn)};
+          wrapped_angle(pose.z() + turn)};
 }
 
 // Starting poses, and each place's piece (by its first place): dead reckoning along the
@@ -181,17 +174,6 @@ std::vector<int> dead_reckoning(int count, const std::vector<RelativePoseMeasure
   return piece;
 }
 
-// One measurement's turn against the two headings, in standard deviations.
-struct TurnCost {
-  double turn_rad;
-  double stddev_rad;
-  template <typename T>
-  bool operator()(const T* from, const T* to, T* residual) const {
-    residual[0] = wrapped(to[0] - from[0] - T(turn_rad)) / T(stddev_rad);
-    return true;
-  }
-};
-
 ceres::Solver::Options solver_options(int max_iterations, int threads) {
   ceres::Solver::Options options;
   // Sparse Cholesky of the normal equations: each pose meets only its links' neighbours.
@@ -218,14 +200,14 @@ void heading_first_start(const std::vector<RelativePoseMeasurement>& measurement
     if (piece[place] == place) turns.SetParameterBlockConstant(&headings[place]);
   }
   for (const RelativePoseMeasurement& m : measurements) {
-    turns.AddResidualBlock(new ceres::AutoDiffCostFunction<TurnCost, 1, 1, 1>(
-                               new TurnCost{m.turn_rad, m.turn_stddev_rad}),
+    turns.AddResidualBlock(new ceres::AutoDiffCostFunction<TurnResidual, 1, 1, 1>(
+                               new TurnResidual(m.turn_rad, m.turn_stddev_rad)),
                            m.switchable ? new ceres::CauchyLoss(1.0) : nullptr, &headings[m.from],
                            &headings[m.to]);
   }
   ceres::Solver::Summary summary;
   ceres::Solve(solver_options(params.max_iterations, params.threads), &turns, &summary);
-  for (int place = 0; place < count; ++place) poses[place].z() = wrapped(headings[place]);
+  for (int place = 0; place < count; ++place) poses[place].z() = wrapped_angle(headings[place]);
   ceres::Problem positions;
   for (Eigen::Vector3d& pose : poses) {
     positions.AddParameterBlock(pose.data(), 3, new ceres::SubsetManifold(3, {2}));
@@ -313,7 +295,7 @@ PoseGraphResult solve_pose_graph(int place_count,
   ceres::Solve(solver_options(params.max_iterations, params.threads), &problem, &summary);
   result.converged = summary.termination_type == ceres::CONVERGENCE;
   result.summary = summary.BriefReport();
-  for (Eigen::Vector3d& pose : result.poses) pose.z() = wrapped(pose.z());
+  for (Eigen::Vector3d& pose : result.poses) pose.z() = wrapped_angle(pose.z());
 
   // Pieces by the measurements kept.
   std::vector<std::size_t> rank(place_count, 0), parent(place_count, 0);

@@ -1,7 +1,7 @@
 #pragma once
 // A measured turn between two unknown headings as a least-squares residual, for Ceres'
 // automatic differentiation (ceres::AutoDiffCostFunction<TurnResidual, 1, 1, 1>): the lattice's
-// heading synchronisation and the compass's heading window both solve headings from turns.
+// heading synchronisation and the pose graph's first start both solve headings from turns.
 // Kept free of Ceres' headers: floor is found by argument-dependent lookup (ceres::floor for
 // its Jets, std::floor for doubles).
 
@@ -10,6 +10,14 @@
 #include "omninav/core/angles.hpp"
 
 namespace omninav {
+
+// An angle into [−π, π), for doubles and for Ceres' Jets alike (the Jets' floor is Ceres').
+template <typename T>
+T wrapped_angle(const T& angle) {
+  using std::floor;
+  const T two_pi(kTwoPi);
+  return angle - two_pi * floor((angle + T(kPi)) / two_pi);
+}
 
 // wrap(θ_to − θ_from − turn) to [−π, π), in standard deviations (as Ceres'
 // examples/slam/pose_graph_2d NormalizeAngle).
@@ -20,10 +28,7 @@ class TurnResidual {
 
   template <typename T>
   bool operator()(const T* const from, const T* const to, T* residual) const {
-    using std::floor;
-    const T difference = to[0] - from[0] - T(turn_rad_);
-    const T two_pi(kTwoPi);
-    residual[0] = T(weight_) * (difference - two_pi * floor((difference + T(kPi)) / two_pi));
+    residual[0] = T(weight_) * wrapped_angle(to[0] - from[0] - T(turn_rad_));
     return true;
   }
 
