@@ -117,7 +117,8 @@ void run_navigate(const GlobalOptions& global, const NavigateOptions& options) {
   signature::SignatureExtractor extractor(memory.parameters().signature);
   const navigation::GoalNavigationSetup setup = navigation::goal_navigation_setup(
       memory, navigation::memory_localiser(localiser, extractor), navigation.route,
-      navigation.navigator, navigation.links, navigation.belief);
+      navigation.navigator, navigation.links, navigation.belief,
+      {load_compass_config(global.config_dir).min_warping, camera.panorama});
 
   // The robot in a rendered world, or on a grid of stored images.
   std::optional<sim::World> world;

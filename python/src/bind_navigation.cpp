@@ -258,6 +258,8 @@ void bind_navigation(py::module_& m, py::class_<Map>& map) {
         const memory::VisualMemory& memory = map.memory;
         const fs::path dir = config_dir_or_default(config_dir);
         const memory::MemoryConfig memory_config = config::load_memory_config(dir);
+        const navigation::SteeringParams steering{config::load_compass_config(dir).min_warping,
+                                                  config::load_camera_config(dir).panorama};
         evaluation::NavigationConfig navigation = navigation_config(config, config_dir);
         if (max_steps > 0) navigation.navigator.max_steps = max_steps;
         py::object keep;
@@ -268,7 +270,7 @@ void bind_navigation(py::module_& m, py::class_<Map>& map) {
         signature::SignatureExtractor extractor(memory.parameters().signature);
         const navigation::GoalNavigationSetup setup = navigation::goal_navigation_setup(
             memory, navigation::memory_localiser(localiser, extractor), navigation.route,
-            navigation.navigator, navigation.links, navigation.belief);
+            navigation.navigator, navigation.links, navigation.belief, steering);
         return navigation::navigate_to_image(body, goal, "goal image", setup);
       },
       py::arg("robot"), py::arg("goal_image"), py::arg("config") = py::none(),

@@ -105,10 +105,12 @@ TEST_F(RoomNavigation, SeededTrialsReachTheirGoals) {
   }
   const TrialSummary summary = summarise(outcomes);
   EXPECT_EQ(summary.reached, 4);
-  // The path target (≤ 1.5 × the straight line) is not met round this room's table: the robot
-  // drives place to place and learns the blocked links by meeting them (2.5 measured; the full
-  // suite's figures are in docs/evaluation.md). Bounded here so that a worse detour shows.
-  EXPECT_LE(summary.mean_path_ratio, 3.0) << summary.text();
+  // The path target (≤ 1.5 × the straight line) is not quite met round this room's table: the
+  // robot drives place to place and learns the blocked links by meeting them (1.64 measured
+  // steering by the next place's image, 2.5 by the plan's directions and with sidesteps of at
+  // most 60°; the full suite's figures are in docs/evaluation.md). Bounded so that a worse
+  // detour shows.
+  EXPECT_LE(summary.mean_path_ratio, 2.0) << summary.text();
 }
 
 TEST_F(RoomNavigation, AGoalIsReachedWithinARadiusInMetres) {

@@ -360,14 +360,6 @@ TEST(Exploration, ExploringAgainExtendsTheMemoryWithANewRun) {
   EXPECT_EQ(memory.edge_count(), edges_before + 2);
 }
 
-TEST(Exploration, ThumbnailsAreSmallPngCopies) {
-  const std::vector<std::uint8_t> png = make_thumbnail(route_frames()[0].image, 180);
-  const cv::Mat decoded = cv::imdecode(png, cv::IMREAD_UNCHANGED);
-  EXPECT_EQ(decoded.cols, 180);
-  EXPECT_EQ(decoded.rows, 23);  // 45 · 180/360 rounded
-  EXPECT_EQ(decoded.channels(), 3);
-}
-
 TEST(Exploration, BadFramesNameTheirSource) {
   VisualMemory memory;
   Explorer explorer(memory, {}, "bad", "test");

@@ -77,9 +77,10 @@ TEST(NavigationParams, OutOfRangeAreRefusedNamingTheKey) {
   };
   navigation::LinkParams links;
   links.revisit_ratio = 0.0;
-  EXPECT_NE(
-      refusal([&] { lattice::confirmed_links(memory, {}, 0.3, links); }).find("links.revisit_ratio"),
-      std::string::npos);
+  EXPECT_NE(refusal([&] {
+              lattice::confirmed_links(memory, {}, 0.3, links);
+            }).find("links.revisit_ratio"),
+            std::string::npos);
   navigation::RouteParams route;
   route.match_dissimilarity_ratio = 1000.0;
   EXPECT_NE(refusal([&] {
@@ -89,7 +90,7 @@ TEST(NavigationParams, OutOfRangeAreRefusedNamingTheKey) {
   navigation::NavigatorParams navigator;
   navigator.max_steps = 0;
   EXPECT_NE(refusal([&] {
-              navigation::goal_navigation_setup(memory, {}, {}, navigator, {}, {});
+              navigation::goal_navigation_setup(memory, {}, {}, navigator, {}, {}, {});
             }).find("navigator.max_steps"),
             std::string::npos);
 }

@@ -63,7 +63,7 @@ TEST_P(HomingSpacing, TheDerivedStopLiesBetweenTheGoalAndOneSpacingFromIt) {
   signature::SignatureExtractor extractor(memory.parameters().signature);
   const GoalNavigationSetup setup =
       goal_navigation_setup(memory, memory_localiser(localiser, extractor), RouteParams{},
-                            NavigatorParams{}, LinkParams{}, BeliefParams{});
+                            NavigatorParams{}, LinkParams{}, BeliefParams{}, SteeringParams{});
   const NavigatorParams defaults;
   // The metres follow the rendered grid's spacing.
   EXPECT_NEAR(setup.navigator.homing_stop_m, defaults.homing_stop_spacings * spacing_m,

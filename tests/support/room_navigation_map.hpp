@@ -58,7 +58,7 @@ inline RoomMap* build_room_map() {
   memory::ExplorationParams exploration;
   exploration.heading_source = memory::HeadingPolicy::kTruth;
   memory::Explorer explorer(map->memory, exploration, "rendered grid", "test",
-                           memory::FrameOrder::kUnordered);  // a grid database, not a stream
+                            memory::FrameOrder::kUnordered);  // a grid database, not a stream
   int index = 0;
   for (int iy = 0; iy < 8; ++iy) {
     for (int ix = 0; ix < 10; ++ix) {
@@ -99,7 +99,8 @@ class RoomNavigation : public ::testing::Test {
   static navigation::GoalNavigationSetup setup() {
     return navigation::goal_navigation_setup(
         map().memory, map().localise, navigation::RouteParams{}, navigation::NavigatorParams{},
-        navigation::LinkParams{}, navigation::BeliefParams{});
+        navigation::LinkParams{}, navigation::BeliefParams{},
+        navigation::SteeringParams{{}, map().render.geometry});
   }
   // The place nearest to (x, y) by truth.
   static int nearest_place(double x_m, double y_m) {

@@ -75,6 +75,9 @@ MinWarpingView& MinWarpingView::operator=(MinWarpingView&&) noexcept = default;
 const std::string& MinWarpingView::name() const {
   return data_->name;
 }
+cv::Size MinWarpingView::size() const {
+  return {data_->width_px, data_->height_px};
+}
 bool MinWarpingView::featureless() const {
   return data_->featureless;
 }

@@ -85,6 +85,7 @@ navigation::LiveSessionParams load_live_session_params(const std::filesystem::pa
   params.navigator = navigation.navigator;
   params.links = navigation.links;
   params.belief = navigation.belief;
+  params.steering = {compass.min_warping, load_camera_config(config_dir).panorama};
   return params;
 }
 

@@ -455,7 +455,8 @@ class WorldRun {
     signature::SignatureExtractor extractor(memory.parameters().signature);
     const navigation::GoalNavigationSetup setup = navigation::goal_navigation_setup(
         memory, navigation::memory_localiser(localiser, extractor), config_.navigation.route,
-        config_.navigation.navigator, config_.navigation.links, config_.navigation.belief);
+        config_.navigation.navigator, config_.navigation.links, config_.navigation.belief,
+        {config_.compass.min_warping, worlds_.render.geometry});
     // As navigate: the robot's camera makes panoramas of the size the map was built from.
     const sim::Renderer renderer(world_, render_params_for_map(memory, worlds_.render));
     NavigationConfig navigation = config_.navigation;

@@ -2,30 +2,19 @@
 
 #include <cmath>
 #include <limits>
-#include <opencv2/imgcodecs.hpp>
-#include <opencv2/imgproc.hpp>
 
 #include "omninav/core/angles.hpp"
 #include "omninav/core/errors.hpp"
 #include "omninav/core/statistics.hpp"
+#include "omninav/memory/thumbnail.hpp"
 
 namespace omninav::evaluation {
 
 HomeVector home_vector_to_place(const compass::MinWarping& warping, const memory::Place& place,
                                 const std::string& place_name, const cv::Mat& query,
                                 const std::string& query_name) {
-  if (place.thumbnail_png.empty()) {
-    throw InputError(place_name +
-                     " has no stored panorama to warp (explore with memory.yaml's "
-                     "thumbnail_width_px above 0)");
-  }
-  const cv::Mat snapshot = cv::imdecode(place.thumbnail_png, cv::IMREAD_COLOR);
-  if (snapshot.empty()) throw InputError(place_name + ": its thumbnail cannot be decoded");
-  require_panorama(query, query_name);
-  cv::Mat current;
-  cv::Mat query_colour = query;
-  if (query.channels() == 1) cv::cvtColor(query, query_colour, cv::COLOR_GRAY2BGR);
-  cv::resize(query_colour, current, snapshot.size(), 0, 0, cv::INTER_AREA);
+  const cv::Mat snapshot = memory::decode_thumbnail(place.thumbnail_png, place_name);
+  const cv::Mat current = memory::as_thumbnail(query, snapshot.size(), query_name);
   const compass::MinWarpingResult result =
       warping.estimate(warping.prepare(snapshot, place_name), warping.prepare(current, query_name));
   HomeVector home;

@@ -3,8 +3,6 @@
 #include <chrono>
 #include <cmath>
 #include <ctime>
-#include <opencv2/imgcodecs.hpp>
-#include <opencv2/imgproc.hpp>
 #include <sstream>
 
 #include "omninav/compass/resample.hpp"
@@ -17,6 +15,7 @@
 #include "omninav/core/param_check.hpp"
 #include "omninav/core/parse.hpp"
 #include "omninav/core/progress.hpp"
+#include "omninav/memory/thumbnail.hpp"
 #include "omninav/signature/dissimilarity.hpp"
 #include "omninav/signature/motion.hpp"
 #include "omninav/signature/phase_heading.hpp"
@@ -81,16 +80,6 @@ void ExplorationParams::check() const {
   check_range("exploration.every_m", every_m, 0.0, 1000.0);
   check_range("exploration.thumbnail_width_px", thumbnail_width_px, 8, 4096);
   check_range("exploration.motion_components", motion_components, 0, 4096);
-}
-
-std::vector<std::uint8_t> make_thumbnail(const cv::Mat& panorama, int width_px) {
-  cv::Mat small;
-  const int height =
-      std::max(1, static_cast<int>(std::lround(panorama.rows * double(width_px) / panorama.cols)));
-  cv::resize(panorama, small, cv::Size(width_px, height), 0, 0, cv::INTER_AREA);
-  std::vector<std::uint8_t> png;
-  if (!cv::imencode(".png", small, png)) throw Error("cannot encode a thumbnail as PNG");
-  return png;
 }
 
 namespace {

@@ -19,9 +19,10 @@ namespace {
 // phases' heading: its prediction keeps its (negligible) probability in place.
 constexpr double kNegligibleShare = 1e-4;
 // Blocked, the robot turns aside by this, then twice, ... alternately left and right, this many
-// times, before it drops the link it was following.
-constexpr double kSidestepDeg = 30.0;
-constexpr int kSidesteps = 4;
+// times (every direction once, the last straight back), before it drops the link it was
+// following: a robot steered at a place behind a corner must be able to back out of it.
+constexpr double kSidestepDeg = 45.0;
+constexpr int kSidesteps = 7;
 // The goal's place must hold at least this much of the belief for the robot to home.
 constexpr double kArrivalShare = 0.25;
 // The robot changes the place it acts on when another is this many times as probable (or is
@@ -44,6 +45,7 @@ class GoalDrive::Run {
       : setup_(setup),
         params_(setup.navigator),
         homing_(std::move(homing)),
+        steering_(setup.snapshots),
         links_(setup.links),
         plan_(plan_to_goal(setup.places, links_, goal)),
         belief_(setup.places.size(), links_, setup.belief.view_scale * setup.link_dissimilarity,
@@ -192,31 +194,45 @@ class GoalDrive::Run {
     return best;
   }
 
-  // Turns to the plan's direction at the belief's place and steps.
+  // Turns towards the plan's next place (aside when blocked) and steps.
   void follow_route(DriveCommand& command, int place, double in_place, const cv::Mat& view) {
-    const double direction =
-        plan_.reaches_goal(place) ? plan_.direction_in_place_rad[place] : in_place;
-    double turn_rad = signed_difference(direction + sidestep_turn(sidestep_), in_place);
-    // At the goal's place by the belief, not yet sure enough to home: the goal image says
-    // which way the goal lies (the goal's place has no direction of its own).
-    if (place == plan_.goal && homing_) {
-      const GoalCue cue = homing_(view);
-      turn_rad = wrap_angle((cue.valid ? cue.bearing_rad : 0.0) + sidestep_turn(sidestep_));
-    }
+    const double turn_rad =
+        wrap_angle(route_direction(place, in_place, view) + sidestep_turn(sidestep_));
     check_progress(place);
     command_motion(command, turn_rad, params_.step_m);
     waiting_ = Waiting{NavigationPhase::kFollowingRoute, place, params_.step_m, 0.0};
   }
 
+  // Where the route leads, counter-clockwise from the robot's front: towards the plan's next
+  // place by that place's image (place_steering.hpp), else to the plan's direction at `place`
+  // (its heading relative to the view: `in_place`); at the goal's place, where the goal image
+  // says the goal lies (the goal's place has no direction of its own); straight on from a place
+  // without a route.
+  double route_direction(int place, double in_place, const cv::Mat& view) {
+    if (place == plan_.goal && homing_) {
+      const GoalCue cue = homing_(view);
+      return cue.valid ? cue.bearing_rad : 0.0;
+    }
+    if (!plan_.reaches_goal(place)) return 0.0;
+    if (place != plan_.goal) {
+      if (const std::optional<double> next = steering_.direction_to(plan_.next[place], view)) {
+        return *next;
+      }
+    }
+    return signed_difference(plan_.direction_in_place_rad[place], in_place);
+  }
+
   // Blocked, the robot has met what the map's links do not show (furniture, a wall between
-  // grid neighbours): after turning aside kSidesteps times, the links that lead the way it
-  // tried are dropped and the plan is made again without them.
+  // grid neighbours): after turning aside kSidesteps times, the link it was following is
+  // dropped and the plan made again without it (not while lost: which link it followed is not
+  // known).
   void followed(const Waiting& waiting) {
     since_progress_m_ += driven_;
     if (driven_ >= 0.5 * waiting.distance_m) {
       sidestep_ = 0;
     } else if (sidestep_ < kSidesteps) {
-      // Most blocks graze furniture beside the link: turning a little aside slides past it.
+      // Most blocks graze furniture beside the link: turning a little aside slides past it. A
+      // robot steered at a place behind a corner turns further, to straight back.
       ++sidestep_;
       ++result_.sidesteps;
     } else {
@@ -312,6 +328,7 @@ class GoalDrive::Run {
   const GoalNavigationSetup& setup_;
   const NavigatorParams& params_;
   const GoalHoming homing_;
+  PlaceSteering steering_;
   std::vector<MeasuredLink> links_;  // without the links found blocked
   RoutePlan plan_;
   PlaceBelief belief_;

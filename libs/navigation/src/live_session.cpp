@@ -67,7 +67,7 @@ LiveSession::LiveSession(LiveSessionParams params, std::optional<std::filesystem
     // The localiser is goal_navigation_setup's for goal images; the belief reads the
     // signatures, the links and their median.
     setup_ = goal_navigation_setup(*memory_, {}, params_.route, params_.navigator, params_.links,
-                                   params_.belief);
+                                   params_.belief, params_.steering);
   } catch (const UsageError& error) {  // no lattice, a place without a heading
     no_belief_reason_ = error.what();
     return;

@@ -130,7 +130,8 @@ RoutePlan plan_route(const memory::VisualMemory& memory, const std::vector<Place
 GoalNavigationSetup goal_navigation_setup(const memory::VisualMemory& memory,
                                           PanoramaLocaliser localise, const RouteParams& route,
                                           const NavigatorParams& navigator, const LinkParams& links,
-                                          const BeliefParams& belief) {
+                                          const BeliefParams& belief,
+                                          const SteeringParams& steering) {
   navigator.check();
   belief.check();
   GoalNavigationSetup setup;
@@ -165,6 +166,13 @@ GoalNavigationSetup goal_navigation_setup(const memory::VisualMemory& memory,
     return extractor->compute(panorama, "the robot's view");
   };
   setup.belief = belief;
+  auto snapshots = std::make_shared<PlaceSnapshots>();
+  snapshots->warping = std::make_shared<compass::MinWarping>(steering.warping, steering.panorama);
+  for (std::size_t i = 0; i < memory.place_count(); ++i) {
+    snapshots->thumbnails_png.push_back(memory.place(i).thumbnail_png);
+  }
+  setup.homing.warping = snapshots->warping;
+  setup.snapshots = std::move(snapshots);
   return setup;
 }
 

@@ -115,6 +115,7 @@ class MinWarpingView {
   MinWarpingView& operator=(MinWarpingView&&) noexcept;
   const std::string& name() const;
   bool featureless() const;
+  cv::Size size() const;  // the panorama's, before it was reduced for the search
 
   struct Data;
   const Data& data() const { return *data_; }

@@ -236,7 +236,4 @@ struct ExplorationInput {
 Run explore_frames(VisualMemory& memory, const ExplorationParams& params,
                    const ExplorationInput& input);
 
-// The thumbnail stored with a place: the panorama scaled to `width_px` wide, PNG-encoded.
-std::vector<std::uint8_t> make_thumbnail(const cv::Mat& panorama, int width_px);
-
 }  // namespace omninav::memory

@@ -14,6 +14,7 @@
 #include "omninav/navigation/homing.hpp"
 #include "omninav/navigation/navigator.hpp"
 #include "omninav/navigation/place_belief.hpp"
+#include "omninav/navigation/place_steering.hpp"
 #include "omninav/navigation/route_planner.hpp"
 #include "omninav/signature/dissimilarity.hpp"
 #include "omninav/signature/signature.hpp"
@@ -41,6 +42,9 @@ struct GoalNavigationSetup {
   std::function<signature::Signature(const cv::Mat&)> signature_of;
   double link_dissimilarity = 1.0;
   BeliefParams belief;
+  // The places' thumbnails the robot steers by (place_steering.hpp); none: it steers by the
+  // plan's directions alone.
+  std::shared_ptr<const PlaceSnapshots> snapshots;
 };
 
 // Drives `world`'s robot to place `goal` (navigator.hpp), then homes on the goal image with

@@ -4,13 +4,15 @@
 // image was taken up to half a cell's diagonal from the goal and the robot recognises it from
 // anywhere in its cell, so stopping there can leave the robot a whole spacing from the goal
 // (docs/navigation.md). The view and the goal image are compared directly: the magnitudes'
-// dissimilarity (Eq. 2) falls as the robot nears the goal, and the phases give the direction
-// of the goal (§3.4's motion estimate, signature/motion.hpp).
+// dissimilarity (Eq. 2) falls as the robot nears the goal, and min-warping's home vector gives
+// the direction of the goal (compass/min_warping.hpp; without min-warping, the phases' motion
+// estimate of §3.4, signature/motion.hpp).
 
 #include <functional>
 #include <memory>
 #include <opencv2/core.hpp>
 
+#include "omninav/compass/min_warping.hpp"
 #include "omninav/signature/dissimilarity.hpp"
 #include "omninav/signature/signature.hpp"
 
@@ -23,7 +25,9 @@ struct GoalCue {
   // dissimilarity grows about linearly with distance over short distances.
   double distance_m = 0.0;
   double bearing_rad = 0.0;  // where the goal lies, counter-clockwise from the robot's front
-  bool valid = false;        // the phases show a displacement (false: at the goal, or lost)
+  // The bearing is an estimate: false when either image is featureless (min-warping), or the
+  // phases show no displacement (at the goal, or lost).
+  bool valid = false;
 };
 
 using GoalHoming = std::function<GoalCue(const cv::Mat& panorama)>;
@@ -35,6 +39,9 @@ struct HomingScale {
   signature::SignatureParams signature;
   signature::ComponentWeights weights;
   double metres_per_dissimilarity = 0.0;
+  // The goal's bearing by min-warping's home vector; none, or a goal image narrower than its
+  // search: by the phases.
+  std::shared_ptr<const compass::MinWarping> warping;
 };
 
 // Compares views with `goal_image` (signatures made as `scale.signature` says). Throws

@@ -74,6 +74,7 @@ struct LiveSessionParams {
   NavigatorParams navigator;
   LinkParams links;
   BeliefParams belief;
+  SteeringParams steering;  // compass.yaml's min_warping, camera.yaml's panorama
 };
 
 struct LiveFrame {

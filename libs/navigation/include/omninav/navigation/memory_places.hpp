@@ -63,12 +63,14 @@ RoutePlan plan_route(const memory::VisualMemory& memory, const std::vector<Place
                      const LinkParams& links, int goal);
 
 // Everything navigating to goal images on `memory` needs (goal_navigation.hpp): its places, its
-// match limit and homing scale, its confirmed links, its places' signatures, with `localise` and
-// the settings (homing's metres from map_spacing).
+// match limit and homing scale, its confirmed links, its places' signatures and thumbnails, with
+// `localise` and the settings (homing's metres from map_spacing). Throws UsageError for
+// parameters out of range.
 GoalNavigationSetup goal_navigation_setup(const memory::VisualMemory& memory,
                                           PanoramaLocaliser localise, const RouteParams& route,
                                           const NavigatorParams& navigator, const LinkParams& links,
-                                          const BeliefParams& belief);
+                                          const BeliefParams& belief,
+                                          const SteeringParams& steering);
 
 // Why `localisation` matches no place of the map, none when it does: no candidate, or a best
 // place whose mean dissimilarity per value is above `limit` (see match_limit). The one

@@ -1,18 +1,20 @@
 #pragma once
 // The navigator (Menegatti et al. 2004, §3.5, with a belief over places): each view of the
 // robot updates the belief over the map's places (place_belief.hpp); the robot acts on the most
-// probable place that has a route: it measures its heading against that place's image (the
-// phases, Eq. 1), turns to the plan's direction there (route_planner.hpp, over the confirmed
-// links of confirmed_links.hpp) and steps. The motion it made carries the belief along the
-// links. Once the belief is on the goal's place it homes on the goal image (homing.hpp). It
-// never reads the robot's true pose: the map, the plan and the images are all it knows.
+// probable place that has a route: it turns towards that place's next place on the plan
+// (route_planner.hpp, over the confirmed links of confirmed_links.hpp) by the next place's image
+// (min-warping's home vector, place_steering.hpp; without images, to the plan's direction at
+// the place, its heading measured against the place's image by the phases, Eq. 1) and steps.
+// The motion it made carries the belief along the links. Once the belief is on the goal's place
+// it homes on the goal image (homing.hpp). It never reads the robot's true pose: the map, the
+// plan and the images are all it knows.
 //
 // The parts: belief (place_belief.hpp), plan (route_planner.hpp), motion (goal_drive.hpp, one
-// view at a time: turn, step, home) and recovery, which is two rules about links, each learnt
-// by driving:
-//   - blocked (the robot drove less than half a step): the links that lead the way it tried,
-//     from every place the belief holds, are dropped and the plan made again; with nothing left
-//     to drop that way (or while lost) it turns aside, wider each time;
+// view at a time: turn, step, home; place_steering.hpp) and recovery, which is two rules about
+// links, each learnt by driving:
+//   - blocked (the robot drove less than half a step): it turns aside, 45° more each time,
+//     alternately left and right, until it has tried every direction; then the link it was
+//     following is dropped and the plan made again (not while lost);
 //   - a link not followed: the robot drove three times a link's length (and a step) since the
 //     belief last came to a place nearer the goal without getting nearer: that link is dropped
 //     and the plan made again (a revisit whose direction misleads, a passage too narrow).
