@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <opencv2/imgproc.hpp>
+#include <string>
 #include <vector>
 
 #include "compass_test_support.hpp"
@@ -85,6 +87,29 @@ TEST(MinWarping, RolledPanoramaGivesTheRotation) {
         << turn_deg;
     EXPECT_NEAR(result.cost, 0.0, 1e-5) << turn_deg;
     EXPECT_FALSE(result.featureless);
+  }
+}
+
+// A view of another camera's resolution (half the columns and rows, grey) matched against a
+// prepared snapshot: brought to its size, the rolled panorama still gives the roll.
+TEST(MinWarping, AViewOfAnotherSizeIsBroughtToTheSnapshots) {
+  const MinWarping warping({}, PanoramaGeometry{});
+  const cv::Mat image = render_room(3.1, 2.2, 10.0);
+  const MinWarpingView snapshot = warping.prepare(image, "snapshot");
+  EXPECT_EQ(snapshot.size(), image.size());
+  for (int turn_deg : {-96, 60}) {
+    cv::Mat small, grey;
+    cv::resize(roll_columns(image, turn_deg), small, cv::Size(180, 22), 0, 0, cv::INTER_AREA);
+    cv::cvtColor(small, grey, cv::COLOR_BGR2GRAY);
+    const MinWarpingResult result = warping.estimate_resized(snapshot, grey, "view");
+    EXPECT_NEAR(rad_to_deg(signed_difference(result.rotation_rad, deg_to_rad(turn_deg))), 0.0, 2.0)
+        << turn_deg;
+  }
+  try {
+    warping.estimate_resized(snapshot, cv::Mat(), "view.png");
+    FAIL() << "no error";
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what()).find("view.png"), std::string::npos) << error.what();
   }
 }
 

@@ -358,4 +358,13 @@ MinWarpingResult MinWarping::estimate(const cv::Mat& first, const cv::Mat& secon
   return estimate(a, b);
 }
 
+MinWarpingResult MinWarping::estimate_resized(const MinWarpingView& first, const cv::Mat& second,
+                                              const std::string& name) const {
+  if (second.empty() || second.size() == first.size())
+    return estimate(first, prepare(second, name));
+  cv::Mat resized;
+  cv::resize(second, resized, first.size(), 0, 0, cv::INTER_AREA);
+  return estimate(first, prepare(resized, name));
+}
+
 }  // namespace omninav::compass

@@ -5,6 +5,7 @@
 
 #include "omninav/core/angles.hpp"
 #include "omninav/core/errors.hpp"
+#include "omninav/core/panorama.hpp"
 #include "omninav/core/statistics.hpp"
 #include "omninav/memory/thumbnail.hpp"
 
@@ -13,10 +14,10 @@ namespace omninav::evaluation {
 HomeVector home_vector_to_place(const compass::MinWarping& warping, const memory::Place& place,
                                 const std::string& place_name, const cv::Mat& query,
                                 const std::string& query_name) {
+  require_panorama(query, query_name);
   const cv::Mat snapshot = memory::decode_thumbnail(place.thumbnail_png, place_name);
-  const cv::Mat current = memory::as_thumbnail(query, snapshot.size(), query_name);
   const compass::MinWarpingResult result =
-      warping.estimate(warping.prepare(snapshot, place_name), warping.prepare(current, query_name));
+      warping.estimate_resized(warping.prepare(snapshot, place_name), query, query_name);
   HomeVector home;
   home.featureless = result.featureless;
   if (result.featureless) return home;

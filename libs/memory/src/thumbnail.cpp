@@ -6,7 +6,6 @@
 #include <opencv2/imgproc.hpp>
 
 #include "omninav/core/errors.hpp"
-#include "omninav/core/panorama.hpp"
 
 namespace omninav::memory {
 
@@ -29,15 +28,6 @@ cv::Mat decode_thumbnail(const std::vector<std::uint8_t>& png, const std::string
   cv::Mat thumbnail = cv::imdecode(png, cv::IMREAD_COLOR);
   if (thumbnail.empty()) throw InputError(place_name + ": its thumbnail cannot be decoded");
   return thumbnail;
-}
-
-cv::Mat as_thumbnail(const cv::Mat& panorama, cv::Size size, const std::string& name) {
-  require_panorama(panorama, name);
-  cv::Mat colour = panorama;
-  if (panorama.channels() == 1) cv::cvtColor(panorama, colour, cv::COLOR_GRAY2BGR);
-  cv::Mat small;
-  cv::resize(colour, small, size, 0, 0, cv::INTER_AREA);
-  return small;
 }
 
 }  // namespace omninav::memory

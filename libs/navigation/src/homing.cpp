@@ -1,6 +1,5 @@
 #include "omninav/navigation/homing.hpp"
 
-#include "omninav/memory/thumbnail.hpp"
 #include "omninav/signature/motion.hpp"
 
 namespace omninav::navigation {
@@ -23,14 +22,8 @@ GoalHoming goal_homing(const cv::Mat& goal_image, const HomingScale& scale) {
                              static_cast<double>(goal->size());
     const double distance_m = per_value * scale.metres_per_dissimilarity;
     if (warping_goal) {
-      // Min-warping compares panoramas of one size: a camera whose frames differ from the
-      // goal image's size is brought to it.
-      const cv::Size size = warping_goal->size();
-      const cv::Mat view = panorama.size() == size
-                               ? panorama
-                               : memory::as_thumbnail(panorama, size, "the robot's view");
       const compass::MinWarpingResult home =
-          scale.warping->estimate(*warping_goal, scale.warping->prepare(view, "the robot's view"));
+          scale.warping->estimate_resized(*warping_goal, panorama, "the robot's view");
       return GoalCue{distance_m, home.home_rad, !home.featureless};
     }
     const signature::MotionEstimate motion = signature::estimate_motion(view, *goal);

@@ -96,7 +96,7 @@ double recognition_limit(const memory::VisualMemory& memory) {
 }
 
 HomingScale homing_scale(const memory::VisualMemory& memory, const std::vector<PlaceNode>& places) {
-  HomingScale scale{memory.parameters().signature, memory.parameters().weights, 0.0};
+  HomingScale scale{memory.parameters().signature, memory.parameters().weights, 0.0, nullptr};
   const std::optional<double> link = median_link_dissimilarity(memory);
   if (!link || *link <= 0.0) {
     log_warning(

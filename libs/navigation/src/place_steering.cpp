@@ -26,10 +26,8 @@ std::optional<double> PlaceSteering::direction_to(int place, const cv::Mat& view
     if (snapshot.cols < warping.params().search_width_px) return std::nullopt;
     prepared = prepared_.emplace(place, warping.prepare(snapshot, name)).first;
   }
-  const compass::MinWarpingView& snapshot = prepared->second;
-  const compass::MinWarpingResult result = warping.estimate(
-      snapshot, warping.prepare(memory::as_thumbnail(view, snapshot.size(), "the robot's view"),
-                                "the robot's view"));
+  const compass::MinWarpingResult result =
+      warping.estimate_resized(prepared->second, view, "the robot's view");
   if (result.featureless) return std::nullopt;
   return result.home_rad;
 }

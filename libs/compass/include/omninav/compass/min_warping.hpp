@@ -143,6 +143,11 @@ class MinWarping {
   // Throws InputError naming both when their sizes differ.
   MinWarpingResult estimate(const MinWarpingView& first, const MinWarpingView& second) const;
   MinWarpingResult estimate(const cv::Mat& first, const cv::Mat& second) const;
+  // `second` (named `name`) brought to the size of the panorama `first` was prepared from, by
+  // area averaging, then matched: a view of another camera's resolution against a stored
+  // snapshot (a place's thumbnail, a goal image). Throws what prepare() throws.
+  MinWarpingResult estimate_resized(const MinWarpingView& first, const cv::Mat& second,
+                                    const std::string& name) const;
 
   // The mean column distance at every grid point, rows α (search columns of the first
   // panorama), columns ψ (search columns), CV_64F; for tests and figures.

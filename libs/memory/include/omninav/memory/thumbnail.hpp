@@ -17,9 +17,4 @@ std::vector<std::uint8_t> make_thumbnail(const cv::Mat& panorama, int width_px);
 // none (the map was explored with thumbnail_width_px 0) or it cannot be decoded.
 cv::Mat decode_thumbnail(const std::vector<std::uint8_t>& png, const std::string& place_name);
 
-// `panorama` (1 or 3 channels) as a thumbnail of `size`: 3 channels, area-averaged, so that it
-// can be compared with a decoded thumbnail pixel for pixel. Throws InputError naming `name`
-// when it is not a panorama.
-cv::Mat as_thumbnail(const cv::Mat& panorama, cv::Size size, const std::string& name);
-
 }  // namespace omninav::memory
