@@ -101,9 +101,11 @@ class Demo {
     step("6. plan a route from the first place's image to the last's",
          {"route", map, "--from", start.source, "--to", goal.source, "--plot",
           (report / "route.png").string()});
-    step("7. drive there: grab a panorama, localise, turn by the compass, step, repeat",
-         {"navigate", map, "--start", start_pose, "--goal", goal.source, "--out",
-          (report / "navigation").string()});
+    step(
+        "7. drive there: grab a panorama, update the belief, turn towards the next place by its "
+        "image, step, repeat",
+        {"navigate", map, "--start", start_pose, "--goal", goal.source, "--out",
+         (report / "navigation").string()});
     step("8. and over seeded random start and goal poses",
          {"navigate", map, "--trials", std::to_string(options_.trials), "--seed",
           std::to_string(options_.seed), "--out", (report / "trials").string()});
