@@ -4,7 +4,6 @@
 
 #include <cmath>
 #include <iostream>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "grid_fixture.hpp"
