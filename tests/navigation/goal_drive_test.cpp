@@ -58,5 +58,38 @@ TEST_F(RoomNavigation, AGoalThatIsNoPlaceIsRefused) {
   EXPECT_THROW(GoalDrive(navigation, static_cast<int>(navigation.places.size())), UsageError);
 }
 
+TEST_F(RoomNavigation, TheRobotActsOnThePlaceItSeesEvenWhenDroppedLinksCutItOff) {
+  // The grid's first row as a corridor: links between its neighbours only, so that dropping
+  // the one link from its first place cuts that place off from the goal at the row's far end.
+  GoalNavigationSetup navigation = setup();
+  const double row_y = map().grid.front().pose.y_m;
+  const auto in_row = [&](int place) {
+    return std::abs(map().grid[place].pose.y_m - row_y) < 1e-9;
+  };
+  std::erase_if(navigation.links, [&](const MeasuredLink& link) {
+    return !in_row(link.places.first) || !in_row(link.places.second);
+  });
+  ASSERT_GE(navigation.links.size(), 3u);
+  int goal = 0;
+  for (std::size_t p = 0; p < map().grid.size(); ++p) {
+    if (in_row(static_cast<int>(p)) && map().grid[p].pose.x_m > map().grid[goal].pose.x_m) {
+      goal = static_cast<int>(p);
+    }
+  }
+  // A robot whose wheels spin: its odometry reports every command driven, its view is always
+  // the first place's. 40 views of 15 cm are the progress rule's three link lengths many times
+  // over: the link from the first place is dropped, again and again.
+  GoalDrive drive(navigation, goal);
+  for (int view = 0; view < 40 && !drive.finished(); ++view) {
+    const DriveCommand command = drive.step(map().grid[0].panorama);
+    // Acted on as the place it shows, never as a place the belief gives next to nothing
+    // because that one still has a route.
+    EXPECT_EQ(command.step.match->place, 0u) << "view " << view;
+    if (command.moves) drive.moved(command.distance_m);
+  }
+  // Dropped and restored, more than once.
+  EXPECT_GE(drive.result().replans, 2);
+}
+
 }  // namespace
 }  // namespace omninav::navigation

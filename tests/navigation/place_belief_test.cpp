@@ -107,7 +107,7 @@ TEST(PlaceBelief, RepeatedLookAlikeViewsDoNotOutweighTheMotion) {
   EXPECT_EQ(belief.most_likely(), 2);
 }
 
-TEST(PlaceBelief, ABlockedLinkNoLongerCarriesTheBelief) {
+TEST(PlaceBelief, ABlockedLinkNoLongerCarriesTheBeliefUntilRestored) {
   BeliefParams params;
   params.uniform_share = 0.0;
   PlaceBelief belief(3, corridor(3), 1.0, params);
@@ -116,6 +116,11 @@ TEST(PlaceBelief, ABlockedLinkNoLongerCarriesTheBelief) {
   belief.predict(std::vector<double>(3, 0.0), 0.3);
   EXPECT_EQ(belief.most_likely(), 0);
   EXPECT_NEAR(belief.neighbourhood_probability(0), belief.probability(0), 1e-12);
+  // Restored, the link carries the belief again: a whole link's length moves it all.
+  belief.restore_links();
+  belief.predict(std::vector<double>(3, 0.0), 0.3);
+  EXPECT_EQ(belief.most_likely(), 1);
+  EXPECT_GT(belief.neighbourhood_probability(0), belief.probability(0));
 }
 
 TEST(PlaceBelief, RefusesWhatItCannotUse) {

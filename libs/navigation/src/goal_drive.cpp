@@ -131,6 +131,7 @@ class GoalDrive::Run {
     // A robot that did not move sees what it saw: the same evidence again, not new evidence
     // (counted twice, a view's look-alike would win by repetition).
     if (step.index == 0 || driven_ > 0.0) belief_.update(dissimilarity_);
+    if (!plan_.reaches_goal(belief_.most_likely())) restore_links();
     const int place = acting_place();
     measure_headings(signature, place);
     const double in_place = in_place_[place];
@@ -250,6 +251,21 @@ class GoalDrive::Run {
     belief_.remove_link(a, b);
     plan_ = plan_to_goal(setup_.places, links_, plan_.goal);
     ++result_.replans;
+  }
+
+  // The belief's most probable place has no route to the goal: links dropped earlier, judged
+  // from a belief that has moved since, cut it off. They are restored and the plan made again:
+  // the robot acts on a place the belief holds, never on one it gives next to nothing because
+  // that one still has a route.
+  void restore_links() {
+    if (links_.size() == setup_.links.size()) return;
+    links_ = setup_.links;
+    belief_.restore_links();
+    plan_ = plan_to_goal(setup_.places, links_, plan_.goal);
+    ++result_.replans;
+    progress_place_ = -1;
+    progress_cost_ = std::numeric_limits<double>::infinity();
+    since_progress_m_ = 0.0;
   }
 
   // A link the robot cannot follow: it drove kUnfollowedLinks times the link's length (and a

@@ -38,13 +38,20 @@ PlaceBelief::PlaceBelief(std::size_t place_count, std::vector<MeasuredLink> link
   if (!(view_scale_ > 0.0) || !std::isfinite(view_scale_)) {
     throw UsageError("a belief's view scale must be finite and positive");
   }
-  for (std::size_t l = 0; l < links_.size(); ++l) {
-    const auto [a, b] = links_[l].places;
+  for (const MeasuredLink& link : links_) {
+    const auto [a, b] = link.places;
     if (a < 0 || b < 0 || static_cast<std::size_t>(std::max(a, b)) >= place_count) {
       throw UsageError("a link names a place beyond the map's " + std::to_string(place_count));
     }
-    links_of_[a].push_back(l);
-    links_of_[b].push_back(l);
+  }
+  index_links();
+}
+
+void PlaceBelief::index_links() {
+  for (std::vector<std::size_t>& own : links_of_) own.clear();
+  for (std::size_t l = 0; l < links_.size(); ++l) {
+    links_of_[links_[l].places.first].push_back(l);
+    links_of_[links_[l].places.second].push_back(l);
   }
 }
 
@@ -133,6 +140,10 @@ void PlaceBelief::remove_link(int a, int b) {
       return (x == a && y == b) || (x == b && y == a);
     });
   }
+}
+
+void PlaceBelief::restore_links() {
+  index_links();
 }
 
 }  // namespace omninav::navigation

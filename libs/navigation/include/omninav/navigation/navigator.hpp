@@ -98,8 +98,9 @@ struct NavigationResult {
   std::vector<NavigationStep> steps;
   double path_length_m = 0.0;  // distance the robot drove
   int jumps = 0;
-  int sidesteps = 0;     // moves turned aside after a block
-  int replans = 0;       // times links were dropped (blocked, not followed) and the plan made again
+  int sidesteps = 0;  // moves turned aside after a block
+  int replans = 0;    // times the plan was made again: a link dropped (blocked, not followed), or
+                      // the dropped links restored (they cut off the belief's place)
   int homing_steps = 0;  // steps taken towards the goal image after the belief reached its place
   int lost_events = 0;   // times the belief became spread (PlaceBelief::lost)
 };

@@ -67,8 +67,12 @@ class PlaceBelief {
   bool lost() const { return neighbourhood_probability(most_likely()) < params_.confident_share; }
   // Forgets the link between a and b (the robot found it blocked).
   void remove_link(int a, int b);
+  // Every link it was made with again.
+  void restore_links();
 
  private:
+  void index_links();
+
   std::vector<MeasuredLink> links_;
   std::vector<std::vector<std::size_t>> links_of_;  // each place's links (indices in links_)
   double view_scale_;
