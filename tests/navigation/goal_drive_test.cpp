@@ -58,6 +58,30 @@ TEST_F(RoomNavigation, AGoalThatIsNoPlaceIsRefused) {
   EXPECT_THROW(GoalDrive(navigation, static_cast<int>(navigation.places.size())), UsageError);
 }
 
+TEST_F(RoomNavigation, ARobotWhoseBeliefNeverSettlesStopsWhereTheGoalImageSaysTheGoalIs) {
+  // A belief never confident (all of it would have to lie on one place and its neighbours), as
+  // where views change within centimetres: the robot never homes by the belief, and stops only
+  // because the goal image seems near once it acts on the goal's place.
+  BeliefParams never_confident;
+  never_confident.confident_share = 1.0;
+  const GoalNavigationSetup navigation = goal_navigation_setup(
+      map().memory, map().localise, RouteParams{}, NavigatorParams{}, LinkParams{}, never_confident,
+      SteeringParams{{}, map().render.geometry});
+  const CameraPose start{2.55, 1.15, 1.0, deg_to_rad(150.0), 0.0, 0.0};
+  const CameraPose goal{2.3, 2.9, 1.0, deg_to_rad(-60.0), 0.0, 0.0};
+  GoalDrive drive(navigation, nearest_place(goal.x_m, goal.y_m),
+                  goal_homing(map().renderer->render(goal), navigation.homing));
+  sim::VirtualRobot robot(map().world, start, sim::RobotParams{});
+  while (!drive.finished()) {
+    const DriveCommand command = drive.step(map().renderer->render(robot.pose()));
+    if (!command.moves) break;
+    drive.moved(robot.move(command.turn_rad, command.distance_m));
+  }
+  ASSERT_TRUE(drive.result().reached) << drive.result().steps.size() << " views";
+  EXPECT_EQ(drive.result().homing_steps, 0);
+  EXPECT_LT(std::hypot(robot.pose().x_m - goal.x_m, robot.pose().y_m - goal.y_m), 0.3);
+}
+
 TEST_F(RoomNavigation, TheRobotActsOnThePlaceItSeesEvenWhenDroppedLinksCutItOff) {
   // The grid's first row as a corridor: links between its neighbours only, so that dropping
   // the one link from its first place cuts that place off from the goal at the row's far end.

@@ -195,25 +195,35 @@ class GoalDrive::Run {
     return best;
   }
 
-  // Turns towards the plan's next place (aside when blocked) and steps.
+  // Turns towards the plan's next place (aside when blocked) and steps. At the goal's place,
+  // where the goal image says the goal lies (the goal's place has no direction of its own); and
+  // there the robot stops where homing stops, once the goal seems within homing_stop_m. Where
+  // views change within centimetres (grass seen from 10 cm) the belief may never settle on the
+  // goal's place, whose image was taken up to half a cell's diagonal from the goal, while the
+  // goal image itself says the robot stands at the goal.
   void follow_route(DriveCommand& command, int place, double in_place, const cv::Mat& view) {
-    const double turn_rad =
-        wrap_angle(route_direction(place, in_place, view) + sidestep_turn(sidestep_));
+    double direction_rad = 0.0;
+    if (place == plan_.goal && homing_) {
+      const GoalCue cue = homing_(view);
+      if (cue.valid && cue.distance_m <= params_.homing_stop_m) {
+        arrive(command);
+        return;
+      }
+      direction_rad = cue.valid ? cue.bearing_rad : 0.0;
+    } else {
+      direction_rad = route_direction(place, in_place, view);
+    }
+    const double turn_rad = wrap_angle(direction_rad + sidestep_turn(sidestep_));
     check_progress(place);
     command_motion(command, turn_rad, params_.step_m);
     waiting_ = Waiting{NavigationPhase::kFollowingRoute, place, params_.step_m, 0.0};
   }
 
-  // Where the route leads, counter-clockwise from the robot's front: towards the plan's next
-  // place by that place's image (place_steering.hpp), else to the plan's direction at `place`
-  // (its heading relative to the view: `in_place`); at the goal's place, where the goal image
-  // says the goal lies (the goal's place has no direction of its own); straight on from a place
-  // without a route.
+  // Where the route leads from `place`, counter-clockwise from the robot's front: towards the
+  // plan's next place by that place's image (place_steering.hpp), else to the plan's direction
+  // at `place` (its heading relative to the view: `in_place`); straight on from a place without
+  // a route.
   double route_direction(int place, double in_place, const cv::Mat& view) {
-    if (place == plan_.goal && homing_) {
-      const GoalCue cue = homing_(view);
-      return cue.valid ? cue.bearing_rad : 0.0;
-    }
     if (!plan_.reaches_goal(place)) return 0.0;
     if (place != plan_.goal) {
       if (const std::optional<double> next = steering_.direction_to(plan_.next[place], view)) {
