@@ -5,7 +5,9 @@
 
 #include "odometry_step.hpp"
 #include "omninav/core/angles.hpp"
+#include "omninav/core/statistics.hpp"
 #include "omninav/signature/phase_heading.hpp"
+#include "two_way_fit.hpp"
 
 namespace omninav::lattice::detail {
 
@@ -19,6 +21,68 @@ bool driven_with_odometry(const memory::VisualMemory& memory) {
   return false;
 }
 
+namespace {
+
+// How far apart a revisit's places are, from the phases. The motion fitted between two views
+// measures their parallax ρ = d / r, the baseline d over the depth r of the scene (signature/
+// motion.hpp); the travelled steps at either place see the same scene over a baseline the
+// odometry measured, and so give its depth, r = d / ρ. A revisit's length is its parallax times
+// the median depth of the steps into and out of its two places.
+class RevisitLength {
+ public:
+  RevisitLength(const memory::VisualMemory& memory, const std::vector<double>& headings_rad,
+                double spacing_m)
+      : memory_(memory),
+        headings_(headings_rad),
+        spacing_m_(spacing_m),
+        next_(memory.place_count(), -1),
+        previous_(memory.place_count(), -1),
+        depth_after_(memory.place_count()) {
+    for (const memory::VisualMemory::EdgeRef& edge : memory.edges()) {
+      if (edge.edge->kind != memory::EdgeKind::kSequence) continue;
+      next_[edge.from] = static_cast<int>(edge.to);
+      previous_[edge.to] = static_cast<int>(edge.from);
+    }
+  }
+
+  // None when no step at either place has both odometry and a fit.
+  std::optional<double> length_m(const MeasuredLink& revisit) {
+    std::vector<double> depths;
+    for (const int place : {revisit.places.first, revisit.places.second}) {
+      for (const int step_from : {previous_[place], next_[place] >= 0 ? place : -1}) {
+        if (step_from < 0) continue;
+        if (const std::optional<double> depth = depth_after(step_from)) depths.push_back(*depth);
+      }
+    }
+    if (depths.empty()) return std::nullopt;
+    return revisit.parallax_rad * median(std::move(depths));
+  }
+
+ private:
+  // The depth seen by the step from `place` to the next place of its stream, fitted once.
+  std::optional<double> depth_after(int place) {
+    std::optional<std::optional<double>>& depth = depth_after_[place];
+    if (depth) return *depth;
+    depth.emplace();
+    const int next = next_[place];
+    const std::optional<OdometryStep> step = odometry_step(memory_, place, next);
+    // A step on the spot has no baseline; its parallax is noise.
+    if (!step || step->translation_m.norm() < 0.1 * spacing_m_) return *depth;
+    const std::optional<TwoWayFit> fit =
+        fit_two_way(memory_, place, next, signed_difference(headings_[next], headings_[place]));
+    if (fit && fit->parallax_rad > 0.0) *depth = step->translation_m.norm() / fit->parallax_rad;
+    return *depth;
+  }
+
+  const memory::VisualMemory& memory_;
+  const std::vector<double>& headings_;
+  double spacing_m_;
+  std::vector<int> next_, previous_;
+  std::vector<std::optional<std::optional<double>>> depth_after_;  // outer: fitted yet
+};
+
+}  // namespace
+
 std::vector<RelativePoseMeasurement> link_measurements(const memory::VisualMemory& memory,
                                                        const std::vector<MeasuredLink>& links,
                                                        const std::vector<double>& headings_rad,
@@ -26,6 +90,7 @@ std::vector<RelativePoseMeasurement> link_measurements(const memory::VisualMemor
                                                        const OrganiseParams& params) {
   const double visual_turn = deg_to_rad(params.driven.visual_turn_stddev_deg);
   const double noise = params.driven.odometry_noise;
+  RevisitLength revisit_length(memory, headings_rad, spacing_m);
   std::vector<RelativePoseMeasurement> measurements;
   for (const MeasuredLink& link : links) {
     const auto [a, b] = link.places;
@@ -45,7 +110,11 @@ std::vector<RelativePoseMeasurement> link_measurements(const memory::VisualMemor
       m.turn_stddev_rad = stddev.turn_rad;
     } else if (link.kind == LinkKind::kRevisit) {
       // Two stretches seen again: the places lie within about a spacing of each other, a
-      // baseline too short for the phases' direction to say much; their turn from the phases.
+      // baseline too short for the phases' direction to say much; their length from the
+      // parallax, their turn from the phases.
+      if (const std::optional<double> length = revisit_length.length_m(link)) {
+        m.translation_m = *length * Eigen::Vector2d(std::cos(direction), std::sin(direction));
+      }
       m.along_stddev_m = m.across_stddev_m = spacing_m;
       m.turn_rad = signature::relative_heading(memory.place(a).signature, memory.place(b).signature)
                        .turn_rad;

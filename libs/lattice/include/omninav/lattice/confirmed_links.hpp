@@ -50,6 +50,9 @@ struct MeasuredLink {
   double direction_at_first_rad = 0.0;   // from a towards b, relative to a's stored heading
   double direction_at_second_rad = 0.0;  // from b towards a, relative to b's stored heading
   LinkKind kind = LinkKind::kTravelled;
+  // A revisit's parallax: the baseline over the depth of the scene, ρ = d / r, of the motion
+  // fitted between its places (TwoWayFit, the two ways' mean); 0 for the other kinds.
+  double parallax_rad = 0.0;
 };
 
 struct LinkParams {
