@@ -6,8 +6,8 @@
 #include "odometry_step.hpp"
 #include "omninav/core/angles.hpp"
 #include "omninav/core/statistics.hpp"
+#include "omninav/signature/motion.hpp"
 #include "omninav/signature/phase_heading.hpp"
-#include "two_way_fit.hpp"
 
 namespace omninav::lattice::detail {
 
@@ -59,7 +59,10 @@ class RevisitLength {
   }
 
  private:
-  // The depth seen by the step from `place` to the next place of its stream, fitted once.
+  // The depth seen by the step from `place` to the next place of its stream, fitted once and
+  // one way: the depth needs only the parallax, which one fit gives at half the cost (a two-way
+  // fit's agreement checks a direction; on the benchmark's tours the lattices came out the same
+  // within 0.01 spacings).
   std::optional<double> depth_after(int place) {
     std::optional<std::optional<double>>& depth = depth_after_[place];
     if (depth) return *depth;
@@ -68,9 +71,10 @@ class RevisitLength {
     const std::optional<OdometryStep> step = odometry_step(memory_, place, next);
     // A step on the spot has no baseline; its parallax is noise.
     if (!step || step->translation_m.norm() < 0.1 * spacing_m_) return *depth;
-    const std::optional<TwoWayFit> fit =
-        fit_two_way(memory_, place, next, signed_difference(headings_[next], headings_[place]));
-    if (fit && fit->parallax_rad > 0.0) *depth = step->translation_m.norm() / fit->parallax_rad;
+    const signature::MotionEstimate fit =
+        signature::estimate_motion(memory_.place(place).signature, memory_.place(next).signature,
+                                   -1, signed_difference(headings_[next], headings_[place]));
+    if (fit.valid && fit.parallax_rad > 0.0) *depth = step->translation_m.norm() / fit.parallax_rad;
     return *depth;
   }
 
