@@ -17,9 +17,10 @@
 //     consecutive places (sequence matching, Milford & Wyeth 2012, SeqSLAM: forwards or
 //     backwards along the earlier stretch) about as well as consecutive places match each
 //     other, and the motion fitted between the two places agrees from both ends. Direction from
-//     that fit, length one spacing. The runs compared are those of each view's most similar
-//     places (an index, similar_places.hpp), not of every place: Fast-SeqSLAM's candidates
-//     (Siam & Zhang 2017), so the search grows with the places, not with their pairs.
+//     that fit, length one spacing (the pose graph of a map made by driving measures it from the
+//     fit's parallax, MeasuredLink::parallax_rad). The runs compared are those of each view's
+//     most similar places (an index, similar_places.hpp), not of every place: Fast-SeqSLAM's
+//     candidates (Siam & Zhang 2017), so the search grows with the places, not with their pairs.
 
 #include <optional>
 #include <string>
