@@ -443,7 +443,7 @@ memory::VisualMemory bench_tour() {
 }
 
 // A revisit's length from its parallax, against the truth: nearer the distance between its
-// places than the one spacing a revisit was taken to be, and the lattice with it.
+// places than one spacing is, and the lattice with it.
 TEST(Organise, ARevisitIsAsLongAsItsParallaxSays) {
   memory::VisualMemory map = bench_tour();
   const OrganiseResult result = organise(map, {});
