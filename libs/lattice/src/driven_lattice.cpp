@@ -2,12 +2,14 @@
 
 #include <cmath>
 #include <optional>
+#include <utility>
 
 #include "odometry_step.hpp"
 #include "omninav/core/angles.hpp"
 #include "omninav/core/statistics.hpp"
 #include "omninav/signature/motion.hpp"
 #include "omninav/signature/phase_heading.hpp"
+#include "two_way_fit.hpp"
 
 namespace omninav::lattice::detail {
 
@@ -46,16 +48,16 @@ class RevisitLength {
   }
 
   // None when no step at either place has both odometry and a fit.
-  std::optional<double> length_m(const MeasuredLink& revisit) {
+  std::optional<double> length_m(std::pair<int, int> places, double parallax_rad) {
     std::vector<double> depths;
-    for (const int place : {revisit.places.first, revisit.places.second}) {
+    for (const int place : {places.first, places.second}) {
       for (const int step_from : {previous_[place], next_[place] >= 0 ? place : -1}) {
         if (step_from < 0) continue;
         if (const std::optional<double> depth = depth_after(step_from)) depths.push_back(*depth);
       }
     }
     if (depths.empty()) return std::nullopt;
-    return revisit.parallax_rad * median(std::move(depths));
+    return parallax_rad * median(std::move(depths));
   }
 
  private:
@@ -84,6 +86,27 @@ class RevisitLength {
   std::vector<int> next_, previous_;
   std::vector<std::optional<std::optional<double>>> depth_after_;  // outer: fitted yet
 };
+
+// A revisit's parallax and direction (at its first place) from the motion fitted at the turn the
+// images bear out. The confirmed links fit it holding the turn at the stored headings'; where
+// those miss the phases' turn by more than 3 standard deviations of a turn from the images, it is
+// fitted again at the phases' turn, and the fit with the smaller residual is kept. A fit held at a
+// wrong turn explains the difference by translation: on the evaluation suite's house maps, whose
+// compass headings miss by up to 100°, parallaxes of up to 3 rad between places half a spacing
+// apart, lengths of 10-17 spacings.
+std::pair<double, double> revisit_parallax(const memory::VisualMemory& memory,
+                                           const MeasuredLink& revisit, double held_turn_rad,
+                                           double phases_turn_rad, double turn_stddev_rad) {
+  const std::pair<double, double> held{revisit.parallax_rad, revisit.direction_at_first_rad};
+  if (std::abs(signed_difference(held_turn_rad, phases_turn_rad)) <= 3.0 * turn_stddev_rad) {
+    return held;
+  }
+  const auto [a, b] = revisit.places;
+  const std::optional<TwoWayFit> at_held = fit_two_way(memory, a, b, held_turn_rad);
+  const std::optional<TwoWayFit> at_phases = fit_two_way(memory, a, b, phases_turn_rad);
+  if (!at_phases || (at_held && at_held->residual <= at_phases->residual)) return held;
+  return {at_phases->parallax_rad, at_phases->direction_at_a_rad};
+}
 
 }  // namespace
 
@@ -115,13 +138,18 @@ std::vector<RelativePoseMeasurement> link_measurements(const memory::VisualMemor
     } else if (link.kind == LinkKind::kRevisit) {
       // Two stretches seen again: the places lie within about a spacing of each other, a
       // baseline too short for the phases' direction to say much; their length from the
-      // parallax, their turn from the phases.
-      if (const std::optional<double> length = revisit_length.length_m(link)) {
-        m.translation_m = *length * Eigen::Vector2d(std::cos(direction), std::sin(direction));
-      }
-      m.along_stddev_m = m.across_stddev_m = spacing_m;
+      // parallax, their turn from the phases (its direction and parallax from the motion fitted
+      // at the turn the images bear out, revisit_parallax).
+      const double held_turn = m.turn_rad;
       m.turn_rad = signature::relative_heading(memory.place(a).signature, memory.place(b).signature)
                        .turn_rad;
+      const auto [parallax, fitted_direction] =
+          revisit_parallax(memory, link, held_turn, m.turn_rad, visual_turn);
+      if (const std::optional<double> length = revisit_length.length_m(link.places, parallax)) {
+        m.translation_m =
+            *length * Eigen::Vector2d(std::cos(fitted_direction), std::sin(fitted_direction));
+      }
+      m.along_stddev_m = m.across_stddev_m = spacing_m;
       m.turn_stddev_rad = visual_turn;
       m.switchable = true;
     } else {
