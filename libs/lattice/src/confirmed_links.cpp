@@ -369,6 +369,7 @@ std::vector<MeasuredLink> revisit_links(
       link.length_m = spacing_m;
       link.direction_at_first_rad = fit->direction_at_a_rad;
       link.direction_at_second_rad = fit->direction_at_b_rad;
+      link.parallax_rad = fit->parallax_rad;
       links.push_back(link);
       ++kept;
     }

@@ -17,9 +17,10 @@
 //     consecutive places (sequence matching, Milford & Wyeth 2012, SeqSLAM: forwards or
 //     backwards along the earlier stretch) about as well as consecutive places match each
 //     other, and the motion fitted between the two places agrees from both ends. Direction from
-//     that fit, length one spacing. The runs compared are those of each view's most similar
-//     places (an index, similar_places.hpp), not of every place: Fast-SeqSLAM's candidates
-//     (Siam & Zhang 2017), so the search grows with the places, not with their pairs.
+//     that fit, length one spacing (the pose graph of a map made by driving measures it from the
+//     fit's parallax, MeasuredLink::parallax_rad). The runs compared are those of each view's
+//     most similar places (an index, similar_places.hpp), not of every place: Fast-SeqSLAM's
+//     candidates (Siam & Zhang 2017), so the search grows with the places, not with their pairs.
 
 #include <optional>
 #include <string>
@@ -50,6 +51,9 @@ struct MeasuredLink {
   double direction_at_first_rad = 0.0;   // from a towards b, relative to a's stored heading
   double direction_at_second_rad = 0.0;  // from b towards a, relative to b's stored heading
   LinkKind kind = LinkKind::kTravelled;
+  // A revisit's parallax: the baseline over the depth of the scene, ρ = d / r, of the motion
+  // fitted between its places (TwoWayFit, the two ways' mean); 0 for the other kinds.
+  double parallax_rad = 0.0;
 };
 
 struct LinkParams {
