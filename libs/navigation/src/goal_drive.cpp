@@ -205,7 +205,7 @@ class GoalDrive::Run {
     double direction_rad = 0.0;
     if (place == plan_.goal && homing_) {
       const GoalCue cue = homing_(view);
-      if (cue.valid && cue.distance_m <= params_.homing_stop_m) {
+      if (goal_seems_near(cue)) {
         arrive(command);
         return;
       }
@@ -300,11 +300,16 @@ class GoalDrive::Run {
     since_progress_m_ = 0.0;
   }
 
+  // Where homing stops, and following the route at the goal's place too.
+  bool goal_seems_near(const GoalCue& cue) const {
+    return cue.valid && cue.distance_m <= params_.homing_stop_m;
+  }
+
   // Homing on the goal image (homing.hpp): step towards it while it seems nearer than at the
   // last view and farther than homing_stop_m.
   void home(DriveCommand& command, const cv::Mat& view) {
     const GoalCue cue = homing_(view);
-    if (cue.distance_m <= params_.homing_stop_m || cue.distance_m >= homing_from_ || !cue.valid ||
+    if (goal_seems_near(cue) || !cue.valid || cue.distance_m >= homing_from_ ||
         result_.homing_steps >= params_.homing_max_steps) {
       arrive(command);
       return;
