@@ -273,8 +273,13 @@ class GoalDrive::Run {
     belief_.restore_links();
     plan_ = plan_to_goal(setup_.places, links_, plan_.goal);
     ++result_.replans;
-    progress_place_ = -1;
-    progress_cost_ = std::numeric_limits<double>::infinity();
+    restart_progress(-1);
+  }
+
+  // Progress is counted afresh from `place` (-1: from no place, the next one acted on).
+  void restart_progress(int place) {
+    progress_place_ = place;
+    progress_cost_ = place >= 0 ? plan_.cost_m[place] : std::numeric_limits<double>::infinity();
     since_progress_m_ = 0.0;
   }
 
@@ -285,9 +290,7 @@ class GoalDrive::Run {
   void check_progress(int place) {
     const double cost = plan_.cost_m[place];
     if (cost < progress_cost_ - 1e-9) {
-      progress_cost_ = cost;
-      progress_place_ = place;
-      since_progress_m_ = 0.0;
+      restart_progress(place);
       return;
     }
     if (progress_place_ < 0 || plan_.next[progress_place_] < 0) return;
@@ -295,9 +298,7 @@ class GoalDrive::Run {
     const double length = plan_.cost_m[progress_place_] - plan_.cost_m[next];
     if (since_progress_m_ <= kUnfollowedLinks * length + params_.step_m) return;
     drop_link(progress_place_, next);
-    progress_cost_ = plan_.cost_m[place];
-    progress_place_ = place;
-    since_progress_m_ = 0.0;
+    restart_progress(place);
   }
 
   // Where homing stops, and following the route at the goal's place too.
