@@ -101,6 +101,7 @@ class MemoryConfig:
 
 class RouteParams:
     match_dissimilarity_ratio: float
+    goal_shortlist_ratio: float
 
 class LinkParams:
     grid_agreement_ratio: float

@@ -168,7 +168,8 @@ void bind_memory_config(py::module_& m) {
 void bind_navigation_config(py::module_& m) {
   using navigation::RouteParams;
   py::class_<RouteParams>(m, "RouteParams", "navigation.yaml's route section.")
-      .def_readwrite("match_dissimilarity_ratio", &RouteParams::match_dissimilarity_ratio);
+      .def_readwrite("match_dissimilarity_ratio", &RouteParams::match_dissimilarity_ratio)
+      .def_readwrite("goal_shortlist_ratio", &RouteParams::goal_shortlist_ratio);
 
   using navigation::LinkParams;
   py::class_<LinkParams>(

@@ -38,8 +38,9 @@ TEST_F(RoomNavigation, AShortNavigationInTheRoomReachesItsGoal) {
   RenderedWorld world(robot, *map().renderer);
   const GoalRun run =
       navigation::navigate_to_image(world, map().renderer->render(goal), "goal", setup());
-  // The goal image is recognised as the place nearest the goal pose.
-  EXPECT_EQ(static_cast<int>(run.goal.place), nearest_place(goal.x_m, goal.y_m));
+  // The goal image is recognised as a place it was taken beside (recognise_goal): not the
+  // nearest here (0.14 m), the one min-warping matches best (0.22 m); homing covers the rest.
+  EXPECT_LT(place_distance_m(run.goal.place, goal.x_m, goal.y_m), kRoomGridSpacing_m);
   ASSERT_TRUE(run.result.reached) << run.result.steps.size() << " steps";
   // Stopped within one grid spacing of the goal pose (the robot stops once it recognises the
   // goal's place, which lies within half a cell's diagonal of the goal).

@@ -145,7 +145,10 @@ TEST_F(LiveSessionTest, ItsCommandsDriveARenderedRobotToTheGoal) {
   const CameraPose goal{2.3, 2.9, 1.0, deg_to_rad(-60.0), 0.0, 0.0};
   EXPECT_FALSE(session.push({map().renderer->render(start), 1.0, start.on_floor()})->command);
   const memory::PlaceMatch goal_place = session.navigate_to(map().renderer->render(goal), "goal");
-  EXPECT_EQ(static_cast<int>(goal_place.place), nearest_place(goal.x_m, goal.y_m));
+  // The goal's place is one the goal image was taken beside (recognise_goal): here the goal lies
+  // 0.14 m from its nearest place and 0.22 m from the one min-warping matches best. Homing on
+  // the goal image covers the rest.
+  EXPECT_LT(place_distance_m(goal_place.place, goal.x_m, goal.y_m), kRoomGridSpacing_m);
   sim::VirtualRobot robot(map().world, start, sim::RobotParams{});
   std::optional<LiveCommand> command;
   double path_m = 0.0;

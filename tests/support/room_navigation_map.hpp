@@ -102,14 +102,18 @@ class RoomNavigation : public ::testing::Test {
         navigation::LinkParams{}, navigation::BeliefParams{},
         navigation::SteeringParams{{}, map().render.geometry});
   }
+  // How far place `place` lies from (x, y) by truth.
+  static double place_distance_m(std::size_t place, double x_m, double y_m) {
+    const CameraPose& pose = map().grid[place].pose;
+    return std::hypot(pose.x_m - x_m, pose.y_m - y_m);
+  }
   // The place nearest to (x, y) by truth.
   static int nearest_place(double x_m, double y_m) {
     int best = 0;
     for (std::size_t i = 0; i < map().grid.size(); ++i) {
-      const CameraPose& pose = map().grid[i].pose;
-      const CameraPose& b = map().grid[best].pose;
-      if (std::hypot(pose.x_m - x_m, pose.y_m - y_m) < std::hypot(b.x_m - x_m, b.y_m - y_m))
+      if (place_distance_m(i, x_m, y_m) < place_distance_m(best, x_m, y_m)) {
         best = static_cast<int>(i);
+      }
     }
     return best;
   }

@@ -8,7 +8,6 @@
 
 #include "omninav/core/angles.hpp"
 #include "omninav/core/errors.hpp"
-#include "omninav/signature/dissimilarity.hpp"
 #include "omninav/signature/phase_heading.hpp"
 
 namespace omninav::navigation {
@@ -122,11 +121,7 @@ class GoalDrive::Run {
   void look(const cv::Mat& view, NavigationStep& step) {
     step.index = views_++;
     const signature::Signature signature = setup_.signature_of(view);
-    for (std::size_t p = 0; p < dissimilarity_.size(); ++p) {
-      dissimilarity_[p] =
-          signature::dissimilarity(signature, setup_.signatures[p], -1, setup_.weights) /
-          static_cast<double>(signature.size());
-    }
+    place_dissimilarities(setup_, signature, dissimilarity_);
     if (step.index > 0) belief_.predict(motion_, driven_);
     // A robot that did not move sees what it saw: the same evidence again, not new evidence
     // (counted twice, a view's look-alike would win by repetition).

@@ -1,11 +1,59 @@
 #include "omninav/navigation/goal_navigation.hpp"
 
+#include <algorithm>
+#include <optional>
 #include <vector>
 
+#include "omninav/core/angles.hpp"
 #include "omninav/navigation/goal_drive.hpp"
 #include "omninav/navigation/memory_places.hpp"
+#include "omninav/signature/phase_heading.hpp"
 
 namespace omninav::navigation {
+
+void place_dissimilarities(const GoalNavigationSetup& setup, const signature::Signature& view,
+                           std::span<double> out) {
+  for (std::size_t p = 0; p < setup.signatures.size(); ++p) {
+    out[p] = signature::dissimilarity(view, setup.signatures[p], -1, setup.weights) /
+             static_cast<double>(view.size());
+  }
+}
+
+memory::PlaceMatch recognise_goal(const GoalNavigationSetup& setup, const cv::Mat& goal_image,
+                                  const std::string& what) {
+  match_image(setup.localise, goal_image, setup.match_limit, what);
+  const signature::Signature goal = setup.signature_of(goal_image);
+  std::vector<double> dissimilarity(setup.signatures.size());
+  place_dissimilarities(setup, goal, dissimilarity);
+  const auto best = std::min_element(dissimilarity.begin(), dissimilarity.end());
+  int place = static_cast<int>(best - dissimilarity.begin());
+  PlaceSteering warping(setup.snapshots);
+  if (const std::optional<compass::MinWarpingResult> best_match =
+          warping.match(place, goal_image, what)) {
+    double least_cost = best_match->cost;
+    const double shortlist = *best + setup.goal_shortlist_ratio * setup.link_dissimilarity;
+    for (std::size_t p = 0; p < dissimilarity.size(); ++p) {
+      if (static_cast<int>(p) == place || dissimilarity[p] > shortlist) continue;
+      const std::optional<compass::MinWarpingResult> match =
+          warping.match(static_cast<int>(p), goal_image, what);
+      if (match && match->cost < least_cost) {
+        least_cost = match->cost;
+        place = static_cast<int>(p);
+      }
+    }
+  }
+  memory::PlaceMatch match;
+  match.place = static_cast<memory::PlaceIndex>(place);
+  match.dissimilarity_per_value = dissimilarity[place];
+  match.dissimilarity = dissimilarity[place] * static_cast<double>(goal.size());
+  match.similarity = signature::rescale_similarities(dissimilarity)[place];
+  const signature::PhaseHeading heading =
+      signature::relative_heading(setup.signatures[place], goal);
+  match.relative_heading_rad = heading.turn_rad;
+  match.heading_confidence = heading.confidence;
+  match.heading_rad = wrap_angle(setup.places[place].heading_rad + heading.turn_rad);
+  return match;
+}
 
 NavigationResult navigate(NavigationWorld& world, const GoalNavigationSetup& setup, int goal,
                           const GoalHoming& homing) {
@@ -24,7 +72,7 @@ NavigationResult navigate(NavigationWorld& world, const GoalNavigationSetup& set
 GoalRun navigate_to_image(NavigationWorld& world, const cv::Mat& goal_image,
                           const std::string& what, const GoalNavigationSetup& setup) {
   GoalRun run;
-  run.goal = match_image(setup.localise, goal_image, setup.match_limit, what);
+  run.goal = recognise_goal(setup, goal_image, what);
   const int goal = static_cast<int>(run.goal.place);
   run.plan = plan_to_goal(setup.places, setup.links, goal);
   run.result = navigate(world, setup, goal, goal_homing(goal_image, setup.homing));

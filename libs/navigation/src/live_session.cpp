@@ -64,8 +64,8 @@ LiveSession::LiveSession(LiveSessionParams params, std::optional<std::filesystem
     return;
   }
   try {
-    // The localiser is goal_navigation_setup's for goal images; the belief reads the
-    // signatures, the links and their median.
+    // The localiser, for goal images, is made when the session first navigates; the belief
+    // reads the signatures, the links and their median.
     setup_ = goal_navigation_setup(*memory_, {}, params_.route, params_.navigator, params_.links,
                                    params_.belief, params_.steering);
   } catch (const UsageError& error) {  // no lattice, a place without a heading
@@ -150,10 +150,7 @@ std::optional<LivePlace> LiveSession::recognise(const cv::Mat& panorama,
                                                 const std::optional<Pose2>& odometry) {
   if (!belief_) return std::nullopt;
   const signature::Signature view = setup_->signature_of(panorama);
-  for (std::size_t p = 0; p < dissimilarity_.size(); ++p) {
-    dissimilarity_[p] = signature::dissimilarity(view, setup_->signatures[p], -1, setup_->weights) /
-                        static_cast<double>(view.size());
-  }
+  place_dissimilarities(*setup_, view, dissimilarity_);
   // The motion since the last frame, seen from each place: its direction relative to the robot's
   // heading then (odometry), plus that frame's heading relative to the place (phases).
   double driven_m = 0.0;
@@ -190,9 +187,9 @@ memory::PlaceMatch LiveSession::navigate_to(const cv::Mat& goal_image, const std
   if (!localiser_) {
     extractor_ = std::make_unique<signature::SignatureExtractor>(memory_->parameters().signature);
     localiser_ = std::make_unique<memory::Localiser>(*memory_, params_.memory.localisation);
+    setup_->localise = memory_localiser(*localiser_, *extractor_);
   }
-  const memory::PlaceMatch goal = match_image(memory_localiser(*localiser_, *extractor_),
-                                              goal_image, setup_->match_limit, what);
+  const memory::PlaceMatch goal = recognise_goal(*setup_, goal_image, what);
   drive_ = std::make_unique<GoalDrive>(*setup_, static_cast<int>(goal.place),
                                        goal_homing(goal_image, setup_->homing));
   under_way_.reset();

@@ -138,6 +138,7 @@ GoalNavigationSetup goal_navigation_setup(const memory::VisualMemory& memory,
   setup.places = places_from_memory(memory);
   setup.localise = std::move(localise);
   setup.match_limit = match_limit(memory, route);
+  setup.goal_shortlist_ratio = route.goal_shortlist_ratio;
   setup.homing = homing_scale(memory, setup.places);
   setup.navigator = navigator;
   // Homing's distances from the map's spacing: the metres a spacing of this map stands for.

@@ -11,6 +11,13 @@ PlaceSteering::PlaceSteering(std::shared_ptr<const PlaceSnapshots> snapshots)
     : snapshots_(std::move(snapshots)) {}
 
 std::optional<double> PlaceSteering::direction_to(int place, const cv::Mat& view) {
+  const std::optional<compass::MinWarpingResult> result = match(place, view, "the robot's view");
+  if (!result) return std::nullopt;
+  return result->home_rad;
+}
+
+std::optional<compass::MinWarpingResult> PlaceSteering::match(int place, const cv::Mat& view,
+                                                              const std::string& what) {
   if (!snapshots_ || !snapshots_->warping || place < 0 ||
       static_cast<std::size_t>(place) >= snapshots_->thumbnails_png.size() ||
       snapshots_->thumbnails_png[place].empty()) {
@@ -26,10 +33,9 @@ std::optional<double> PlaceSteering::direction_to(int place, const cv::Mat& view
     if (snapshot.cols < warping.params().search_width_px) return std::nullopt;
     prepared = prepared_.emplace(place, warping.prepare(snapshot, name)).first;
   }
-  const compass::MinWarpingResult result =
-      warping.estimate_resized(prepared->second, view, "the robot's view");
+  compass::MinWarpingResult result = warping.estimate_resized(prepared->second, view, what);
   if (result.featureless) return std::nullopt;
-  return result.home_rad;
+  return result;
 }
 
 }  // namespace omninav::navigation

@@ -30,10 +30,12 @@ void require_place(int place, std::size_t count, const char* what) {
 
 void RouteParams::check() const {
   check_range("route.match_dissimilarity_ratio", match_dissimilarity_ratio, 0.1, 100.0);
+  check_range("route.goal_shortlist_ratio", goal_shortlist_ratio, 0.0, 10.0);
 }
 
 void load_route_params(const ConfigReader& section, RouteParams& params) {
   section.read("match_dissimilarity_ratio", params.match_dissimilarity_ratio);
+  section.read("goal_shortlist_ratio", params.goal_shortlist_ratio);
   check_loaded(section.source_name(), [&] { params.check(); });
 }
 

@@ -10,6 +10,7 @@
 #include <memory>
 #include <opencv2/core.hpp>
 #include <optional>
+#include <string>
 #include <unordered_map>
 #include <vector>
 
@@ -44,6 +45,10 @@ class PlaceSteering {
   // min-warping's search, or the view or the thumbnail is featureless. Throws InputError when
   // the view is not a panorama.
   std::optional<double> direction_to(int place, const cv::Mat& view);
+  // Min-warping from `place`'s thumbnail to `view` (named `what` in messages): its cost tells how
+  // well the two match. None in the same cases as direction_to.
+  std::optional<compass::MinWarpingResult> match(int place, const cv::Mat& view,
+                                                 const std::string& what);
 
  private:
   std::shared_ptr<const PlaceSnapshots> snapshots_;

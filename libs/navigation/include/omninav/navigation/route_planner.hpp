@@ -26,6 +26,14 @@ struct RouteParams {
   // similarity cannot tell: it rescales so that the best place always scores 1000.
   // Chosen across the zoo leaving one family out (config/navigation.yaml).
   double match_dissimilarity_ratio = 1.5;
+  // The goal image's place, coarse to fine (recognise_goal, goal_navigation.hpp): the places
+  // whose dissimilarity to the goal image is within this many times the map's median link
+  // dissimilarity of the least are compared with it by min-warping, and the best match is the
+  // goal's place. A look-alike a few centimetres or a desk row away differs from the goal image
+  // by a fraction of a link; the Fourier signature's magnitudes cannot tell them apart, the
+  // whole image can. 0: the signature's best place alone. Chosen across the zoo leaving one
+  // family out (config/navigation.yaml).
+  double goal_shortlist_ratio = 0.2;
 
   // The range of navigation.yaml's route section. Throws UsageError naming the key
   // (core/param_check.hpp); the loader and match_limit (memory_places.hpp) call it.
