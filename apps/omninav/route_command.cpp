@@ -89,7 +89,7 @@ void add_route_command(CLI::App& app, const GlobalOptions& global) {
       "route",
       "Plan the way from the current image to a goal image over an organised map "
       "(Menegatti et al. 2004, §3.5): localise both, grow the search tree from the goal's "
-      "place over the lattice neighbours (Boost.Graph's Dijkstra), give every place its "
+      "place over the map's confirmed links (Boost.Graph's Dijkstra), give every place its "
       "direction towards the goal relative to the place's stored heading, and print the route "
       "from the current place: its places, lattice positions, the direction to take at each, "
       "and the turn from the robot's heading now. Draws the lattice with every place's "

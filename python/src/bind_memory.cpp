@@ -207,7 +207,7 @@ void bind_localisation(py::module_& m) {
 void bind_route(py::module_& m) {
   using navigation::RoutePlan;
   py::class_<RoutePlan>(m, "RoutePlan",
-                        "Directions from every place to a goal over the lattice neighbours "
+                        "Directions from every place to a goal over the map's confirmed links "
                         "(Menegatti et al. 2004, §3.5).")
       .def_readonly("goal", &RoutePlan::goal)
       .def_readonly("next", &RoutePlan::next, "The place to go to next; -1 at the goal or none.")
