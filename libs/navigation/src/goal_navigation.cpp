@@ -19,29 +19,12 @@ void place_dissimilarities(const GoalNavigationSetup& setup, const signature::Si
   }
 }
 
-memory::PlaceMatch recognise_goal(const GoalNavigationSetup& setup, const cv::Mat& goal_image,
-                                  const std::string& what) {
-  match_image(setup.localise, goal_image, setup.match_limit, what);
-  const signature::Signature goal = setup.signature_of(goal_image);
-  std::vector<double> dissimilarity(setup.signatures.size());
-  place_dissimilarities(setup, goal, dissimilarity);
-  const auto best = std::min_element(dissimilarity.begin(), dissimilarity.end());
-  int place = static_cast<int>(best - dissimilarity.begin());
-  PlaceSteering warping(setup.snapshots);
-  if (const std::optional<compass::MinWarpingResult> best_match =
-          warping.match(place, goal_image, what)) {
-    double least_cost = best_match->cost;
-    const double shortlist = *best + setup.goal_shortlist_ratio * setup.link_dissimilarity;
-    for (std::size_t p = 0; p < dissimilarity.size(); ++p) {
-      if (static_cast<int>(p) == place || dissimilarity[p] > shortlist) continue;
-      const std::optional<compass::MinWarpingResult> match =
-          warping.match(static_cast<int>(p), goal_image, what);
-      if (match && match->cost < least_cost) {
-        least_cost = match->cost;
-        place = static_cast<int>(p);
-      }
-    }
-  }
+namespace {
+
+// The goal image (signature `goal`, its dissimilarity per value to every place) as a match of
+// `place`, its heading from the phases as localise gives it.
+memory::PlaceMatch goal_match(const GoalNavigationSetup& setup, const signature::Signature& goal,
+                              const std::vector<double>& dissimilarity, int place) {
   memory::PlaceMatch match;
   match.place = static_cast<memory::PlaceIndex>(place);
   match.dissimilarity_per_value = dissimilarity[place];
@@ -53,6 +36,35 @@ memory::PlaceMatch recognise_goal(const GoalNavigationSetup& setup, const cv::Ma
   match.heading_confidence = heading.confidence;
   match.heading_rad = wrap_angle(setup.places[place].heading_rad + heading.turn_rad);
   return match;
+}
+
+}  // namespace
+
+memory::PlaceMatch recognise_goal(const GoalNavigationSetup& setup, const cv::Mat& goal_image,
+                                  const std::string& what) {
+  match_image(setup.localise, goal_image, setup.match_limit, what);  // refuses a foreign image
+  const signature::Signature goal = setup.signature_of(goal_image);
+  std::vector<double> dissimilarity(setup.signatures.size());
+  place_dissimilarities(setup, goal, dissimilarity);
+  const auto least = std::min_element(dissimilarity.begin(), dissimilarity.end());
+  const int by_signature = static_cast<int>(least - dissimilarity.begin());
+  PlaceSteering warping(setup.snapshots);
+  const std::optional<compass::MinWarpingResult> signature_match =
+      warping.match(by_signature, goal_image, what);
+  if (!signature_match) return goal_match(setup, goal, dissimilarity, by_signature);
+  int place = by_signature;
+  double least_cost = signature_match->cost;
+  const double shortlist = *least + setup.goal_shortlist_ratio * setup.link_dissimilarity;
+  for (std::size_t p = 0; p < dissimilarity.size(); ++p) {
+    if (static_cast<int>(p) == by_signature || dissimilarity[p] > shortlist) continue;
+    const std::optional<compass::MinWarpingResult> match =
+        warping.match(static_cast<int>(p), goal_image, what);
+    if (match && match->cost < least_cost) {
+      least_cost = match->cost;
+      place = static_cast<int>(p);
+    }
+  }
+  return goal_match(setup, goal, dissimilarity, place);
 }
 
 NavigationResult navigate(NavigationWorld& world, const GoalNavigationSetup& setup, int goal,
