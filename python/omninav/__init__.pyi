@@ -108,6 +108,7 @@ class LinkParams:
     grid_direction_deg: float
     revisit_run: int
     revisit_ratio: float
+    revisit_image_ratio: float
     revisit_disagreement_deg: float
     revisits_per_place: int
     revisit_candidates: int

@@ -179,6 +179,7 @@ void bind_navigation_config(py::module_& m) {
       .def_readwrite("grid_direction_deg", &LinkParams::grid_direction_deg)
       .def_readwrite("revisit_run", &LinkParams::revisit_run)
       .def_readwrite("revisit_ratio", &LinkParams::revisit_ratio)
+      .def_readwrite("revisit_image_ratio", &LinkParams::revisit_image_ratio)
       .def_readwrite("revisit_disagreement_deg", &LinkParams::revisit_disagreement_deg)
       .def_readwrite("revisits_per_place", &LinkParams::revisits_per_place)
       .def_readwrite("revisit_candidates", &LinkParams::revisit_candidates)

@@ -298,6 +298,35 @@ cv::Mat MinWarping::cost_surface(const MinWarpingView& first, const MinWarpingVi
   return surface;
 }
 
+MinWarping::RotationOnly MinWarping::rotation_only(const MinWarpingView& first,
+                                                   const MinWarpingView& second) const {
+  const MinWarpingView::Data& a = first.data();
+  const MinWarpingView::Data& b = second.data();
+  require_same_size(a, b);
+  RotationOnly best;
+  if (a.featureless || b.featureless) return best;
+  // Every column at its rotated position on the plane σ = 1 (ν = 0).
+  const int width = impl_->width;
+  const ColumnMatrix products = a.magnified[0].transpose() * b.magnified[0];
+  double least = std::numeric_limits<double>::infinity();
+  int least_p = 0;
+  for (int p = 0; p < width; ++p) {
+    double sum = 0.0;
+    for (int i = 0; i < width; ++i) {
+      const int j = (i + p) % width;
+      const float total = a.norms[0](i) + b.norms[0](j);
+      sum += total > 1e-6f ? 1.0 - 2.0 * products(i, j) / total : 1.0;
+    }
+    if (sum / width < least) {
+      least = sum / width;
+      least_p = p;
+    }
+  }
+  best.cost = least;
+  best.rotation_rad = wrap_angle(2.0 * kPi * least_p / width);
+  return best;
+}
+
 MinWarpingResult MinWarping::estimate(const MinWarpingView& first,
                                       const MinWarpingView& second) const {
   const Impl& impl = *impl_;
@@ -320,34 +349,17 @@ MinWarpingResult MinWarping::estimate(const MinWarpingView& first,
   const double alpha_fine =
       alpha + parabola_vertex(at(alpha - 1, psi), best_cost, at(alpha + 1, psi));
 
-  // The pure rotation: every column at its rotated position on the plane σ = 1 (ν = 0).
-  const MinWarpingView::Data& a = first.data();
-  const MinWarpingView::Data& b = second.data();
-  const ColumnMatrix products = a.magnified[0].transpose() * b.magnified[0];
-  double rotation_only = std::numeric_limits<double>::infinity();
-  int rotation_only_p = 0;
-  for (int p = 0; p < width; ++p) {
-    double sum = 0.0;
-    for (int i = 0; i < width; ++i) {
-      const int j = (i + p) % width;
-      const float total = a.norms[0](i) + b.norms[0](j);
-      sum += total > 1e-6f ? 1.0 - 2.0 * products(i, j) / total : 1.0;
-    }
-    if (sum / width < rotation_only) {
-      rotation_only = sum / width;
-      rotation_only_p = p;
-    }
-  }
-
+  const RotationOnly rotation = rotation_only(first, second);
   // Search column a looks along the azimuth of its block's centre in the full panorama.
-  const double factor = static_cast<double>(a.width_px) / width;
+  const double factor = static_cast<double>(first.data().width_px) / width;
   result.travel_index = alpha;
   result.rotation_index = psi;
   result.cost = best_cost;
-  result.rotation_only_cost = rotation_only;
-  result.rotation_only_rad = wrap_angle(2.0 * kPi * rotation_only_p / width);
+  result.rotation_only_cost = rotation.cost;
+  result.rotation_only_rad = rotation.rotation_rad;
   result.rotation_rad = wrap_angle(2.0 * kPi * psi_fine / width);
-  result.travel_rad = azimuth_of_column(alpha_fine * factor + (factor - 1.0) / 2.0, a.width_px);
+  result.travel_rad =
+      azimuth_of_column(alpha_fine * factor + (factor - 1.0) / 2.0, first.data().width_px);
   result.home_rad = wrap_angle(result.travel_rad + kPi - result.rotation_rad);
   return result;
 }

@@ -10,6 +10,7 @@
 #include <tuple>
 #include <utility>
 
+#include "image_agreement.hpp"
 #include "odometry_spread.hpp"
 #include "odometry_step.hpp"
 #include "omninav/core/angles.hpp"
@@ -27,6 +28,7 @@ void LinkParams::check() const {
   check_range("links.grid_direction_deg", grid_direction_deg, 0.0, 180.0);
   check_range("links.revisit_run", revisit_run, 3, 101);
   check_range("links.revisit_ratio", revisit_ratio, 0.1, 100.0);
+  check_range("links.revisit_image_ratio", revisit_image_ratio, 0.1, 100.0);
   check_range("links.revisit_disagreement_deg", revisit_disagreement_deg, 0.0, 180.0);
   check_range("links.revisits_per_place", revisits_per_place, 0, 100);
   check_range("links.revisit_candidates", revisit_candidates, 1, 1000);
@@ -38,6 +40,7 @@ void load_link_params(const ConfigReader& section, LinkParams& params) {
   section.read("grid_direction_deg", params.grid_direction_deg);
   section.read("revisit_run", params.revisit_run);
   section.read("revisit_ratio", params.revisit_ratio);
+  section.read("revisit_image_ratio", params.revisit_image_ratio);
   section.read("revisit_disagreement_deg", params.revisit_disagreement_deg);
   section.read("revisits_per_place", params.revisits_per_place);
   section.read("revisit_candidates", params.revisit_candidates);
@@ -320,6 +323,7 @@ std::vector<MeasuredLink> revisit_links(
   for (const MeasuredLink& link : travelled)
     seen.insert(ordered(link.places.first, link.places.second));
   const double disagreement_limit = deg_to_rad(params.revisit_disagreement_deg);
+  ImageAgreement images(memory, travelled);
   std::vector<MeasuredLink> links;
   for (std::size_t i = 0; i < n; ++i) {
     if (!full_run(at[i])) continue;
@@ -362,7 +366,15 @@ std::vector<MeasuredLink> revisit_links(
       if (!seen.insert(ordered(a, b)).second) continue;
       const std::optional<TwoWayFit> fit =
           fit_two_way(memory, a, b, signed_difference(headings[b], headings[a]));
-      if (!fit || fit->disagreement_rad > disagreement_limit) continue;
+      if (!fit) continue;
+      // The images confirm a revisit where the map keeps them; the two fits' agreement only
+      // where it does not: places a few centimetres apart have no direction between them to
+      // agree on, and look-alikes' fits can agree (docs/evaluation.md).
+      const std::optional<double> image = images.ratio(a, b);
+      if (image ? *image > params.revisit_image_ratio
+                : fit->disagreement_rad > disagreement_limit) {
+        continue;
+      }
       MeasuredLink link;
       link.places = {a, b};
       link.kind = LinkKind::kRevisit;

@@ -149,6 +149,16 @@ class MinWarping {
   MinWarpingResult estimate_resized(const MinWarpingView& first, const cv::Mat& second,
                                     const std::string& name) const;
 
+  // The best pure rotation alone (every column at its rotated position, σ = 1), as estimate()
+  // reports it beside the joint minimum, at a small part of its cost (one matrix product): how
+  // alike two panoramas are whatever their turn. Throws InputError naming both when their sizes
+  // differ.
+  struct RotationOnly {
+    double cost = 1.0;          // mean column distance (0..2); 1 for featureless panoramas
+    double rotation_rad = 0.0;  // whole search steps
+  };
+  RotationOnly rotation_only(const MinWarpingView& first, const MinWarpingView& second) const;
+
   // The mean column distance at every grid point, rows α (search columns of the first
   // panorama), columns ψ (search columns), CV_64F; for tests and figures.
   cv::Mat cost_surface(const MinWarpingView& first, const MinWarpingView& second) const;

@@ -68,7 +68,13 @@ struct LinkParams {
   // A revisit's run must match within this many times the median dissimilarity per value of the
   // map's travelled links (places one spacing apart).
   double revisit_ratio = 1.25;
-  // The two fits of a revisit's motion (from each end) must agree within this (degrees).
+  // A revisit's two places' thumbnails, at their best pure rotation, must be as alike as this
+  // many times the median of the travelled links' (image_agreement.hpp): a place seen again
+  // looks like it did, where a look-alike differs in the detail the signature drops. Chosen
+  // across the zoo leaving one family out (lattice.yaml).
+  double revisit_image_ratio = 1.15;
+  // Without thumbnails: the two fits of a revisit's motion (from each end) must agree within
+  // this (degrees).
   double revisit_disagreement_deg = 20.0;
   // At most this many revisits per place (its best runs).
   int revisits_per_place = 2;
