@@ -104,6 +104,8 @@ PairMatch VisualCompass::joint_rotation_match(const CompassFrame& first, const C
   if (!warping_ || !(pure.distance_min > params_.sampling.parallax_step_ratio * pure.self_step)) {
     return pure;
   }
+  // Panoramas narrower than the search have nothing finer to offer it: the pure rotation stands.
+  if (first.width() < params_.joint.warping.search_width_px) return pure;
   const MinWarpingView a = warping_->prepare(first.image(), first.source());
   const MinWarpingView b = warping_->prepare(second.image(), second.source());
   const MinWarpingResult forward = warping_->estimate(a, b);
