@@ -415,8 +415,8 @@ TEST(Organise, AMapMadeByDrivingWithOdometryIsARobustPoseGraph) {
   EXPECT_FALSE(springs.springs.empty());
   EXPECT_EQ(result.quality.pieces, 1);
   // Measured 0.35 (0.30 with revisits confirmed by the two fits; the spring model 0.29; a tour
-  // this small has no interior places): the
-  // families where the pose graph wins are the look-alike ones (docs/evaluation.md).
+  // this small has no interior places): the families where the pose graph wins are the
+  // look-alike ones (docs/evaluation.md).
   EXPECT_LT(graph->rmse.all, 0.45);
 }
 

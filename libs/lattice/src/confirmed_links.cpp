@@ -364,17 +364,15 @@ std::vector<MeasuredLink> revisit_links(
       if (kept >= params.revisits_per_place) break;
       const int a = members[i], b = members[j];
       if (!seen.insert(ordered(a, b)).second) continue;
+      // The images confirm a revisit where the map keeps them (checked first: a look-alike
+      // costs no motion fit); the two fits' agreement only where it does not: places a few
+      // centimetres apart have no direction between them to agree on, and look-alikes' fits can
+      // agree (docs/evaluation.md).
+      const std::optional<double> image = images.ratio(a, b);
+      if (image && *image > params.revisit_image_ratio) continue;
       const std::optional<TwoWayFit> fit =
           fit_two_way(memory, a, b, signed_difference(headings[b], headings[a]));
-      if (!fit) continue;
-      // The images confirm a revisit where the map keeps them; the two fits' agreement only
-      // where it does not: places a few centimetres apart have no direction between them to
-      // agree on, and look-alikes' fits can agree (docs/evaluation.md).
-      const std::optional<double> image = images.ratio(a, b);
-      if (image ? *image > params.revisit_image_ratio
-                : fit->disagreement_rad > disagreement_limit) {
-        continue;
-      }
+      if (!fit || (!image && fit->disagreement_rad > disagreement_limit)) continue;
       MeasuredLink link;
       link.places = {a, b};
       link.kind = LinkKind::kRevisit;
@@ -382,6 +380,7 @@ std::vector<MeasuredLink> revisit_links(
       link.direction_at_first_rad = fit->direction_at_a_rad;
       link.direction_at_second_rad = fit->direction_at_b_rad;
       link.parallax_rad = fit->parallax_rad;
+      link.fit_residual = fit->residual;
       links.push_back(link);
       ++kept;
     }

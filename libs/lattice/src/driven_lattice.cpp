@@ -102,9 +102,8 @@ std::pair<double, double> revisit_parallax(const memory::VisualMemory& memory,
     return held;
   }
   const auto [a, b] = revisit.places;
-  const std::optional<TwoWayFit> at_held = fit_two_way(memory, a, b, held_turn_rad);
   const std::optional<TwoWayFit> at_phases = fit_two_way(memory, a, b, phases_turn_rad);
-  if (!at_phases || (at_held && at_held->residual <= at_phases->residual)) return held;
+  if (!at_phases || revisit.fit_residual <= at_phases->residual) return held;
   return {at_phases->parallax_rad, at_phases->direction_at_a_rad};
 }
 

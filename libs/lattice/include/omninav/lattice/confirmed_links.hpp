@@ -54,6 +54,9 @@ struct MeasuredLink {
   // A revisit's parallax: the baseline over the depth of the scene, ρ = d / r, of the motion
   // fitted between its places (TwoWayFit, the two ways' mean); 0 for the other kinds.
   double parallax_rad = 0.0;
+  // ... and that fit's residual (TwoWayFit::residual, the worse of the two ways'), at the turn
+  // the stored headings give; 0 for the other kinds.
+  double fit_residual = 0.0;
 };
 
 struct LinkParams {
