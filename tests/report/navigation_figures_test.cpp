@@ -84,25 +84,41 @@ TEST(NavigationFigures, RoutePictureDrawsTheRouteOnTheLatticeAndOverTheTruth) {
 // lattice mirrored (x → −x): the robot starts at place 0 and stops at the goal, place 4. The
 // lattice panel adds the sets places, goal (palette colours 0, 1); the true-path panel, with
 // nothing of the scene but the map's truth, places (truth), goal place, start (0, 1, 2).
-TEST(NavigationFigures, PathPictureDrawsTheMatchesOnTheLatticeAndThePathOverTheTruth) {
+// Six places one metre apart along a line (the lattice's x, the truth's −x) and a run that
+// matched the first five in turn while walking west over them.
+struct WalkWest {
   std::vector<navigation::PlaceNode> places;
   memory::VisualMemory memory;
-  for (int x = 0; x < 6; ++x) {
-    places.push_back({Eigen::Vector2d(x, 0.0), 0.0});
-    memory::Place place;
-    place.signature = {1, 1, 15, 32, std::vector<float>(15, 1.f), std::vector<float>(15, 0.f)};
-    place.truth = CameraPose{-1.0 * x, 0.0, 1.0, 0.0, 0.0, 0.0};
-    memory.add_place(std::move(place));
-  }
   navigation::NavigationResult result;
-  for (int x = 0; x < 5; ++x) {
-    navigation::NavigationStep step;
-    step.index = x;
-    step.truth = CameraPose{-1.0 * x, 0.0, 1.0, 0.0, 0.0, 0.0};
-    step.match = memory::PlaceMatch{};
-    step.match->place = static_cast<memory::PlaceIndex>(x);
-    result.steps.push_back(step);
+  WalkWest() {
+    for (int x = 0; x < 6; ++x) {
+      places.push_back({Eigen::Vector2d(x, 0.0), 0.0});
+      memory::Place place;
+      place.signature = {1, 1, 15, 32, std::vector<float>(15, 1.f), std::vector<float>(15, 0.f)};
+      place.truth = CameraPose{-1.0 * x, 0.0, 1.0, 0.0, 0.0, 0.0};
+      memory.add_place(std::move(place));
+    }
+    for (int x = 0; x < 5; ++x) {
+      navigation::NavigationStep step;
+      step.index = x;
+      step.truth = CameraPose{-1.0 * x, 0.0, 1.0, 0.0, 0.0, 0.0};
+      step.match = memory::PlaceMatch{};
+      step.match->place = static_cast<memory::PlaceIndex>(x);
+      result.steps.push_back(step);
+    }
   }
+  // The truth panel, the right half of the figure with `scene`.
+  cv::Mat truth_panel(const NavigationScene& scene) const {
+    const cv::Mat picture = navigation_path_figure(result, places, 4, memory, scene);
+    return picture.colRange(picture.cols / 2, picture.cols).clone();
+  }
+};
+
+TEST(NavigationFigures, PathPictureDrawsTheMatchesOnTheLatticeAndThePathOverTheTruth) {
+  const WalkWest walk;
+  const std::vector<navigation::PlaceNode>& places = walk.places;
+  const memory::VisualMemory& memory = walk.memory;
+  const navigation::NavigationResult& result = walk.result;
   const int goal = 4;
   const cv::Mat picture = navigation_path_figure(result, places, goal, memory, {});
   ASSERT_EQ(picture.type(), CV_8UC3);
@@ -121,6 +137,22 @@ TEST(NavigationFigures, PathPictureDrawsTheMatchesOnTheLatticeAndThePathOverTheT
   EXPECT_LT(column(truth_panel, 1), column(truth_panel, 2) - 50.0);
   // Nothing in a fourth colour: no grid images and no goal pose were given.
   EXPECT_EQ(pixels_of(truth_panel, measures::palette_colour(3)).count, 0);
+}
+
+// A large world's far furniture (a field's tussocks 40 m away) is left out of the truth panel,
+// which frames the path and the places: the goal place 4 m west of the start stays a third of
+// the panel away from it, where a frame stretched to 41 m would put it 60 pixels away.
+TEST(NavigationFigures, PathPictureFramesThePathAndThePlacesNotTheWholeWorld) {
+  const WalkWest walk;
+  NavigationScene scene;
+  scene.obstacles = {{40.0, 0.0, 41.0, 1.0}, {0.5, -0.5, 1.0, 0.5}};
+  const cv::Mat panel = walk.truth_panel(scene);
+  const double goal_place = pixels_of(panel, measures::palette_colour(1)).mean_column;
+  const double start = pixels_of(panel, measures::palette_colour(2)).mean_column;
+  EXPECT_GT(start - goal_place, panel.cols / 3.0);
+  // The box beside the path is drawn: grey outline pixels east of the start.
+  const cv::Mat without = walk.truth_panel({});
+  EXPECT_GT(cv::norm(panel, without, cv::NORM_L1), 0.0);
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 #include "omninav/report/floor_plan.hpp"
 
+#include <algorithm>
 #include <array>
 
 namespace omninav::report {
@@ -13,6 +14,20 @@ void add_floor_boxes(measures::PointsPlot& plot, const std::vector<sim::FloorBox
     for (int side = 0; side < 4; ++side)
       plot.add_segment({corners[side], corners[(side + 1) % 4], grey, 1.0});
   }
+}
+
+std::vector<sim::FloorBox> boxes_around(const std::vector<sim::FloorBox>& boxes,
+                                        const sim::FloorBox& frame) {
+  const double margin =
+      std::max(0.5, 0.25 * std::max(frame.max_x_m - frame.min_x_m, frame.max_y_m - frame.min_y_m));
+  std::vector<sim::FloorBox> near;
+  for (const sim::FloorBox& box : boxes) {
+    if (box.max_x_m >= frame.min_x_m - margin && box.min_x_m <= frame.max_x_m + margin &&
+        box.max_y_m >= frame.min_y_m - margin && box.min_y_m <= frame.max_y_m + margin) {
+      near.push_back(box);
+    }
+  }
+  return near;
 }
 
 measures::PointsPlot floor_plan(const sim::World& world, const sim::Trajectory& trajectory) {

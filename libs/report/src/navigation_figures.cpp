@@ -1,6 +1,8 @@
 #include "omninav/report/navigation_figures.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "omninav/core/angles.hpp"
 #include "omninav/measures/plot.hpp"
@@ -65,24 +67,42 @@ cv::Mat matched_path_panel(const navigation::NavigationResult& result,
   return plot.render();
 }
 
-// The robot's true path over the scene and the places' true positions.
+// The rectangle round the points of `sets` (none empty: the path has its start).
+sim::FloorBox extent(const std::vector<const std::vector<cv::Point2d>*>& sets) {
+  sim::FloorBox box{
+      std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
+      -std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
+  for (const std::vector<cv::Point2d>* set : sets) {
+    for (const cv::Point2d& point : *set) {
+      box.min_x_m = std::min(box.min_x_m, point.x);
+      box.min_y_m = std::min(box.min_y_m, point.y);
+      box.max_x_m = std::max(box.max_x_m, point.x);
+      box.max_y_m = std::max(box.max_y_m, point.y);
+    }
+  }
+  return box;
+}
+
+// The robot's true path over the scene near it and the places' true positions.
 cv::Mat true_path_panel(const navigation::NavigationResult& result, int goal,
                         const memory::VisualMemory& memory, const NavigationScene& scene) {
   std::vector<cv::Point2d> path;
   for (const navigation::NavigationStep& step : result.steps) {
     path.emplace_back(step.truth.x_m, step.truth.y_m);
   }
-  measures::PointsPlot plot("The robot's true path", "x (m)", "y (m)");
-  add_floor_boxes(plot, scene.obstacles, 0.3);
-  add_path(plot, path, 0.1);
-  if (!scene.grid_world_positions.empty()) {
-    plot.add_points("grid images", plot_points(scene.grid_world_positions));
-  }
+  std::vector<cv::Point2d> true_places;
   if (memory.all_have_truth()) {
-    std::vector<cv::Point2d> true_places;
     for (std::size_t i = 0; i < memory.place_count(); ++i) {
       true_places.push_back(plot_point(memory.place(i).truth->floor_position()));
     }
+  }
+  const std::vector<cv::Point2d> grid_images = plot_points(scene.grid_world_positions);
+  measures::PointsPlot plot("The robot's true path", "x (m)", "y (m)");
+  add_floor_boxes(plot, boxes_around(scene.obstacles, extent({&path, &true_places, &grid_images})),
+                  0.3);
+  add_path(plot, path, 0.1);
+  if (!grid_images.empty()) plot.add_points("grid images", grid_images);
+  if (!true_places.empty()) {
     plot.add_points("places (truth)", true_places);
     plot.add_points("goal place", {true_places[goal]});
   }
