@@ -57,10 +57,11 @@ void apply_method(const std::string& method, compass::CompassParams& params) {
   if (method == "alg1") {
     sampling.policy = compass::SamplingPolicy::kThreshold;
   } else if (method == "alg1-paper") {
-    // Algorithm 1 as written (§3.5): no rotation cap, no global fallback.
+    // Algorithm 1 as written (§3.5): no rotation cap, no global fallback, no joint rotation.
     sampling.policy = compass::SamplingPolicy::kThreshold;
     sampling.max_reference_rotation_rad = 0.0;
     params.fast_turns.global_fallback = false;
+    params.joint.enabled = false;
   } else if (method.rfind("fx:", 0) == 0) {
     sampling.policy = compass::SamplingPolicy::kFixedSkip;
     const int skip = parse_int_argument(method.substr(3), "--method " + method);
@@ -346,7 +347,7 @@ void add_compass_command(CLI::App& app, const GlobalOptions& global) {
                    "      parallax, the rotation from the reference exceeds\n"
                    "      sampling.max_reference_rotation_deg (ours; 0 = the paper's alone);\n"
                    "alg1-paper: Algorithm 1 exactly as the 2006 paper writes it (no rotation\n"
-                   "      cap, no global fallback),\n"
+                   "      cap, no global fallback, no joint rotation),\n"
                    "      whatever compass.yaml says;\n"
                    "fx:N: a new reference every N+1 frames (\"Fx N\"; fx:0 = successive frames);\n"
                    "exhaustive | fft | phase: Algorithm 1 with that minimiser instead of\n"

@@ -106,6 +106,7 @@ struct Alg1Options {
   bool fallback = true;     // minimiser.global_fallback
   bool fast = false;        // the fast-turning circle of frames()
   bool deeper = true;       // minimiser.global_deeper_ratio at compass.yaml's value, else 0
+  bool joint = true;        // min_warping.in_compass
 };
 
 // Algorithm 1 (Table 2's parameters) over the sequence, frames made as a camera would hand
@@ -117,6 +118,7 @@ void algorithm1(benchmark::State& state, MinimiserKind kind, int width, int heig
   params.matcher.minimiser.kind = kind;
   params.fast_turns.global_fallback = options.fallback;
   if (!options.deeper) params.fast_turns.deeper_ratio = 0.0;
+  params.joint.enabled = options.joint;
   const bool fixed_skip = options.fixed_skip;
   if (fixed_skip) {
     params.sampling.policy = omninav::compass::SamplingPolicy::kFixedSkip;
@@ -196,6 +198,8 @@ void register_all() {
           ->Unit(benchmark::kMicrosecond);
     };
     add_alg1("algorithm1_no_fallback", {.fallback = false});
+    // The joint rotation's cost: min-warping on the pairs that show parallax.
+    add_alg1("algorithm1_no_joint", {.joint = false});
     add_alg1("algorithm1_fast", {.fast = true});
     add_alg1("algorithm1_fast_no_fallback", {.fallback = false, .fast = true});
     // The global fallback without its much-deeper-minimum test (global_deeper_ratio 0).

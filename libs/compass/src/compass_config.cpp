@@ -77,6 +77,8 @@ void load_compass_config(const ConfigReader& config, CompassConfig& out) {
   warping.read("scale_planes", mw.scale_planes);
   warping.read("distance_samples", mw.distance_samples);
   warping.read("featureless_below_grey", mw.featureless_below_grey);
+  warping.read("in_compass", out.compass.joint.enabled);
+  out.compass.joint.warping = mw;
 
   const ConfigReader input = config.section("input");
   std::optional<double> width = out.width_px ? std::optional<double>(*out.width_px) : std::nullopt;

@@ -172,11 +172,24 @@ double PairMatcher::self_step(const CompassFrame& frame) const {
 
 PairMatch PairMatcher::match(const CompassFrame& first, const CompassFrame& second,
                              int start_shift_px) const {
+  return match_with(first, second,
+                    [&](CostTable& table) { return minimiser_->minimise(table, start_shift_px); });
+}
+
+PairMatch PairMatcher::match_in_basin(const CompassFrame& first, const CompassFrame& second,
+                                      int start_shift_px) const {
+  return match_with(first, second, [&](CostTable& table) {
+    return ShiftSearch{descend(table, start_shift_px), std::nullopt};
+  });
+}
+
+PairMatch PairMatcher::match_with(const CompassFrame& first, const CompassFrame& second,
+                                  const std::function<ShiftSearch(CostTable&)>& minimise) const {
   require_same_shape(first, second);
   const int width = first.width();
   const DistanceFunction& distance = distance_function(width);
   CostTable table(distance, first, second, kernel_);
-  const ShiftSearch search = minimiser_->minimise(table, start_shift_px);
+  const ShiftSearch search = minimise(table);
 
   PairMatch match;
   match.shift_px = search.shift_px;

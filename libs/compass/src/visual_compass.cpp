@@ -64,12 +64,16 @@ void CompassParams::check() const {
   check_range("sampling.parallax_step_ratio", sampling.parallax_step_ratio, 0.0, 10.0);
   check_range("minimiser.global_deeper_ratio", fast_turns.deeper_ratio, 0.0, 1.0);
   check_range("uncertainty.scale", uncertainty.scale, 0.0, 1000.0);
+  if (joint.enabled) joint.warping.check();
 }
 
 VisualCompass::VisualCompass(const CompassParams& params, double initial_heading_rad)
     : params_(params),
       matcher_(params.matcher),
       global_matcher_(make_global_matcher(params)),
+      warping_(params.joint.enabled
+                   ? std::make_unique<MinWarping>(params.joint.warping, params.joint.geometry)
+                   : nullptr),
       initial_heading_rad_(initial_heading_rad) {
   params.check();
 }
@@ -89,6 +93,53 @@ bool VisualCompass::beyond_rotation_cap(const PairMatch& match,
 
 PairMatch VisualCompass::match_pair(const CompassFrame& first, const CompassFrame& second,
                                     int start_shift, double predicted_rotation_rad) const {
+  return joint_rotation_match(
+      first, second, pure_rotation_match(first, second, start_shift, predicted_rotation_rad));
+}
+
+PairMatch VisualCompass::joint_rotation_match(const CompassFrame& first, const CompassFrame& second,
+                                              PairMatch pure) const {
+  // On the spot a turn explains the pair: its minimum stays within the reference against itself
+  // rolled by one column (the rotation cap's parallax test), and min-warping is not asked.
+  if (!warping_ || !(pure.distance_min > params_.sampling.parallax_step_ratio * pure.self_step)) {
+    return pure;
+  }
+  // Panoramas narrower than the search have nothing finer to offer it: the pure rotation stands.
+  if (first.width() < params_.joint.warping.search_width_px) return pure;
+  const MinWarpingView a = warping_->prepare(first.image(), first.source());
+  const MinWarpingView b = warping_->prepare(second.image(), second.source());
+  const MinWarpingResult forward = warping_->estimate(a, b);
+  // One search step: the joint estimate's own resolution, below which it cannot tell two
+  // rotations apart.
+  const double step_rad = kTwoPi / params_.joint.warping.search_width_px;
+  const auto apart = [step_rad](double x_rad, double y_rad) {
+    return std::abs(signed_difference(x_rad, y_rad)) > step_rad;
+  };
+  if (forward.featureless || !apart(forward.rotation_rad, pure.rotation_rad)) return pure;
+  // The pair the other way round must give the opposite turn: aliased or near-blank pairs fit
+  // one direction by chance, and their two searches disagree.
+  if (apart(forward.rotation_rad, -warping_->estimate(b, a).rotation_rad)) return pure;
+  const int width = first.width();
+  PairMatch joint = matcher_.match_in_basin(
+      first, second,
+      static_cast<int>(std::lround(-shift_px_of_rotation(forward.rotation_rad, width))));
+  joint.evaluations += pure.evaluations;
+  // The turn alone must have a minimum where the joint estimate says: a descent that walks
+  // away from it found no basin there.
+  if (apart(joint.rotation_rad, forward.rotation_rad)) {
+    pure.evaluations = joint.evaluations;
+    return pure;
+  }
+  // The pure rotation's reading is kept for the uncertainty, as the fallback's other reading is.
+  const double separation_rad = params_.matcher.confidence.competing_separation_rad;
+  if (std::abs(signed_difference(pure.rotation_rad, joint.rotation_rad)) >= separation_rad) {
+    joint.competing_rotation_rad = pure.rotation_rad;
+  }
+  return joint;
+}
+
+PairMatch VisualCompass::pure_rotation_match(const CompassFrame& first, const CompassFrame& second,
+                                             int start_shift, double predicted_rotation_rad) const {
   PairMatch local = matcher_.match(first, second, start_shift);
   if (!global_matcher_ || !(local.amplitude_norm < params_.sampling.threshold_norm_amp)) {
     return local;

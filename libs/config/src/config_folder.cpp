@@ -4,6 +4,8 @@
 
 namespace omninav::config {
 
+namespace fs = std::filesystem;
+
 using evaluation::CameraConfig;
 using evaluation::NavigationConfig;
 
@@ -32,6 +34,10 @@ compass::CompassConfig load_compass_config(const std::filesystem::path& config_d
   compass::CompassConfig compass;
   compass::load_compass_config(config, compass);
   config.require_all_known();
+  // The joint rotation's scale planes need the rows' elevations.
+  if (fs::exists(config_dir / "camera.yaml")) {
+    compass.compass.joint.geometry = load_camera_config(config_dir).panorama;
+  }
   return compass;
 }
 

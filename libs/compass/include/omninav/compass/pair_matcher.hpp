@@ -25,6 +25,7 @@
 //       examined; local_scan knows only the shifts it evaluated and descends from each scan
 //       value that comes that close, flagging it when that descent ends far from the best.
 
+#include <functional>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -115,6 +116,11 @@ class PairMatcher {
   // minimiser starts at `start_shift_px`. Throws InputError when the frames differ in shape.
   PairMatch match(const CompassFrame& first, const CompassFrame& second,
                   int start_shift_px = 0) const;
+  // The same match, its minimum the one the descent from `start_shift_px` ends in, with no scan
+  // beyond it: the basin another estimate chose (the joint rotation, visual_compass.hpp), kept
+  // even where another basin is lower.
+  PairMatch match_in_basin(const CompassFrame& first, const CompassFrame& second,
+                           int start_shift_px) const;
 
   // A(I, I) = d(I, I, W/2) (Eq. 8's normaliser), cached in the frame.
   double self_amplitude(const CompassFrame& frame) const;
@@ -127,6 +133,9 @@ class PairMatcher {
   const PairMatcherParams& params() const { return params_; }
 
  private:
+  // The match whose integer minimum `search` finds in the pair's table.
+  PairMatch match_with(const CompassFrame& first, const CompassFrame& second,
+                       const std::function<ShiftSearch(CostTable&)>& search) const;
   // A(I, I) (half_turn) or d(I, I, 1 px), cached in the frame by distance function.
   double self_distance(const CompassFrame& frame, bool half_turn) const;
 

@@ -44,6 +44,7 @@
 #include <string>
 
 #include "omninav/compass/frame.hpp"
+#include "omninav/compass/min_warping.hpp"
 #include "omninav/compass/pair_matcher.hpp"
 
 namespace omninav::compass {
@@ -104,11 +105,32 @@ struct UncertaintyParams {
   double scale = 0.472;  // compass.yaml's uncertainty.scale
 };
 
+// The joint rotation (ours; issue 30; docs/compass.md "The compass while travelling"). Under
+// translation the pure-rotation distance's lowest minimum can be a parallax-shifted one, 10-40°
+// off (room-s1's wander: 32° max error). Where a pair shows parallax (the rotation cap's test:
+// d_m above the reference against itself rolled one column), min-warping (min_warping.hpp)
+// estimates the rotation and the direction of travel together, and the pair's minimum becomes
+// the pure-rotation distance's minimum in min-warping's basin when the pair's own evidence
+// agrees: (1) min-warping's rotation is more than one search step (its resolution) from the
+// pure-rotation minimum; (2) the pair matched the other way round gives the opposite rotation
+// within one search step (aliased or near-blank pairs fit a direction by chance and their two
+// searches disagree); (3) the descent of the pure-rotation distance from min-warping's rotation
+// ends within one search step of it (the turn alone has a minimum there). No threshold fitted to
+// a world: the one tolerance is the search step. The pure rotation's reading is kept as the
+// match's other reading for the uncertainty. Algorithm 1's reference switching acts on the
+// resulting match as on any other.
+struct JointRotationParams {
+  bool enabled = true;        // compass.yaml's min_warping.in_compass
+  MinWarpingParams warping;   // compass.yaml's min_warping section
+  PanoramaGeometry geometry;  // the rows' elevations (camera.yaml's panorama section)
+};
+
 struct CompassParams {
   PairMatcherParams matcher;
   SamplingParams sampling;
   FastTurns fast_turns;
   UncertaintyParams uncertainty;
+  JointRotationParams joint;
 
   // The ranges of compass.yaml's keys for these (the matcher's too). Throws UsageError naming
   // the key (core/param_check.hpp); the loader and VisualCompass's constructor call it.
@@ -164,13 +186,19 @@ class VisualCompass {
  private:
   // Whether the match of line 9 passes the rotation cap (ours, see above).
   bool beyond_rotation_cap(const PairMatch& match, double rotation_ref_previous_rad) const;
-  // The match of the local minimiser, or the global search's where it is poor (FastTurns).
+  // The match of the local minimiser, or the global search's where it is poor (FastTurns),
+  // then in the joint rotation's basin where it applies (JointRotationParams).
   PairMatch match_pair(const CompassFrame& first, const CompassFrame& second, int start_shift,
                        double predicted_rotation_rad) const;
+  PairMatch pure_rotation_match(const CompassFrame& first, const CompassFrame& second,
+                                int start_shift, double predicted_rotation_rad) const;
+  PairMatch joint_rotation_match(const CompassFrame& first, const CompassFrame& second,
+                                 PairMatch pure) const;
 
   CompassParams params_;
   PairMatcher matcher_;
   std::unique_ptr<PairMatcher> global_matcher_;  // FastTurns, when the minimiser is local
+  std::unique_ptr<MinWarping> warping_;          // JointRotationParams, when enabled
   double initial_heading_rad_;
   std::optional<CompassFrame> reference_;
   std::optional<CompassFrame> current_;
