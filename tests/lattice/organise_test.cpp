@@ -20,6 +20,7 @@
 #include "omninav/lattice/stiffness.hpp"
 #include "omninav/sim/room.hpp"
 #include "omninav/sim/world_loader.hpp"
+#include "support/readme_room_tour.hpp"
 #include "support/rendered_map.hpp"
 
 namespace omninav::lattice {
@@ -376,29 +377,11 @@ TEST(Organise, ZigZagsOfThreeFamiliesHoldTheirShape) {
   }
 }
 
-// The README's walkthrough: a tour of the built-in room with 5 % wheel odometry, a place every
-// 30 cm the odometry says the robot drove, headings from the compass.
-memory::VisualMemory driven_tour(bool keep_odometry) {
-  static const std::vector<io::Frame> frames = testing::rendered_frames(
-      sim::load_world("room", sim::WorldsConfig{}), full_suite_render(),
-      "tour:x0=1.5,y0=1.5,x1=4.5,y1=3.5,fps=2,odometry_noise=0.05", "tour");
-  memory::VisualMemory map{memory::MapParameters{}};
-  memory::ExplorationParams exploration;
-  exploration.heading_source = memory::HeadingPolicy::kCompass;
-  exploration.new_place_dissimilarity = 0.0;
-  exploration.every_m = 0.3;
-  exploration.odometry = keep_odometry;
-  memory::Explorer explorer(map, exploration, "tour", "organise_test.cpp",
-                            memory::FrameOrder::kStream);
-  for (const io::Frame& frame : frames) explorer.add(frame);
-  return map;
-}
-
 TEST(Organise, AMapMadeByDrivingWithOdometryIsARobustPoseGraph) {
-  memory::VisualMemory driven = driven_tour(true);
+  memory::VisualMemory driven = testing::readme_room_tour(true);
   const OrganiseResult result = organise(driven, {});
   const std::optional<evaluation::LatticeScore> graph = evaluation::score_lattice(driven, false);
-  memory::VisualMemory without_odometry = driven_tour(false);
+  memory::VisualMemory without_odometry = testing::readme_room_tour(false);
   const OrganiseResult springs = organise(without_odometry, {});
   const std::optional<evaluation::LatticeScore> spring_model =
       evaluation::score_lattice(without_odometry, false);
@@ -584,7 +567,7 @@ TEST(Organise, ARevisitsParallaxIsFittedAtTheTurnTheImagesBearOut) {
 // Before that, -0.9° from place 22 switched off one more revisit and took the RMSE from 0.35 to
 // 0.52 spacings; -2° took it to 0.27.
 TEST(Organise, ADegreeOfCompassDriftDoesNotMoveADrivenLattice) {
-  const memory::VisualMemory tour = driven_tour(true);
+  const memory::VisualMemory tour = testing::readme_room_tour(true);
   const std::size_t half = tour.place_count() / 2;
   memory::VisualMemory untouched = tour;
   organise(untouched, {});

@@ -33,6 +33,7 @@ void LinkParams::check() const {
   check_range("links.revisits_per_place", revisits_per_place, 0, 100);
   check_range("links.revisit_candidates", revisit_candidates, 1, 1000);
   check_range("links.odometry_noise", odometry_noise, 0.0, 10.0);
+  check_range("links.neighbour_spacings", neighbour_spacings, 0.5, 3.0);
 }
 
 void load_link_params(const ConfigReader& section, LinkParams& params) {
@@ -45,6 +46,7 @@ void load_link_params(const ConfigReader& section, LinkParams& params) {
   section.read("revisits_per_place", params.revisits_per_place);
   section.read("revisit_candidates", params.revisit_candidates);
   section.read("odometry_noise", params.odometry_noise);
+  section.read("neighbour_spacings", params.neighbour_spacings);
   check_loaded(section.source_name(), [&] { params.check(); });
   if (params.revisit_run % 2 == 0) ++params.revisit_run;
 }
@@ -55,6 +57,8 @@ std::string to_string(LinkKind kind) {
       return "travelled";
     case LinkKind::kGrid:
       return "grid";
+    case LinkKind::kNeighbour:
+      return "neighbour";
     case LinkKind::kRevisit:
       return "revisit";
   }
@@ -70,14 +74,6 @@ constexpr double kLeastOdometryStepM = 0.01;
 
 Pair ordered(int a, int b) {
   return {std::min(a, b), std::max(a, b)};
-}
-
-// Eq. 6 between two places, per compared value.
-double per_value(const memory::VisualMemory& memory, int a, int b) {
-  const signature::Signature& first = memory.place(a).signature;
-  return signature::dissimilarity(first, memory.place(b).signature, -1,
-                                  memory.parameters().weights) /
-         static_cast<double>(first.size());
 }
 
 // The link from a to b as the two places' odometry measures it (length, and the direction seen
@@ -177,7 +173,7 @@ std::vector<MeasuredLink> grid_links(const memory::VisualMemory& memory,
                     direction_limit &&
                 std::abs(signed_difference(fit->direction_at_b_rad,
                                            link.direction_at_second_rad)) <= direction_limit;
-            candidates.push_back({link, per_value(memory, a, b), agrees});
+            candidates.push_back({link, dissimilarity_per_value(memory, a, b), agrees});
           }
         }
       }
@@ -390,12 +386,19 @@ std::vector<MeasuredLink> revisit_links(
 
 }  // namespace
 
+double dissimilarity_per_value(const memory::VisualMemory& memory, int a, int b) {
+  const signature::Signature& first = memory.place(a).signature;
+  return signature::dissimilarity(first, memory.place(b).signature, -1,
+                                  memory.parameters().weights) /
+         static_cast<double>(first.size());
+}
+
 std::optional<double> median_dissimilarity_per_value(const memory::VisualMemory& memory,
                                                      const std::vector<MeasuredLink>& links) {
   if (links.empty()) return std::nullopt;
   std::vector<double> values;
   for (const MeasuredLink& link : links) {
-    values.push_back(per_value(memory, link.places.first, link.places.second));
+    values.push_back(dissimilarity_per_value(memory, link.places.first, link.places.second));
   }
   return median(std::move(values));
 }

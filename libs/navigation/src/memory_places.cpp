@@ -118,8 +118,17 @@ std::vector<MeasuredLink> map_links(const memory::VisualMemory& memory,
                                     const std::vector<PlaceNode>& places,
                                     const LinkParams& params) {
   std::vector<double> headings;
-  for (const PlaceNode& place : places) headings.push_back(place.heading_rad);
-  return lattice::confirmed_links(memory, headings, map_spacing(memory, places), params);
+  std::vector<Eigen::Vector2d> positions;
+  for (const PlaceNode& place : places) {
+    headings.push_back(place.heading_rad);
+    positions.push_back(place.position_m);
+  }
+  std::vector<MeasuredLink> links =
+      lattice::confirmed_links(memory, headings, map_spacing(memory, places), params);
+  const std::vector<MeasuredLink> neighbours =
+      lattice::lattice_neighbour_links(memory, positions, links, params);
+  links.insert(links.end(), neighbours.begin(), neighbours.end());
+  return links;
 }
 
 RoutePlan plan_route(const memory::VisualMemory& memory, const std::vector<PlaceNode>& places,

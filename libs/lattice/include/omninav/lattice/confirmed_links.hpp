@@ -1,6 +1,6 @@
 #pragma once
 // The memory graph the plan and the belief run over: links between places that the map itself
-// confirms, never a pair that merely looks alike. Three kinds:
+// confirms, never a pair that merely looks alike. Four kinds:
 //   - travelled: consecutive places of a stream (the robot drove from one to the next; a
 //     travelled link is never dropped). Its length is the distance the input's poses or odometry
 //     put between the two places when the exploration recorded it (explore --every-m), else the
@@ -21,7 +21,15 @@
 //     fit's parallax, MeasuredLink::parallax_rad). The runs compared are those of each view's
 //     most similar places (an index, similar_places.hpp), not of every place: Fast-SeqSLAM's
 //     candidates (Siam & Zhang 2017), so the search grows with the places, not with their pairs.
+//   - neighbour: places that the organised lattice of a map made by driving with odometry (the
+//     robust pose graph of travelled links and confirmed revisits, docs/lattice.md) puts beside
+//     each other, whose images agree. Lanes driven side by side pass each other at a spacing;
+//     a revisit joins a pair of them here and there, and a route between two places a lane
+//     apart went round by the lanes' ends (7 times the straight line at the 90th percentile of
+//     the evaluation suite's driven maps). Given by lattice_neighbour_links once the map is
+//     organised; a look-alike cannot make one, since the lattice places what the robot drove.
 
+#include <Eigen/Core>
 #include <optional>
 #include <string>
 #include <utility>
@@ -41,6 +49,7 @@ enum class LinkKind {
   kTravelled,  // the robot drove from one place to the other while exploring
   kGrid,       // neighbours of a grid database whose images agree
   kRevisit,    // a stretch seen again, confirmed by a run of matching views
+  kNeighbour,  // beside each other in a driven map's organised lattice, images agreeing
 };
 
 // A link of the memory graph: its length and its direction at either end, relative to that
@@ -61,7 +70,9 @@ struct MeasuredLink {
 
 struct LinkParams {
   // A grid link is kept when its images' mean dissimilarity per value is at most this many
-  // times the median over the map's grid links: chosen across the zoo (lattice.yaml).
+  // times the median over the map's grid links: chosen across the zoo (lattice.yaml). A
+  // lattice neighbour link, when at most this many times the median over the travelled links:
+  // the same claim, that a pair far less alike stands either side of a wall.
   double grid_agreement_ratio = 2.0;
   // ... and when the direction of motion the phases fit from either end lies within this many
   // degrees of the database's.
@@ -89,6 +100,10 @@ struct LinkParams {
   // standard deviations of its drift over the way between them (odometry_spread.hpp): a turn's
   // error swings all that follows, so the drift grows with the turns as well as the distance.
   double odometry_noise = 0.05;
+  // Lattice neighbours lie within this many of the lattice's spacings (the median length of its
+  // travelled links) of each other: the places beside a place in a lattice of one spacing, not
+  // its diagonals (1.41).
+  double neighbour_spacings = 1.25;
 
   // The ranges of navigation.yaml's links section. Throws UsageError naming the key
   // (core/param_check.hpp); the loader and confirmed_links call it.
@@ -113,12 +128,30 @@ std::vector<MeasuredLink> confirmed_links(
     const LinkParams& params, const PlaceDissimilarities& dissimilarity,
     const std::vector<std::vector<SimilarPlace>>& most_similar);
 
+// The links between the places that `positions` (the map's organised lattice, one per place)
+// puts within params.neighbour_spacings of each other and that `links` does not join already,
+// whose mean dissimilarity per value is at most params.grid_agreement_ratio times the median
+// of the travelled links'. Each direction is the lattice's, turned into the place's own frame by
+// the turn between its travelled links' directions in the lattice and as stored (their
+// odometry's), so a compass's drift does not enter; the length is the lattice's, in the
+// travelled links' metres. Empty unless the map was made by driving with odometry (its lattice
+// is then a pose graph of what the robot drove; a spring model's, from appearance alone, can
+// put look-alikes side by side). Logs how many. Throws UsageError when `positions` is not one
+// per place.
+std::vector<MeasuredLink> lattice_neighbour_links(const memory::VisualMemory& memory,
+                                                  const std::vector<Eigen::Vector2d>& positions,
+                                                  const std::vector<MeasuredLink>& links,
+                                                  const LinkParams& params);
+
+// Eq. 6 between places a and b of `memory`, per compared value (the map's weights).
+double dissimilarity_per_value(const memory::VisualMemory& memory, int a, int b);
+
 // The median over `links` of their places' mean dissimilarity per value (Eq. 6, the map's
 // weights): what one link's length costs in appearance. None without links.
 std::optional<double> median_dissimilarity_per_value(const memory::VisualMemory& memory,
                                                      const std::vector<MeasuredLink>& links);
 
-// "travelled", "grid", "revisit".
+// "travelled", "grid", "revisit", "neighbour".
 std::string to_string(LinkKind kind);
 
 }  // namespace omninav::lattice

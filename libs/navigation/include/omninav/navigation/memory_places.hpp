@@ -53,7 +53,7 @@ HomingScale homing_scale(const memory::VisualMemory& memory, const std::vector<P
 double map_spacing(const memory::VisualMemory& memory, const std::vector<PlaceNode>& places);
 
 // The confirmed links of `memory` (lattice/confirmed_links.hpp) with `places`' headings and the
-// map's spacing.
+// map's spacing, and the neighbours `places`' lattice positions give a map made by driving.
 std::vector<MeasuredLink> map_links(const memory::VisualMemory& memory,
                                     const std::vector<PlaceNode>& places, const LinkParams& params);
 
