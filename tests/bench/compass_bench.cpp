@@ -105,7 +105,6 @@ struct Alg1Options {
   bool fixed_skip = false;  // Fx 0, the successive-pair compass
   bool fallback = true;     // minimiser.global_fallback
   bool fast = false;        // the fast-turning circle of frames()
-  bool deeper = true;       // minimiser.global_deeper_ratio at compass.yaml's value, else 0
   bool joint = true;        // min_warping.in_compass
 };
 
@@ -117,7 +116,6 @@ void algorithm1(benchmark::State& state, MinimiserKind kind, int width, int heig
   omninav::compass::CompassParams params;
   params.matcher.minimiser.kind = kind;
   params.fast_turns.global_fallback = options.fallback;
-  if (!options.deeper) params.fast_turns.deeper_ratio = 0.0;
   params.joint.enabled = options.joint;
   const bool fixed_skip = options.fixed_skip;
   if (fixed_skip) {
@@ -202,9 +200,6 @@ void register_all() {
     add_alg1("algorithm1_no_joint", {.joint = false});
     add_alg1("algorithm1_fast", {.fast = true});
     add_alg1("algorithm1_fast_no_fallback", {.fallback = false, .fast = true});
-    // The global fallback without its much-deeper-minimum test (global_deeper_ratio 0).
-    add_alg1("algorithm1_no_deeper", {.deeper = false});
-    add_alg1("algorithm1_fast_no_deeper", {.fast = true, .deeper = false});
     benchmark::RegisterBenchmark(("fx0/fft/" + size).c_str(), algorithm1, MinimiserKind::kFft,
                                  width, height, Alg1Options{.fixed_skip = true})
         ->Unit(benchmark::kMicrosecond);

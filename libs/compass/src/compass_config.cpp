@@ -35,7 +35,6 @@ void load_compass_config(const ConfigReader& config, CompassConfig& out) {
       planning == "measure" ? FftPlanning::kMeasure : FftPlanning::kEstimate;
 
   minimiser.read("global_fallback", out.compass.fast_turns.global_fallback);
-  minimiser.read("global_deeper_ratio", out.compass.fast_turns.deeper_ratio);
 
   const ConfigReader phase = config.section("phase");
   phase.read("components", matcher.minimiser.phase.components);

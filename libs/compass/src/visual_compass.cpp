@@ -62,7 +62,6 @@ void CompassParams::check() const {
   check_range_deg("sampling.max_reference_rotation_deg", sampling.max_reference_rotation_rad, 0.0,
                   180.0);
   check_range("sampling.parallax_step_ratio", sampling.parallax_step_ratio, 0.0, 10.0);
-  check_range("minimiser.global_deeper_ratio", fast_turns.deeper_ratio, 0.0, 1.0);
   check_range("uncertainty.scale", uncertainty.scale, 0.0, 1000.0);
   if (joint.enabled) joint.warping.check();
 }
@@ -147,17 +146,12 @@ PairMatch VisualCompass::pure_rotation_match(const CompassFrame& first, const Co
   PairMatch global = global_matcher_->match(first, second, start_shift);
   const int evaluations = local.evaluations + global.evaluations;
   // The global minimum replaces the local one when it is lower and either a clear match
-  // (Algorithm 1's own test 𝒜_n >= t, and no competing minimum), nearer the prediction, or a
-  // much deeper minimum without a competing one (FastTurns::deeper_ratio).
+  // (Algorithm 1's own test 𝒜_n >= t, and no competing minimum) or nearer the prediction.
   const bool nearer = std::abs(signed_difference(global.rotation_rad, predicted_rotation_rad)) <
                       std::abs(signed_difference(local.rotation_rad, predicted_rotation_rad));
   const bool good = global.amplitude_norm >= params_.sampling.threshold_norm_amp &&
                     !global.flags.competing_minima;
-  // Not on a flat distance function (a view into a box or a blank wall): there every minimum is
-  // noise, however deep (a zig-zag frame inside a box took a 90° turn that was not).
-  const bool deeper = global.distance_min < params_.fast_turns.deeper_ratio * local.distance_min &&
-                      !global.flags.competing_minima && !global.flags.featureless;
-  const bool take_global = global.distance_min < local.distance_min && (nearer || good || deeper);
+  const bool take_global = global.distance_min < local.distance_min && (nearer || good);
   PairMatch& best = take_global ? global : local;
   const PairMatch& other = take_global ? local : global;
   best.evaluations = evaluations;

@@ -84,15 +84,12 @@ struct SamplingParams {
 // and the ofstad arena's near-blank views close to its wall are lost. No threshold of its own: t is
 // Table 2's; frames whose local match passes t pay nothing.
 struct FastTurns {
-  bool global_fallback = true;  // measured on the zoo: docs/compass.md "Fast turns"
-  // A much deeper minimum elsewhere (docs/compass.md "A turn in one frame"): the global minimum
-  // also replaces the local one when it has no competing minimum, the pair is not featureless and
-  // its distance is below this share of the local minimum's, whatever its amplitude and the
-  // prediction. A turn of 105° in one frame next to a wall (house-s1's wander) has its global
-  // minimum at 0.25-0.35 of the local one's, 𝒜_n 0.2-0.3 (below t) and far from the last turn; the
-  // grass's aliases lie at 0.67-0.99 of it. 0: off. Chosen across the zoo, leaving one family out
-  // (compass.yaml).
-  double deeper_ratio = 0.6;
+  // Measured on the zoo: docs/compass.md "Fast turns". A turn of 105° in one frame next to a wall
+  // (house-s1's wander), whose global minimum the fallback's tests reject, is min-warping's joint
+  // rotation's to catch (min_warping.in_compass); a rule taking a much deeper global minimum
+  // whatever its amplitude changed no route of the zoo once that rotation came (docs/evaluation.md
+  // "The rules between minima, re-chosen with the joint rotation"), and was removed.
+  bool global_fallback = true;
 };
 
 // The heading's standard deviation (ours; docs/compass.md "Uncertainty"). Each match's variance
