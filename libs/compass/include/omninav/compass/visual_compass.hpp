@@ -86,9 +86,8 @@ struct SamplingParams {
 struct FastTurns {
   // Measured on the zoo: docs/compass.md "Fast turns". A turn of 105° in one frame next to a wall
   // (house-s1's wander), whose global minimum the fallback's tests reject, is min-warping's joint
-  // rotation's to catch (min_warping.in_compass); a rule taking a much deeper global minimum
-  // whatever its amplitude changed no route of the zoo once that rotation came (docs/evaluation.md
-  // "The rules between minima, re-chosen with the joint rotation"), and was removed.
+  // rotation's to catch (min_warping.in_compass); without it (in_compass false, panoramas
+  // narrower than its search) such a turn is lost.
   bool global_fallback = true;
 };
 
