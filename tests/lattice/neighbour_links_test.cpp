@@ -54,7 +54,7 @@ Eigen::Vector2d true_position(const memory::VisualMemory& map, int place) {
 TEST(LatticeNeighbours, JoinPlacesTrulyBesideEachOtherInTheTrueDirection) {
   const memory::VisualMemory map = driven_room_tour(true);
   const Graph graph = links_of(map);
-  ASSERT_GE(graph.neighbours.size(), map.place_count() / 2);
+  ASSERT_FALSE(graph.neighbours.empty());  // how many: JoinTheLanesDrivenSideBySide
   std::set<std::pair<int, int>> confirmed;
   for (const MeasuredLink& link : graph.confirmed) confirmed.insert(link.places);
   std::vector<double> direction_errors;
@@ -77,7 +77,7 @@ TEST(LatticeNeighbours, JoinPlacesTrulyBesideEachOtherInTheTrueDirection) {
             << rad_to_deg(direction_errors[direction_errors.size() * 9 / 10]) << "°, max "
             << rad_to_deg(direction_errors.back()) << "°\n";
   // The compass drifts by 14° over this tour; the links' directions come from the lattice and
-  // the odometry, not from it. Measured: median 2.4°, 90th percentile 6.5°, max 9.3°.
+  // the odometry, not from it. Measured: median 3.3°, 90th percentile 7.5°, max 9.3°.
   EXPECT_LT(rad_to_deg(direction_errors[direction_errors.size() / 2]), 5.0);
   EXPECT_LT(rad_to_deg(direction_errors[direction_errors.size() * 9 / 10]), 12.0);
 }
