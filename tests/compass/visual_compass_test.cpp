@@ -301,16 +301,28 @@ TEST(VisualCompass, GlobalFallbackFollowsSharpTurnsOfWanders) {
   }
 }
 
+// Algorithm 1's max |e| over a rendered slice with the joint rotation (compass.yaml's default)
+// and with the pure rotation alone.
+struct MaxErrors {
+  double with_joint_deg = 0.0;
+  double pure_rotation_deg = 0.0;
+};
+MaxErrors max_errors_with_and_without_joint(const RenderedSequence& sequence) {
+  const CompassParams joint = alg1();
+  EXPECT_TRUE(joint.joint.enabled);
+  CompassParams pure_rotation = joint;
+  pure_rotation.joint.enabled = false;
+  return {run_on(sequence, joint).evaluation.error_deg.max_abs,
+          run_on(sequence, pure_rotation).evaluation.error_deg.max_abs};
+}
+
 // A turn of 105° in one frame next to a wall (frame 243 of the full suite's house-s1 wander,
 // rendered: frames 236-252): the pair's global minimum is 103.7° with 𝒜_n 0.27, below t, and far
 // from the last frame's turn, so the fallback's tests keep the local scan's -1.4° and the route
 // stays 105° off to its end (132.9° max over the whole route; alg1-paper, lost elsewhere, 74.6°).
 // The pair shows parallax: min-warping's joint rotation reads the turn, and the compass takes the
-// pure rotation's minimum in its basin. (A rule taking a much deeper global minimum whatever its
-// amplitude caught it before the joint rotation; it changed no route of the zoo after and was
-// removed: docs/evaluation.md "The rules between minima, re-chosen with the joint rotation".)
-// Measured on the slice, max |e|: 1.9° with the joint rotation, 134.8° without it, 103.0° for
-// alg1-paper.
+// pure rotation's minimum in its basin. Measured on the slice, max |e|: 1.9° with the joint
+// rotation, 134.8° without it, 103.0° for alg1-paper.
 TEST(VisualCompass, JointRotationFollowsATurnInOneFrame) {
   const RenderedSequence sequence = render_frames(
       "house:rooms=3,room_min_m=2.5,room_max_m=3.5,seed=1",
@@ -324,15 +336,10 @@ TEST(VisualCompass, JointRotationFollowsATurnInOneFrame) {
                                                             sequence.truth[i - 1].heading_rad))));
   }
   EXPECT_GT(sharpest_deg, 90.0);
-  const CompassParams joint = alg1();
-  ASSERT_TRUE(joint.joint.enabled);  // compass.yaml's default
-  CompassParams without = joint;
-  without.joint.enabled = false;
-  const RenderedRun with_joint = run_on(sequence, joint);
-  const RenderedRun without_joint = run_on(sequence, without);
+  const MaxErrors errors = max_errors_with_and_without_joint(sequence);
   // The turn is followed with the joint rotation; without it, more than the turn is lost.
-  EXPECT_LE(with_joint.evaluation.error_deg.max_abs, 5.0);
-  EXPECT_GT(without_joint.evaluation.error_deg.max_abs, 90.0);
+  EXPECT_LE(errors.with_joint_deg, 5.0);
+  EXPECT_GT(errors.pure_rotation_deg, 90.0);
 }
 
 // A turn read in a parallax-shifted basin (frames 300-312 of the full suite's room-s1 wander,
@@ -346,12 +353,9 @@ TEST(VisualCompass, JointRotationTakesTheBasinTheTranslationExplains) {
       "room:seed=1",
       "wander:x=4.35,y=4.2,length_m=8,speed_m_s=0.2,clearance_m=0.15,seed=1,fps=10,z_m=1", 300,
       312);
-  CompassParams pure_rotation = alg1();
-  pure_rotation.joint.enabled = false;
-  const RenderedRun joint = run_on(sequence, alg1());
-  const RenderedRun pure = run_on(sequence, pure_rotation);
-  EXPECT_LE(joint.evaluation.error_deg.max_abs, 5.0);
-  EXPECT_GT(pure.evaluation.error_deg.max_abs, 15.0);
+  const MaxErrors errors = max_errors_with_and_without_joint(sequence);
+  EXPECT_LE(errors.with_joint_deg, 5.0);
+  EXPECT_GT(errors.pure_rotation_deg, 15.0);
 }
 
 // The same turn as one pair (frames 306 and 307): the pure rotation's lowest minimum is the
