@@ -82,6 +82,37 @@ TEST_F(RoomNavigation, ARobotWhoseBeliefNeverSettlesStopsWhereTheGoalImageSaysTh
   EXPECT_LT(std::hypot(robot.pose().x_m - goal.x_m, robot.pose().y_m - goal.y_m), 0.3);
 }
 
+TEST_F(RoomNavigation, ARobotToWhichTheGoalImageAlwaysSeemsFarStopsOnceItHasCrossedTheGoalTwice) {
+  // As where views change within centimetres (grass seen from 10 cm): the goal image's
+  // dissimilarity says "far" even at the goal, and the belief never settles. The robot steers by
+  // the goal image's bearing once it acts on the goal's place, and stops when it has crossed the
+  // goal twice: turned about to the bearing, a step towards it leaves the goal behind again.
+  BeliefParams never_confident;
+  never_confident.confident_share = 1.0;
+  const GoalNavigationSetup navigation = goal_navigation_setup(
+      map().memory, map().localise, RouteParams{}, NavigatorParams{}, LinkParams{}, never_confident,
+      SteeringParams{{}, map().render.geometry});
+  const CameraPose start{2.55, 1.15, 1.0, deg_to_rad(150.0), 0.0, 0.0};
+  const CameraPose goal{2.3, 2.9, 1.0, deg_to_rad(-60.0), 0.0, 0.0};
+  const GoalHoming homing = goal_homing(map().renderer->render(goal), navigation.homing);
+  GoalDrive drive(navigation, nearest_place(goal.x_m, goal.y_m), [&homing](const cv::Mat& view) {
+    GoalCue cue = homing(view);
+    cue.distance_m += 10.0;
+    return cue;
+  });
+  sim::VirtualRobot robot(map().world, start, sim::RobotParams{});
+  while (!drive.finished()) {
+    const DriveCommand command = drive.step(map().renderer->render(robot.pose()));
+    if (!command.moves) break;
+    drive.moved(robot.move(command.turn_rad, command.distance_m));
+  }
+  ASSERT_TRUE(drive.result().reached) << drive.result().steps.size() << " views";
+  EXPECT_EQ(drive.result().homing_steps, 0);
+  // Within a step (navigator.step_m) of the goal, and the trials' criterion.
+  EXPECT_LT(std::hypot(robot.pose().x_m - goal.x_m, robot.pose().y_m - goal.y_m),
+            NavigatorParams{}.step_m + 0.05);
+}
+
 TEST_F(RoomNavigation, TheRobotActsOnThePlaceItSeesEvenWhenDroppedLinksCutItOff) {
   // The grid's first row as a corridor: links between its neighbours only, so that dropping
   // the one link from its first place cuts that place off from the goal at the row's far end.

@@ -99,6 +99,7 @@ class GoalDrive::Run {
     const Waiting waiting = *waiting_;
     waiting_.reset();
     driven_ = driven_m;
+    stepped_towards_goal_ = waiting.towards_goal && driven_ >= 0.5 * waiting.distance_m;
     result_.path_length_m += driven_;
     if (waiting.phase == NavigationPhase::kHoming) {
       homed(waiting);
@@ -114,6 +115,7 @@ class GoalDrive::Run {
     int place = -1;                // the place acted on (following the route)
     double distance_m = 0.0;       // commanded
     double goal_distance_m = 0.0;  // how far the goal seemed (homing)
+    bool towards_goal = false;     // a step towards the goal image's bearing (following the route)
   };
 
   // The view's evidence: the belief carried by the last motion and updated by the view, the
@@ -192,26 +194,41 @@ class GoalDrive::Run {
 
   // Turns towards the plan's next place (aside when blocked) and steps. At the goal's place,
   // where the goal image says the goal lies (the goal's place has no direction of its own); and
-  // there the robot stops where homing stops, once the goal seems within homing_stop_m. Where
-  // views change within centimetres (grass seen from 10 cm) the belief may never settle on the
-  // goal's place, whose image was taken up to half a cell's diagonal from the goal, while the
-  // goal image itself says the robot stands at the goal.
+  // there the robot stops where homing stops, once the goal seems within homing_stop_m, or once
+  // it passed over the goal (passed_over_goal). Where views change within centimetres (grass
+  // seen from 10 cm) the belief may never settle on the goal's place, whose image was taken up
+  // to half a cell's diagonal from the goal, while the goal image itself says the robot stands
+  // at the goal.
   void follow_route(DriveCommand& command, int place, double in_place, const cv::Mat& view) {
     double direction_rad = 0.0;
+    bool towards_goal = false;
     if (place == plan_.goal && homing_) {
       const GoalCue cue = homing_(view);
-      if (goal_seems_near(cue)) {
+      if (goal_seems_near(cue) || passed_over_goal(cue)) {
         arrive(command);
         return;
       }
       direction_rad = cue.valid ? cue.bearing_rad : 0.0;
+      towards_goal = cue.valid && sidestep_ == 0;
+      turned_about_ = towards_goal && std::abs(cue.bearing_rad) > 0.5 * kPi;
     } else {
       direction_rad = route_direction(place, in_place, view);
     }
     const double turn_rad = wrap_angle(direction_rad + sidestep_turn(sidestep_));
     check_progress(place);
     command_motion(command, turn_rad, params_.step_m);
-    waiting_ = Waiting{NavigationPhase::kFollowingRoute, place, params_.step_m, 0.0};
+    waiting_ = Waiting{NavigationPhase::kFollowingRoute, place, params_.step_m, 0.0, towards_goal};
+  }
+
+  // The goal image's bearing was behind the robot, it turned about and drove a step towards it,
+  // and the bearing is behind it again: it crossed the goal twice, and the goal lies within that
+  // step. Where views change within centimetres (grass seen from 10 cm) the goal image's
+  // dissimilarity says "far" a few centimetres from it, and a robot at the goal turned about and
+  // stepped to and fro. Once is not enough: a bearing that noisy is now and then behind the
+  // robot half a metre from the goal.
+  bool passed_over_goal(const GoalCue& cue) const {
+    return stepped_towards_goal_ && turned_about_ && cue.valid &&
+           std::abs(cue.bearing_rad) > 0.5 * kPi;
   }
 
   // Where the route leads from `place`, counter-clockwise from the robot's front: towards the
@@ -370,6 +387,8 @@ class GoalDrive::Run {
   int previous_place_ = -1;
   bool was_lost_ = false;
   bool homing_started_ = false;
+  bool stepped_towards_goal_ = false;  // the last motion: a whole step towards the goal image
+  bool turned_about_ = false;          // ... after turning about to the goal image's bearing
   bool arrived_ = false;
   double homing_from_ = std::numeric_limits<double>::infinity();
   // Progress: the place nearest the goal the belief has acted on, its cost then, and the
