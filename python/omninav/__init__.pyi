@@ -113,6 +113,7 @@ class LinkParams:
     revisits_per_place: int
     revisit_candidates: int
     odometry_noise: float
+    neighbour_spacings: float
 
 class BeliefParams:
     view_scale: float

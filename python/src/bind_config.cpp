@@ -183,7 +183,8 @@ void bind_navigation_config(py::module_& m) {
       .def_readwrite("revisit_disagreement_deg", &LinkParams::revisit_disagreement_deg)
       .def_readwrite("revisits_per_place", &LinkParams::revisits_per_place)
       .def_readwrite("revisit_candidates", &LinkParams::revisit_candidates)
-      .def_readwrite("odometry_noise", &LinkParams::odometry_noise);
+      .def_readwrite("odometry_noise", &LinkParams::odometry_noise)
+      .def_readwrite("neighbour_spacings", &LinkParams::neighbour_spacings);
 
   using navigation::BeliefParams;
   py::class_<BeliefParams>(m, "BeliefParams", "navigation.yaml's belief section.")

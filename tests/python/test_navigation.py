@@ -80,6 +80,7 @@ def test_routes_follow_the_links_section_of_the_config(organised_grid):
     goal = len(places) - 1
     config = omninav.NavigationConfig.load()
     assert config.links.revisit_run == 5 and config.belief.confident_share == 0.5
+    assert config.links.neighbour_spacings == 1.0  # lattice.yaml's, settable as every key
     # No grid pair passes a check this strict: the grid still hangs together by its nearest
     # pairs (confirmed_links joins the pieces), so the route still goes from neighbour to
     # neighbour.

@@ -96,6 +96,22 @@ PairMatch VisualCompass::match_pair(const CompassFrame& first, const CompassFram
       first, second, pure_rotation_match(first, second, start_shift, predicted_rotation_rad));
 }
 
+std::shared_ptr<const MinWarpingView> VisualCompass::warping_view(const CompassFrame& frame) const {
+  // Frames are told apart by their caches, which copies share (frame.hpp); the frames kept here
+  // hold theirs alive, so no other frame can take their address.
+  constexpr std::size_t kKept = 3;
+  const auto same = [&frame](const auto& kept) { return &kept.first.caches() == &frame.caches(); };
+  auto found = std::find_if(warping_views_.begin(), warping_views_.end(), same);
+  if (found == warping_views_.end()) {
+    if (warping_views_.size() == kKept) warping_views_.erase(warping_views_.begin());
+    warping_views_.emplace_back(frame, std::make_shared<const MinWarpingView>(
+                                           warping_->prepare(frame.image(), frame.source())));
+  } else {
+    std::rotate(found, found + 1, warping_views_.end());  // the most recent last
+  }
+  return warping_views_.back().second;
+}
+
 PairMatch VisualCompass::joint_rotation_match(const CompassFrame& first, const CompassFrame& second,
                                               PairMatch pure) const {
   // On the spot a turn explains the pair: its minimum stays within the reference against itself
@@ -105,9 +121,9 @@ PairMatch VisualCompass::joint_rotation_match(const CompassFrame& first, const C
   }
   // Panoramas narrower than the search have nothing finer to offer it: the pure rotation stands.
   if (first.width() < params_.joint.warping.search_width_px) return pure;
-  const MinWarpingView a = warping_->prepare(first.image(), first.source());
-  const MinWarpingView b = warping_->prepare(second.image(), second.source());
-  const MinWarpingResult forward = warping_->estimate(a, b);
+  const std::shared_ptr<const MinWarpingView> a = warping_view(first);
+  const std::shared_ptr<const MinWarpingView> b = warping_view(second);
+  const MinWarpingResult forward = warping_->estimate(*a, *b);
   // One search step: the joint estimate's own resolution, below which it cannot tell two
   // rotations apart.
   const double step_rad = kTwoPi / params_.joint.warping.search_width_px;
@@ -117,7 +133,7 @@ PairMatch VisualCompass::joint_rotation_match(const CompassFrame& first, const C
   if (forward.featureless || !apart(forward.rotation_rad, pure.rotation_rad)) return pure;
   // The pair the other way round must give the opposite turn: aliased or near-blank pairs fit
   // one direction by chance, and their two searches disagree.
-  if (apart(forward.rotation_rad, -warping_->estimate(b, a).rotation_rad)) return pure;
+  if (apart(forward.rotation_rad, -warping_->estimate(*b, *a).rotation_rad)) return pure;
   const int width = first.width();
   PairMatch joint = matcher_.match_in_basin(
       first, second,

@@ -42,6 +42,8 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "omninav/compass/frame.hpp"
 #include "omninav/compass/min_warping.hpp"
@@ -194,7 +196,14 @@ class VisualCompass {
   CompassParams params_;
   PairMatcher matcher_;
   std::unique_ptr<PairMatcher> global_matcher_;  // FastTurns, when the minimiser is local
-  std::unique_ptr<MinWarping> warping_;          // JointRotationParams, when enabled
+  // Min-warping's view of a frame, prepared once for the frames in use: the reference meets
+  // every frame that follows it, and a frame is the second of one pair and the first of the next.
+  std::shared_ptr<const MinWarpingView> warping_view(const CompassFrame& frame) const;
+
+  std::unique_ptr<MinWarping> warping_;  // JointRotationParams, when enabled
+  // The views of the frames used last, most recent last (a few: the reference and the newest).
+  mutable std::vector<std::pair<CompassFrame, std::shared_ptr<const MinWarpingView>>>
+      warping_views_;
   double initial_heading_rad_;
   std::optional<CompassFrame> reference_;
   std::optional<CompassFrame> current_;
