@@ -385,6 +385,58 @@ TEST(Exploration, BadFramesNameTheirSource) {
   EXPECT_THROW(second.add_place(taller), UsageError);
 }
 
+// Odometry that jumps (a reset, frames missing from a bag) between two frames by more than two
+// spacings of places is refused naming the frame: a whole place would have no frame. A step of
+// a spacing and a half is not; without every_m nothing fixes the scale, so nothing is.
+TEST(Exploration, OdometryThatJumpsMoreThanThePlacesSpacingIsRefusedNamingTheFrame) {
+  const std::vector<io::Frame> route = route_frames();
+  std::vector<io::Frame> frames(route.begin(), route.begin() + 12);
+  for (io::Frame& frame : frames) frame.odometry = frame.truth;
+  ExplorationParams by_odometry = only(0.0, 0, 0.3);
+  by_odometry.odometry = true;
+  {
+    VisualMemory memory;
+    Explorer explorer(memory, by_odometry, "route", "test");
+    for (const io::Frame& f : frames) EXPECT_NO_THROW(explorer.add(f)) << f.source;
+  }
+  {
+    // Frames 0.05 m apart explored for places every 0.03 m: 1.67 spacings a step.
+    VisualMemory memory;
+    ExplorationParams close_places = by_odometry;
+    close_places.every_m = 0.03;
+    Explorer explorer(memory, close_places, "route", "test");
+    for (const io::Frame& f : frames) EXPECT_NO_THROW(explorer.add(f)) << f.source;
+    EXPECT_EQ(memory.place_count(), 12U);
+  }
+  // The odometry resets to the origin at frame 7, 2.79 m from frame 6's.
+  for (std::size_t i = 7; i < frames.size(); ++i) {
+    frames[i].odometry->x_m -= frames[7].truth->x_m;
+    frames[i].odometry->y_m -= frames[7].truth->y_m;
+  }
+  VisualMemory memory;
+  Explorer explorer(memory, by_odometry, "route", "test");
+  for (std::size_t i = 0; i < 7; ++i) explorer.add(frames[i]);
+  try {
+    explorer.add(frames[7]);
+    FAIL() << "a 2.79 m jump was taken";
+  } catch (const InputError& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find("route#7"), std::string::npos) << message;
+    EXPECT_NE(message.find("odometry moved 2.79 m"), std::string::npos) << message;
+    EXPECT_NE(message.find("0.6 m"), std::string::npos) << message;
+  }
+  // The ground truth does not jump: exploring by it takes every frame.
+  VisualMemory by_truth_memory;
+  Explorer by_truth(by_truth_memory, only(0.0, 0, 0.3), "route", "test");
+  for (const io::Frame& f : frames) EXPECT_NO_THROW(by_truth.add(f)) << f.source;
+  // Without a spacing the jump is not judged.
+  by_odometry.every_m = 0.0;
+  by_odometry.every_n_frames = 3;
+  VisualMemory unscaled_memory;
+  Explorer unscaled(unscaled_memory, by_odometry, "route", "test");
+  for (const io::Frame& f : frames) EXPECT_NO_THROW(unscaled.add(f)) << f.source;
+}
+
 // A value set in code, as Python's writable fields set it, is refused by the explorer as the
 // YAML loader refuses it in memory.yaml, naming the key (ExplorationParams::check).
 TEST(Exploration, ParamsOutOfRangeAreRefusedNamingTheKey) {

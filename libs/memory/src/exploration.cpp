@@ -168,6 +168,9 @@ const Run& Explorer::run() const {
 std::optional<PlaceIndex> Explorer::add(const io::Frame& frame) {
   if (frame.truth) check_pose(*frame.truth, frame.source);  // every source's, before any use
   if (frame.odometry) check_pose(*frame.odometry, frame.source);
+  // The distance travelled as the input measures it: its poses, or its odometry.
+  const std::optional<CameraPose>& travelled = params_.odometry ? frame.odometry : frame.truth;
+  const double step_m = travelled_step_m(travelled, frame.source);
   const signature::Signature signature = extractor_.compute(frame.image, frame.source);
   track_heading(frame, signature);
   if (plateau_) {
@@ -180,12 +183,7 @@ std::optional<PlaceIndex> Explorer::add(const io::Frame& frame) {
   ++frames_;
   memory_.record_run_progress(run_index_, frames_, places_);
   ++frames_since_place_;
-  // The distance travelled as the input measures it: its poses, or its odometry.
-  const std::optional<CameraPose>& travelled = params_.odometry ? frame.odometry : frame.truth;
-  if (travelled && previous_pose_) {
-    metres_since_place_ +=
-        std::hypot(travelled->x_m - previous_pose_->x_m, travelled->y_m - previous_pose_->y_m);
-  }
+  metres_since_place_ += step_m;
   previous_pose_ = travelled;
 
   bool new_place = !last_place_;
@@ -209,6 +207,28 @@ std::optional<PlaceIndex> Explorer::add(const io::Frame& frame) {
   }
   if (!new_place) return std::nullopt;
   return make_place(frame, signature);
+}
+
+double Explorer::travelled_step_m(const std::optional<CameraPose>& travelled,
+                                  const std::string& source) const {
+  if (!travelled || !previous_pose_) return 0.0;
+  const double step_m =
+      std::hypot(travelled->x_m - previous_pose_->x_m, travelled->y_m - previous_pose_->y_m);
+  // Consecutive places are every_m apart by construction (the map's scale, lattice/organise.hpp).
+  // A frame may come a spacing after the last (a robot that stops every spacing to take an
+  // image, with its odometry's error); a step of more than two spacings passes a whole place
+  // with no frame: a jump (an odometry reset, a gap in a bag) or frames too far apart.
+  const double limit_m = 2.0 * params_.every_m;
+  if (params_.every_m > 0.0 && step_m > limit_m) {
+    std::ostringstream message;
+    message << source << ": the " << (params_.odometry ? "odometry" : "poses") << " moved "
+            << fixed(step_m, 2) << " m since the previous frame, more than two places' spacing ("
+            << limit_m << " m, --every-m " << params_.every_m
+            << "): a jump (an odometry reset, frames missing) or frames too far apart; explore "
+               "the stretches either side of it as separate runs, or give a larger --every-m";
+    throw InputError(message.str());
+  }
+  return step_m;
 }
 
 PlaceIndex Explorer::add_place(const io::Frame& frame) {

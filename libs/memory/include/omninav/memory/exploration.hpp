@@ -153,7 +153,8 @@ class Explorer {
   // Considers one frame whose image is a panorama; returns the new place's index when the
   // frame became one. Throws InputError naming frame.source for a bad image or one whose shape
   // differs from the run's first, UsageError when heading_source is "truth" and the frame has
-  // no pose.
+  // no pose, InputError when with every_m set the poses travelled (or the odometry, with
+  // `odometry`) move more than 2 × every_m between two frames (a jump).
   std::optional<PlaceIndex> add(const io::Frame& frame);
 
   // Forces the frame to become a place (e.g. every image of a grid database).
@@ -184,6 +185,9 @@ class Explorer {
   // Where the compass starts for the run's first frame (the gauge, see above).
   double initial_heading(const io::Frame& frame, const signature::Signature& signature) const;
   PlaceIndex make_place(const io::Frame& frame, const signature::Signature& signature);
+  // The distance from the previous frame's pose (0 for the first); throws on a jump (see add).
+  double travelled_step_m(const std::optional<CameraPose>& travelled,
+                          const std::string& source) const;
   // The panorama resampled to the compass's width (compass_width_px), or itself.
   cv::Mat at_compass_width(const cv::Mat& panorama) const;
   // Whether the step from previous_panorama_ to `panorama` (both at compass width) is a turn on
