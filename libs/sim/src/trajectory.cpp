@@ -126,9 +126,15 @@ void walk_polyline(const std::vector<Eigen::Vector2d>& points, double speed_m_s,
           pose_count(std::ceil(std::abs(turn) / (turn_rate_rad_s / fps) - 1e-9), spec);
       for (int k = 0; k < frames; ++k) add(from, wrap_angle(previous + turn * k / frames));
     }
-    const int steps = std::max(1, pose_count(std::floor(length / step_m + 1e-9), spec));
-    pose_count(static_cast<double>(poses.size()) + steps, spec);
+    // Frames every step_m from the leg's start. Before a corner the last comes within a step of
+    // it (the next leg's first frame is the corner), so that no step is longer than step_m: a
+    // robot slows to turn, it does not leap. The last leg stops at its last whole step.
     const bool last_leg = leg + 2 == points.size();
+    const double whole_steps = length / step_m;
+    const int steps = std::max(
+        1, pose_count(last_leg ? std::floor(whole_steps + 1e-9) : std::ceil(whole_steps - 1e-9),
+                      spec));
+    pose_count(static_cast<double>(poses.size()) + steps, spec);
     for (int i = 0; i < steps + (last_leg ? 1 : 0); ++i) {
       add(from + (to - from) * (std::min(length, i * step_m) / length), heading);
     }
