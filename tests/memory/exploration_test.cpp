@@ -394,20 +394,20 @@ TEST(Exploration, OdometryThatJumpsMoreThanThePlacesSpacingIsRefusedNamingTheFra
   for (io::Frame& frame : frames) frame.odometry = frame.truth;
   ExplorationParams by_odometry = only(0.0, 0, 0.3);
   by_odometry.odometry = true;
-  {
+  // Explores every frame into a new map, expecting none refused; returns the places made.
+  const auto places_explored = [&frames](const ExplorationParams& params) {
     VisualMemory memory;
-    Explorer explorer(memory, by_odometry, "route", "test");
+    Explorer explorer(memory, params, "route", "test");
     for (const io::Frame& f : frames) EXPECT_NO_THROW(explorer.add(f)) << f.source;
-  }
-  {
-    // Frames 0.05 m apart explored for places every 0.03 m: 1.67 spacings a step.
-    VisualMemory memory;
-    ExplorationParams close_places = by_odometry;
-    close_places.every_m = 0.03;
-    Explorer explorer(memory, close_places, "route", "test");
-    for (const io::Frame& f : frames) EXPECT_NO_THROW(explorer.add(f)) << f.source;
-    EXPECT_EQ(memory.place_count(), 12U);
-  }
+    return memory.place_count();
+  };
+  places_explored(by_odometry);
+  // Frames 0.05 m apart explored for places every 0.03 m: 1.67 spacings a step, every frame a
+  // place.
+  ExplorationParams close_places = by_odometry;
+  close_places.every_m = 0.03;
+  EXPECT_EQ(places_explored(close_places), frames.size());
+
   // The odometry resets to the origin at frame 7, 2.79 m from frame 6's.
   for (std::size_t i = 7; i < frames.size(); ++i) {
     frames[i].odometry->x_m -= frames[7].truth->x_m;
@@ -426,15 +426,11 @@ TEST(Exploration, OdometryThatJumpsMoreThanThePlacesSpacingIsRefusedNamingTheFra
     EXPECT_NE(message.find("0.6 m"), std::string::npos) << message;
   }
   // The ground truth does not jump: exploring by it takes every frame.
-  VisualMemory by_truth_memory;
-  Explorer by_truth(by_truth_memory, only(0.0, 0, 0.3), "route", "test");
-  for (const io::Frame& f : frames) EXPECT_NO_THROW(by_truth.add(f)) << f.source;
+  places_explored(only(0.0, 0, 0.3));
   // Without a spacing the jump is not judged.
   by_odometry.every_m = 0.0;
   by_odometry.every_n_frames = 3;
-  VisualMemory unscaled_memory;
-  Explorer unscaled(unscaled_memory, by_odometry, "route", "test");
-  for (const io::Frame& f : frames) EXPECT_NO_THROW(unscaled.add(f)) << f.source;
+  places_explored(by_odometry);
 }
 
 // A value set in code, as Python's writable fields set it, is refused by the explorer as the
