@@ -89,23 +89,15 @@ const memory::VisualMemory& driven_map(int side) {
   static std::map<int, memory::VisualMemory> maps;
   const auto found = maps.find(side);
   if (found != maps.end()) return found->second;
-  memory::VisualMemory map{memory::MapParameters{}};
-  memory::ExplorationParams exploration;
-  exploration.heading_source = memory::HeadingPolicy::kTruth;
-  exploration.new_place_dissimilarity = 0.0;
-  exploration.every_m = kSpacing;
-  exploration.odometry = true;
-  memory::Explorer explorer(map, exploration, "tour", "lattice_bench.cpp",
-                            memory::FrameOrder::kStream);
   const double far = kMarginM + (side - 1) * kSpacing;
-  for (const omninav::io::Frame& frame : omninav::testing::rendered_frames(
-           room_for(side), bench_render(),
-           "tour:x0=" + std::to_string(kMarginM) + ",y0=" + std::to_string(kMarginM) +
-               ",x1=" + std::to_string(far) + ",y1=" + std::to_string(far) +
-               ",lane_m=0.3,speed_m_s=0.3,fps=1,turn_rate_deg_s=90,odometry_noise=0.05",
-           "tour")) {
-    explorer.add(frame);
-  }
+  memory::VisualMemory map = omninav::testing::explored_stream(
+      omninav::testing::rendered_frames(
+          room_for(side), bench_render(),
+          "tour:x0=" + std::to_string(kMarginM) + ",y0=" + std::to_string(kMarginM) +
+              ",x1=" + std::to_string(far) + ",y1=" + std::to_string(far) +
+              ",lane_m=0.3,speed_m_s=0.3,fps=1,turn_rate_deg_s=90,odometry_noise=0.05",
+          "tour"),
+      {kSpacing, memory::HeadingPolicy::kTruth, true}, "tour", "lattice_bench.cpp");
   return maps.emplace(side, std::move(map)).first->second;
 }
 

@@ -178,18 +178,11 @@ TEST(Organise, CompassHeadingsAreMadeConsistentAlongAZigZag) {
   sim::RenderParams render;
   render.geometry.width_px = 360;
   render.geometry.height_px = 45;
-  memory::VisualMemory explored{memory::MapParameters{}};
-  memory::ExplorationParams exploration;
-  exploration.heading_source = memory::HeadingPolicy::kCompass;
-  exploration.new_place_dissimilarity = 0.0;
-  exploration.every_m = 0.3;
-  memory::Explorer explorer(explored, exploration, "run", "organise_test.cpp",
-                            memory::FrameOrder::kStream);
-  for (const io::Frame& frame : testing::rendered_frames(
-           world, render,
-           "zigzag:x0=1.65,y0=1.45,x1=4.35,y1=3.55,rows=8,speed_m_s=0.2,fps=10,z_m=1", "run")) {
-    explorer.add(frame);
-  }
+  const memory::VisualMemory explored = testing::explored_stream(
+      testing::rendered_frames(
+          world, render, "zigzag:x0=1.65,y0=1.45,x1=4.35,y1=3.55,rows=8,speed_m_s=0.2,fps=10,z_m=1",
+          "run"),
+      {0.3, memory::HeadingPolicy::kCompass}, "run", "organise_test.cpp");
   ASSERT_EQ(explored.place_count(), 80u);
   ASSERT_EQ(explored.place(40).heading_source, memory::HeadingSource::kCompass);
   OrganiseParams as_measured;
@@ -419,16 +412,8 @@ memory::VisualMemory bench_tour() {
         "odometry_noise=0.05",
         "tour");
   }();
-  memory::VisualMemory map{memory::MapParameters{}};
-  memory::ExplorationParams exploration;
-  exploration.heading_source = memory::HeadingPolicy::kTruth;
-  exploration.new_place_dissimilarity = 0.0;
-  exploration.every_m = 0.3;
-  exploration.odometry = true;
-  memory::Explorer explorer(map, exploration, "tour", "organise_test.cpp",
-                            memory::FrameOrder::kStream);
-  for (const io::Frame& frame : frames) explorer.add(frame);
-  return map;
+  return testing::explored_stream(frames, {0.3, memory::HeadingPolicy::kTruth, true}, "tour",
+                                  "organise_test.cpp");
 }
 
 // A copy of `tour` (places, edges, spacing) with each place changed by `change` first.

@@ -22,16 +22,8 @@ inline memory::VisualMemory readme_room_tour(bool odometry) {
     return rendered_frames(sim::load_world("room", sim::WorldsConfig{}), render,
                            "tour:x0=1.5,y0=1.5,x1=4.5,y1=3.5,fps=2,odometry_noise=0.05", "tour");
   }();
-  memory::VisualMemory map{memory::MapParameters{}};
-  memory::ExplorationParams exploration;
-  exploration.heading_source = memory::HeadingPolicy::kCompass;
-  exploration.new_place_dissimilarity = 0.0;
-  exploration.every_m = kReadmeTourSpacing_m;
-  exploration.odometry = odometry;
-  memory::Explorer explorer(map, exploration, "tour", "readme_room_tour.hpp",
-                            memory::FrameOrder::kStream);
-  for (const io::Frame& frame : frames) explorer.add(frame);
-  return map;
+  return explored_stream(frames, {kReadmeTourSpacing_m, memory::HeadingPolicy::kCompass, odometry},
+                         "tour", "readme_room_tour.hpp");
 }
 
 }  // namespace omninav::testing

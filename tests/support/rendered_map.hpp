@@ -4,6 +4,7 @@
 // --trajectory ...` then `omninav explore` with heading_source truth:
 //   - rendered_grid_map: a grid sweep as a grid database lists it, every pose a place;
 //   - rendered_run_map: a stream (a route, a zig-zag), a place every `every_m` metres travelled.
+// explored_stream explores frames already rendered as a stream, with any heading source.
 
 #include <Eigen/Geometry>
 #include <string>
@@ -49,20 +50,35 @@ inline memory::VisualMemory rendered_grid_map(const sim::World& world,
   return map;
 }
 
+// How a stream is explored: as `omninav explore --every-m every_m --dissimilarity 0` (with
+// --odometry when `odometry`), the places' headings by `headings`.
+struct StreamExploration {
+  double every_m = 0.3;
+  memory::HeadingPolicy headings = memory::HeadingPolicy::kTruth;
+  bool odometry = false;
+};
+
+// The frames of one run (named `input`) explored into a new map.
+inline memory::VisualMemory explored_stream(const std::vector<io::Frame>& frames,
+                                            const StreamExploration& how, const std::string& input,
+                                            const std::string& description) {
+  memory::VisualMemory map{memory::MapParameters{}};
+  memory::ExplorationParams exploration;
+  exploration.heading_source = how.headings;
+  exploration.new_place_dissimilarity = 0.0;
+  exploration.every_m = how.every_m;
+  exploration.odometry = how.odometry;
+  memory::Explorer explorer(map, exploration, input, description, memory::FrameOrder::kStream);
+  for (const io::Frame& frame : frames) explorer.add(frame);
+  return map;
+}
+
 inline memory::VisualMemory rendered_run_map(const sim::World& world,
                                              const sim::RenderParams& render,
                                              const std::string& trajectory_spec, double every_m,
                                              const std::string& description) {
-  memory::VisualMemory map{memory::MapParameters{}};
-  memory::ExplorationParams exploration;
-  exploration.heading_source = memory::HeadingPolicy::kTruth;
-  exploration.new_place_dissimilarity = 0.0;
-  exploration.every_m = every_m;
-  memory::Explorer explorer(map, exploration, "run", description, memory::FrameOrder::kStream);
-  for (const io::Frame& frame : rendered_frames(world, render, trajectory_spec, "run")) {
-    explorer.add(frame);
-  }
-  return map;
+  return explored_stream(rendered_frames(world, render, trajectory_spec, "run"), {every_m}, "run",
+                         description);
 }
 
 // The places' true positions as their lattice, in the lattice frame (origin at the first place,
